@@ -1,0 +1,162 @@
+/*
+ * epuckrt.h - the event-driven runtime of Ochiai et al., "Event-driven
+ * library for the autonomous robot e-Puck" (Shonan Institute of Technology),
+ * as used by epuckc and by hand-written C.
+ *
+ * The paper's API (its table 1) is kept exactly; everything else is marked
+ * "extension".  Units of the paper's parameter structs: speeds in motor steps
+ * per second (signed, |speed| <= 1000), distances and radii in millimetres,
+ * angles in degrees (positive turns left), times in milliseconds.
+ *
+ * Correct where int is 16 bits (dsPIC30F, XC16): anything that can pass 32767
+ * is long.
+ */
+#ifndef EPUCKRT_H
+#define EPUCKRT_H
+
+#include <stddef.h>
+
+/* Capacities of the two arrays (paper section 4.1).  Set with -D when the
+ * runtime itself is compiled; the program does not depend on them. */
+#ifndef MAX_ACTIONS
+#define MAX_ACTIONS 32
+#endif
+#ifndef MAX_EVENTS
+#define MAX_EVENTS 32
+#endif
+
+/* Default geometry used to convert the paper's millimetres and degrees into
+ * motor steps when a struct gives no exact step count (extension fields
+ * below).  Micrometres, so that integer arithmetic is exact enough. */
+#ifndef EPUCK_WHEEL_CIRCUMFERENCE_UM
+#define EPUCK_WHEEL_CIRCUMFERENCE_UM 128805L   /* pi * 41 mm */
+#endif
+#ifndef EPUCK_AXLE_UM
+#define EPUCK_AXLE_UM 53000L
+#endif
+#ifndef EPUCK_STEPS_PER_REV
+#define EPUCK_STEPS_PER_REV 1000L
+#endif
+#define EPUCK_MAX_SPEED 1000                   /* steps/s, the library clamps */
+
+/* Function types.  The paper declares the registration arguments as void *;
+ * ISO C cannot convert function pointers to void *, so they are typed. */
+typedef void (*action_func)(void *action_param);
+typedef void (*event_func)(void *event_param, void *status);
+
+/* What an event function reports (its second argument points to one). */
+typedef struct {
+    int occurred;   /* set to 1 when the event happened at this poll */
+    long memory;    /* private to the event function, kept between polls,
+                       0 when the event is registered */
+} event_status;
+
+/* Paper figure 3: the elements of the two arrays. */
+typedef struct {
+    void (*action_function)(void *a);
+    void *action_param;
+} action;
+
+typedef struct {
+    void (*event_function)(void *a, void *b);
+    void *event_param;
+    int action_id;
+    int valid_flag;
+    /* extensions */
+    int repeat_flag;        /* 1: stays armed after firing */
+    event_status status;    /* passed as the event function's 2nd argument */
+} event;
+
+/* ---- Paper table 1 ---------------------------------------------------- */
+/* Returns the new id (the array index), or -1 when the array is full or
+ * action_func is NULL.  Slots are never reused: ids stay unique. */
+int register_action(action_func f, void *action_param);
+/* Returns the new id, armed, or -1 when the array is full, event_func is
+ * NULL, or action_id is not a registered, uncancelled action. */
+int register_event(event_func f, void *event_param, int action_id);
+/* Unknown or already cancelled ids are ignored.  An event whose action was
+ * cancelled still fires and disarms, but runs nothing. */
+void cancel_action(int action_id);
+void cancel_event(int event_id);
+/* Polls until exit_main runs (paper figure 4).  Initialises the hardware on
+ * first use, as the paper's figure 2 calls no init function. */
+void mainloop(void);
+
+/* ---- Extensions to table 1 -------------------------------------------- */
+void set_event_repeat(int event_id, int repeat);   /* unknown ids ignored */
+/* Names shown in the host harness's trace; ignored on the robot. */
+void name_action(int action_id, const char *name);
+void name_event(int event_id, const char *name);
+
+/* ---- Paper table 2: standard actions and their parameters -------------- */
+typedef struct {
+    int speed;      /* steps/s; negative drives backwards */
+    int distance;   /* mm (the paper's unit); negative drives backwards */
+    int steps;      /* extension: when nonzero, the exact distance in motor
+                       steps, used instead of `distance` */
+} param_start_straight;
+
+typedef struct {
+    int radius;     /* mm, from the robot's centre to the circle's centre, >= 0 */
+    int degrees;    /* arc angle; positive turns left, negative right */
+    int speed;      /* steps/s of the outer wheel; negative drives backwards */
+    int outer_steps;  /* extension: when nonzero, the exact outer-wheel step */
+    int inner_speed;  /* count and signed inner-wheel speed, used instead of
+                         converting radius/degrees with the default geometry */
+} param_start_curve;
+
+void action_start_straight(void *param);   /* param_start_straight * */
+void action_start_curve(void *param);      /* param_start_curve * */
+void action_stop_motor(void *param);       /* NULL */
+void action_set_timer(void *param);        /* NULL: (re)start the timer at 0 */
+void action_reset_timer(void *param);      /* NULL: stop the timer */
+void action_start_sensor(void *param);     /* NULL: start proximity polling */
+void action_stop_sensor(void *param);      /* NULL */
+void action_exit_main(void *param);        /* NULL: mainloop returns */
+/* the paper's short spellings (figure 2) */
+void start_straight(void *param);
+void start_curve(void *param);
+void stop_motor(void *param);
+void set_timer(void *param);
+void reset_timer(void *param);
+void start_sensor(void *param);
+void stop_sensor(void *param);
+void exit_main(void *param);
+
+/* Extension: a sequence of steps ("A then B then C").  Each step starts when
+ * the motion started by the step before it has finished, at once if that
+ * step started no motion. */
+typedef struct {
+    const action *steps;   /* run in order; {function, param} pairs */
+    int count;
+} param_sequence;
+void action_run_sequence(void *param);     /* param_sequence * */
+void run_sequence(void *param);
+
+/* ---- Paper table 3: standard events and their parameters --------------- */
+#define SENSOR_OFF (-1)
+typedef struct {
+    int sensef[8];        /* threshold per IR sensor 0..7 (0..4095), or
+                             SENSOR_OFF for a sensor not watched */
+    unsigned char below;  /* extension: bit n set: sensor n fires when its
+                             reading < sensef[n]; clear: when > sensef[n] */
+} param_event_sensor;
+
+typedef struct {
+    long time;            /* ms since set_timer */
+} param_event_timer;
+
+typedef param_event_sensor param_sensor;
+typedef param_event_timer param_timer;
+
+void event_sensor(void *param, void *status);      /* param_event_sensor * */
+void event_timer(void *param, void *status);       /* param_event_timer * */
+void event_immediate(void *param, void *status);   /* NULL */
+void event_stop_motor(void *param, void *status);  /* NULL */
+/* short spellings; the stop_motor event keeps its long name because
+ * stop_motor is the action */
+void sensor(void *param, void *status);
+void timer(void *param, void *status);
+void immediate(void *param, void *status);
+
+#endif /* EPUCKRT_H */
