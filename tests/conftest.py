@@ -1,0 +1,34 @@
+"""Shared test helpers.
+
+A test that needs an external tool (avr-gcc, a C compiler, ...) calls
+`require_tool`: it skips with the reason when the tool is missing, except in
+CI (EPUCKC_REQUIRE_ALL_TOOLS=1), where a missing tool is a failure, because
+.ci/run installs every tool the tests need.
+"""
+import os
+import shutil
+from pathlib import Path
+
+import pytest
+
+REPO = Path(__file__).resolve().parent.parent
+
+
+def require_tool(name: str) -> str:
+    path = shutil.which(name)
+    if path:
+        return path
+    reason = f"{name} is not installed (CI installs it in .ci/run)"
+    if os.environ.get("EPUCKC_REQUIRE_ALL_TOOLS"):
+        pytest.fail(reason)
+    pytest.skip(reason)
+
+
+def pytest_addoption(parser):
+    parser.addoption("--update-goldens", action="store_true", default=False,
+                     help="rewrite golden files from the current output")
+
+
+@pytest.fixture
+def update_goldens(request) -> bool:
+    return bool(request.config.getoption("--update-goldens"))
