@@ -1,0 +1,152 @@
+"""Typed syntax tree of a rule file. Every node knows its span."""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Optional, Union
+
+from .source import Span
+
+
+@dataclass(frozen=True)
+class Ident:
+    name: str
+    span: Span
+
+
+@dataclass(frozen=True)
+class Number:
+    """A literal such as `-2.5 cm`; `text` is the number as written."""
+    value: float
+    text: str
+    unit: Optional[str]
+    unit_span: Optional[Span]
+    span: Span
+
+
+@dataclass(frozen=True)
+class ConstRef:
+    name: Ident
+    negative: bool
+    span: Span
+
+
+Value = Union[Number, ConstRef]
+
+
+@dataclass(frozen=True)
+class NamedArg:
+    name: Ident
+    value: Value
+    span: Span
+
+
+@dataclass(frozen=True)
+class PositionalArg:
+    value: Value
+    span: Span
+
+
+@dataclass(frozen=True)
+class ConditionArg:
+    """`ir0 > 300` inside sensor(...)."""
+    sensor: Ident
+    op: str
+    value: Value
+    span: Span
+
+
+Arg = Union[NamedArg, PositionalArg, ConditionArg]
+
+
+@dataclass(frozen=True)
+class Call:
+    """An action or event named with optional arguments: `stop_motor`,
+    `start_straight(300, 2 m)`. `args` is None without parentheses."""
+    name: Ident
+    args: Optional[tuple]
+    span: Span
+
+
+@dataclass(frozen=True)
+class CancelCall:
+    rule: Ident
+    span: Span
+
+
+@dataclass(frozen=True)
+class Step:
+    """Calls that run together, in order, in one poll: `A, B`."""
+    calls: tuple
+    span: Span
+
+
+@dataclass(frozen=True)
+class ActionBody:
+    """`step then step then ...`; a single step is a plain action list."""
+    steps: tuple
+    span: Span
+
+
+@dataclass(frozen=True)
+class Setting:
+    name: Ident
+    value: Value
+    span: Span
+
+
+@dataclass(frozen=True)
+class RobotBlock:
+    settings: tuple
+    span: Span
+
+
+@dataclass(frozen=True)
+class ConstDef:
+    name: Ident
+    value: Value
+    span: Span
+
+
+@dataclass(frozen=True)
+class ActionDef:
+    name: Ident
+    body: ActionBody
+    span: Span
+
+
+@dataclass(frozen=True)
+class ParamDecl:
+    name: Ident
+    type: Ident
+    span: Span
+
+
+@dataclass(frozen=True)
+class ExternDef:
+    kind: str                 # "action" | "event"
+    name: Ident
+    params: tuple
+    file: str
+    file_span: Span
+    span: Span
+
+
+@dataclass(frozen=True)
+class Rule:
+    name: Optional[Ident]
+    event: Call
+    repeat: bool
+    body: ActionBody
+    span: Span
+
+
+Statement = Union[RobotBlock, ConstDef, ActionDef, ExternDef, Rule]
+
+
+@dataclass
+class Program:
+    file: str
+    statements: list = field(default_factory=list)
+
+    def of_type(self, kind):
+        return [s for s in self.statements if isinstance(s, kind)]

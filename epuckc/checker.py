@@ -1,0 +1,738 @@
+"""Semantic checks: names, arguments, kinds, ranges, rules that cannot fire.
+
+The checker finds every problem it can in one run and resolves what is
+right into a CheckedProgram: each call with its arguments converted to the
+integers the runtime uses (steps, steps/s, degrees, ms). Code generation
+starts from that and never re-derives a value.
+"""
+from __future__ import annotations
+
+import difflib
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Optional
+
+from . import ast
+from .diagnostics import Collector, Note
+from .source import Span
+from .stdlib import (ACTION_ALIASES, EVENT_ALIASES, EXTERN_TYPES, MOTION_ACTIONS,
+                     SENSOR_COUNT, STANDARD_ACTIONS, STANDARD_EVENTS, THRESHOLD_MAX, Param)
+from .units import (ANGLE, DISTANCE, DURATION, INT, INT16_MAX, INT16_MIN, INT32_MAX,
+                    KIND_UNITS, SPEED, UNITS, Geometry, Quantity, curve_wheels,
+                    describe_kind, quantity, round_nearest)
+
+DEFAULT_CAPACITY = 32      # replaced by the runtime header's value, see capacity.py
+
+
+# ---- the checked program ------------------------------------------------------
+
+@dataclass
+class ResolvedCall:
+    """A call whose arguments are checked and converted.
+
+    kind: "standard" | "extern" | "named" | "cancel"
+    values: parameter name -> integer in runtime units; for start_straight
+    also `distance_mm`, for start_curve `outer_steps` and `inner_speed`.
+    shown: parameter name -> the argument as the user wrote it.
+    """
+    kind: str
+    name: str
+    values: dict
+    shown: dict
+    node: object
+
+
+@dataclass
+class ResolvedEvent:
+    kind: str               # "standard" | "extern"
+    name: str
+    values: dict            # timer: time (ms); extern: its params
+    conditions: tuple = ()  # sensor: (index, op, threshold), sorted by index
+    node: object = None
+
+
+@dataclass
+class ResolvedRule:
+    name: Optional[str]
+    event: ResolvedEvent
+    repeat: bool
+    body: list              # steps, each a list of ResolvedCall
+    node: ast.Rule
+
+
+@dataclass
+class ExternInfo:
+    kind: str               # "action" | "event"
+    name: str
+    params: tuple           # Param
+    file: str
+    node: ast.ExternDef
+
+
+@dataclass
+class CheckedProgram:
+    file: str
+    geometry: Geometry
+    actions: dict = field(default_factory=dict)   # name -> list of steps
+    action_nodes: dict = field(default_factory=dict)
+    externs: dict = field(default_factory=dict)   # name -> ExternInfo
+    rules: list = field(default_factory=list)     # ResolvedRule
+    robot_given: bool = False
+
+
+def did_you_mean(name: str, candidates) -> Optional[str]:
+    close = difflib.get_close_matches(name, sorted(candidates), n=1, cutoff=0.6)
+    return f"did you mean `{close[0]}`?" if close else None
+
+
+def _code(text: str) -> str:
+    return f"`{text}`"
+
+
+def _shown(value) -> str:
+    if isinstance(value, ast.Number):
+        return value.text + (f" {value.unit}" if value.unit else "")
+    return ("-" if value.negative else "") + value.name.name
+
+
+class Checker:
+    def __init__(self, program: ast.Program, diags: Collector,
+                 base_dir: Optional[Path] = None,
+                 max_actions: int = DEFAULT_CAPACITY, max_events: int = DEFAULT_CAPACITY):
+        self.program = program
+        self.diags = diags
+        self.base_dir = base_dir
+        self.max_actions = max_actions
+        self.max_events = max_events
+        self.geo = Geometry()
+        self.consts: dict = {}           # name -> ConstDef
+        self.const_used: set = set()
+        self.actions: dict = {}          # name -> ActionDef
+        self.externs: dict = {}          # name -> ExternInfo
+        self.rule_names: dict = {}       # name -> Rule
+        self.used_actions: set = set()
+        self.called: set = set()         # standard actions called anywhere
+        self._resolving: list = []       # named actions being resolved (cycles)
+        self._const_stack: list = []     # constants being resolved (cycles)
+        self._resolved_actions: dict = {}
+
+    # -- entry point --
+
+    def check(self) -> CheckedProgram:
+        self._declare()
+        self._robot()
+        out = CheckedProgram(self.program.file, self.geo,
+                             robot_given=bool(self.program.of_type(ast.RobotBlock)))
+        out.externs = self.externs
+        for name, node in self.actions.items():
+            out.actions[name] = self._named_action(name)
+            out.action_nodes[name] = node
+        for rule in self.program.of_type(ast.Rule):
+            event = self._event(rule.event)
+            body = self._body(rule.body)
+            if event is not None:
+                out.rules.append(ResolvedRule(rule.name.name if rule.name else None,
+                                              event, rule.repeat, body, rule))
+        self._never_fire(out)
+        self._unused()
+        self._capacity(out)
+        return out
+
+    # -- declarations --
+
+    def _declare(self):
+        seen: dict = {}     # (namespace, name) -> first node
+
+        def claim(namespace: str, ident: ast.Ident, what: str) -> bool:
+            key = (namespace, ident.name)
+            if key in seen:
+                first = seen[key]
+                self.diags.error("E015", ident.span,
+                                 f"{what} {_code(ident.name)} is defined twice",
+                                 help="rename one of them",
+                                 notes=[Note("first defined here", first.span)])
+                return False
+            seen[key] = ident
+            return True
+
+        for stmt in self.program.statements:
+            if isinstance(stmt, ast.ConstDef):
+                if claim("const", stmt.name, "constant"):
+                    self.consts[stmt.name.name] = stmt
+            elif isinstance(stmt, ast.ActionDef):
+                if self._clashes_with_standard(stmt.name, "action"):
+                    continue
+                if claim("action", stmt.name, "action"):
+                    self.actions[stmt.name.name] = stmt
+            elif isinstance(stmt, ast.ExternDef):
+                self._extern(stmt, claim)
+            elif isinstance(stmt, ast.Rule) and stmt.name is not None:
+                if claim("rule", stmt.name, "rule"):
+                    self.rule_names[stmt.name.name] = stmt
+
+    def _clashes_with_standard(self, ident: ast.Ident, namespace: str) -> bool:
+        standard = STANDARD_ACTIONS if namespace == "action" else STANDARD_EVENTS
+        aliases = ACTION_ALIASES if namespace == "action" else EVENT_ALIASES
+        if ident.name in standard or ident.name in aliases:
+            self.diags.error("E015", ident.span,
+                             f"{_code(ident.name)} is already the name of a standard {namespace}",
+                             help=f"choose another name, e.g. `my_{ident.name}`")
+            return True
+        return False
+
+    def _extern(self, stmt: ast.ExternDef, claim):
+        if self._clashes_with_standard(stmt.name, stmt.kind):
+            return
+        params, ok = [], True
+        names: dict = {}
+        for p in stmt.params:
+            if p.type.name not in EXTERN_TYPES:
+                self.diags.error("E026", p.type.span, f"unknown type {_code(p.type.name)}",
+                                 help=did_you_mean(p.type.name, EXTERN_TYPES)
+                                 or "the types are " + ", ".join(map(_code, EXTERN_TYPES)))
+                ok = False
+            if p.name.name in names:
+                self.diags.error("E015", p.name.span,
+                                 f"parameter {_code(p.name.name)} is declared twice",
+                                 notes=[Note("first declared here", names[p.name.name].span)])
+                ok = False
+            names[p.name.name] = p.name
+            params.append(Param(p.name.name, p.type.name))
+        if self.base_dir is not None and not (self.base_dir / stmt.file).is_file():
+            self.diags.error("E040", stmt.file_span,
+                             f"{_code(stmt.file)} does not exist",
+                             help=f"the path is relative to the rule file's folder ({self.base_dir})")
+        if claim(stmt.kind, stmt.name, f"{stmt.kind}") and ok:
+            self.externs[stmt.name.name] = ExternInfo(stmt.kind, stmt.name.name,
+                                                      tuple(params), stmt.file, stmt)
+
+    # -- the robot block --
+
+    def _robot(self):
+        blocks = self.program.of_type(ast.RobotBlock)
+        for extra in blocks[1:]:
+            self.diags.error("E022", extra.span, "the robot is described twice",
+                             help="merge the two `robot { ... }` blocks into one",
+                             notes=[Note("first described here", blocks[0].span)])
+        if not blocks:
+            return
+        kinds = {"wheel_diameter": DISTANCE, "wheel_circumference": DISTANCE,
+                 "axle": DISTANCE, "steps_per_rev": INT, "max_speed": SPEED}
+        given: dict = {}
+        for setting in blocks[0].settings:
+            name = setting.name.name
+            if name not in kinds:
+                self.diags.error("E022", setting.name.span, f"unknown robot setting {_code(name)}",
+                                 help=did_you_mean(name, kinds) or
+                                 "the settings are " + ", ".join(map(_code, kinds)))
+                continue
+            if name in given:
+                self.diags.error("E018", setting.name.span, f"{_code(name)} is given twice",
+                                 notes=[Note("first given here", given[name][0].span)])
+                continue
+            q = self._value(setting.value, kinds[name], name)
+            if q is None:
+                continue
+            if kinds[name] == DISTANCE and q.in_steps:
+                self.diags.error("E019", setting.value.span,
+                                 f"{_code(name)} cannot be given in steps: it defines what a step is",
+                                 help="give it in mm")
+                continue
+            if q.value <= 0:
+                self.diags.error("E037", setting.value.span, f"{_code(name)} must be positive")
+                continue
+            if kinds[name] == INT and not self._whole(setting.value, q.value):
+                continue
+            given[name] = (setting, q)
+        if "wheel_diameter" in given and "wheel_circumference" in given:
+            self.diags.error("E037", given["wheel_circumference"][0].span,
+                             "give the wheel's diameter or its circumference, not both",
+                             notes=[Note("the diameter is given here", given["wheel_diameter"][0].span)])
+            return
+        import math
+        geo = Geometry()
+        circumference = geo.wheel_circumference_mm
+        if "wheel_diameter" in given:
+            circumference = math.pi * given["wheel_diameter"][1].value
+        if "wheel_circumference" in given:
+            circumference = given["wheel_circumference"][1].value
+        steps_per_rev = int(given["steps_per_rev"][1].value) if "steps_per_rev" in given else geo.steps_per_rev
+        axle = given["axle"][1].value if "axle" in given else geo.axle_mm
+        max_speed = geo.max_speed
+        if "max_speed" in given:
+            # mm/s converts with the new geometry, so build it first.
+            partial = Geometry(circumference, axle, steps_per_rev)
+            max_speed = given["max_speed"][1].steps(partial)
+            if max_speed > 1000:
+                self.diags.error("E030", given["max_speed"][0].value.span,
+                                 f"`max_speed` of {max_speed:.0f} steps/s is above the 1000 steps/s "
+                                 "that the e-puck library allows", help="use at most 1000 steps/s")
+                max_speed = 1000.0
+        self.geo = Geometry(circumference, axle, steps_per_rev, max_speed)
+
+    # -- values --
+
+    def _value(self, value, kind: str, param: str) -> Optional[Quantity]:
+        """The quantity a value denotes where `kind` is wanted, or None after
+        reporting why it cannot be one."""
+        if isinstance(value, ast.ConstRef):
+            return self._const_value(value, kind, param)
+        if value.unit is not None:
+            if value.unit not in UNITS:
+                all_units = sorted(UNITS)
+                hint = did_you_mean(value.unit, KIND_UNITS.get(kind, all_units)) or (
+                    f"units of {describe_kind(kind)}" if kind != INT
+                    else "this parameter takes a plain number")
+                self.diags.error("E020", value.unit_span, f"unknown unit {_code(value.unit)}",
+                                 help=hint)
+                return None
+            unit_kind = UNITS[value.unit][0]
+            if unit_kind != kind:
+                self.diags.error("E019", value.span,
+                                 f"{_code(param)} expects {describe_kind(kind)}, "
+                                 f"but `{_shown(value)}` is {describe_kind(unit_kind).split(' (')[0]}",
+                                 help=self._kind_help(kind, param))
+                return None
+        return quantity(value.value, value.unit, kind)
+
+    @staticmethod
+    def _kind_help(kind: str, param: str) -> str:
+        if kind == INT:
+            return f"write `{param}` as a plain number, without a unit"
+        return f"write it with a unit of {describe_kind(kind).split(' (')[0]}, e.g. `{_example(kind)}`"
+
+    def _const_value(self, ref: ast.ConstRef, kind: str, param: str) -> Optional[Quantity]:
+        name = ref.name.name
+        const = self.consts.get(name)
+        if const is None:
+            self.diags.error("E013", ref.name.span, f"unknown constant {_code(name)}",
+                             help=did_you_mean(name, self.consts) or
+                             f"define it first: `const {name} = VALUE`")
+            return None
+        self.const_used.add(name)
+        if name in self._const_stack:
+            self.diags.error("E023", ref.span, f"constant {_code(name)} is defined in terms of itself",
+                             help="give one of the constants a number")
+            return None
+        self._const_stack.append(name)
+        try:
+            # Check the definition where it is used: a constant's kind is
+            # that of its unit, or whatever its use wants when it has none.
+            inner = Collector(self.diags.source)
+            saved, self.diags = self.diags, inner
+            try:
+                q = self._value(const.value, kind, param)
+            finally:
+                self.diags = saved
+        finally:
+            self._const_stack.pop()
+        if q is None:
+            first = inner.items[0] if inner.items else None
+            if first is not None and first.code == "E019":
+                self.diags.error("E019", ref.span,
+                                 f"{_code(param)} expects {describe_kind(kind)}, but constant "
+                                 f"{_code(name)} is `{_shown(const.value)}`",
+                                 help=self._kind_help(kind, param),
+                                 notes=[Note(f"{_code(name)} is defined here", const.span)])
+            else:
+                self.diags.items.extend(d for d in inner.items if d not in self.diags.items)
+            return None
+        if ref.negative:
+            q = Quantity(q.kind, -q.value, q.in_steps)
+        return q
+
+    def _whole(self, node, value: float) -> bool:
+        if value != int(value):
+            self.diags.error("E038", node.span, f"`{_shown(node)}` is not a whole number",
+                             help=f"write {round_nearest(value)}")
+            return False
+        return True
+
+    # -- arguments --
+
+    def _bind(self, call_name: ast.Ident, args, params, what: str) -> Optional[dict]:
+        """Match arguments to parameters: positional in the paper's order,
+        then named. Returns parameter name -> argument node, or None."""
+        args = args or ()
+        bound: dict = {}
+        ok = True
+        seen_named = False
+        positional = 0
+        by_name = {p.name: p for p in params}
+        for arg in args:
+            if isinstance(arg, ast.ConditionArg):
+                self.diags.error("E024", arg.span,
+                                 f"a condition such as `{arg.sensor.name} {arg.op} ...` "
+                                 f"can only be given to `sensor`",
+                                 help=f"{what} {_code(call_name.name)} takes values")
+                ok = False
+                continue
+            if isinstance(arg, ast.NamedArg):
+                seen_named = True
+                pname = arg.name.name
+                if pname not in by_name:
+                    names = [p.name for p in params]
+                    self.diags.error("E014", arg.name.span,
+                                     f"{what} {_code(call_name.name)} has no parameter {_code(pname)}",
+                                     help=did_you_mean(pname, names) or (
+                                         "its parameters are " + ", ".join(map(_code, names))
+                                         if names else "it takes no arguments"))
+                    ok = False
+                    continue
+                if pname in bound:
+                    self.diags.error("E018", arg.span, f"{_code(pname)} is given twice",
+                                     notes=[Note("first given here", bound[pname].span)])
+                    ok = False
+                    continue
+                bound[pname] = arg
+                continue
+            if seen_named:
+                self.diags.error("E021", arg.span, "a positional argument cannot follow a named one",
+                                 help="give the positional arguments first, or name this one too")
+                ok = False
+                continue
+            if positional >= len(params):
+                self.diags.error("E016", arg.span,
+                                 f"{what} {_code(call_name.name)} takes {_count(len(params))}, "
+                                 f"but more are given",
+                                 help=_signature_help(call_name.name, params))
+                ok = False
+                positional += 1
+                continue
+            bound[params[positional].name] = arg
+            positional += 1
+        missing = [p.name for p in params if p.name not in bound]
+        if missing and ok:
+            span = call_name.span if not args else Span.of(call_name, args[-1])
+            self.diags.error("E017", span,
+                             f"{what} {_code(call_name.name)} is missing "
+                             f"{' and '.join(map(_code, missing))}",
+                             help=_signature_help(call_name.name, params))
+            ok = False
+        return bound if ok else None
+
+    def _convert(self, bound: dict, params) -> Optional[tuple[dict, dict]]:
+        """Check and convert each bound argument to its runtime integer."""
+        values, shown, ok = {}, {}, True
+        for p in params:
+            arg = bound[p.name]
+            q = self._value(arg.value, p.kind, p.name)
+            if q is None:
+                ok = False
+                continue
+            shown[p.name] = _shown(arg.value)
+            v = self._to_runtime(q, p, arg.value)
+            if v is None:
+                ok = False
+                continue
+            values[p.name] = v
+        return (values, shown) if ok else None
+
+    def _to_runtime(self, q: Quantity, p: Param, node) -> Optional[int]:
+        geo = self.geo
+        if p.kind == INT:
+            if not self._whole(node, q.value):
+                return None
+            return self._fits16(int(q.value), node, p.name, "")
+        if p.kind == DISTANCE:
+            return self._fits16(round_nearest(q.steps(geo)), node, p.name, " steps")
+        if p.kind == SPEED:
+            steps = round_nearest(q.steps(geo))
+            if abs(steps) > geo.max_speed:
+                self.diags.error("E030", node.span,
+                                 f"{_code(p.name)} of `{_shown(node)}` is {abs(steps)} steps/s, above "
+                                 f"the robot's maximum of {geo.max_speed:.0f} steps/s",
+                                 help=f"use a speed of at most {geo.max_speed:.0f} steps/s "
+                                      f"({geo.max_speed * geo.step_mm:.0f} mm/s)")
+                return None
+            return steps
+        if p.kind == ANGLE:
+            return self._fits16(round_nearest(q.value), node, p.name, " deg")
+        if p.kind == DURATION:
+            ms = round_nearest(q.value)
+            if ms <= 0:
+                self.diags.error("E033", node.span,
+                                 f"{_code(p.name)} must be a positive duration, not `{_shown(node)}`",
+                                 help="durations count from when the timer was set; use at least 1 ms")
+                return None
+            if ms > INT32_MAX:
+                self.diags.error("E034", node.span, f"`{_shown(node)}` is too long a duration",
+                                 help=f"the runtime counts milliseconds in a 32-bit long (at most {INT32_MAX} ms)")
+                return None
+            return ms
+        raise AssertionError(p.kind)
+
+    def _fits16(self, v: int, node, param: str, unit: str) -> Optional[int]:
+        if INT16_MIN <= v <= INT16_MAX:
+            return v
+        self.diags.error("E034", node.span,
+                         f"{_code(param)} of `{_shown(node)}` is {v}{unit}, which does not fit "
+                         f"the robot's 16-bit int ({INT16_MIN}..{INT16_MAX})",
+                         help="split the motion into several shorter ones with `then`"
+                         if unit == " steps" else None)
+        return None
+
+    # -- actions --
+
+    def _named_action(self, name: str) -> list:
+        if name in self._resolved_actions:
+            return self._resolved_actions[name]
+        self._resolved_actions[name] = []     # a cycle finds this empty body
+        node = self.actions[name]
+        self._resolving.append(name)
+        body = self._body(node.body)
+        self._resolving.pop()
+        self._resolved_actions[name] = body
+        return body
+
+    def _body(self, body: ast.ActionBody) -> list:
+        steps = []
+        for step in body.steps:
+            calls = []
+            for call in step.calls:
+                resolved = self._call(call)
+                if resolved is not None:
+                    calls.append(resolved)
+            steps.append(calls)
+        return steps
+
+    def _call(self, call) -> Optional[ResolvedCall]:
+        if isinstance(call, ast.CancelCall):
+            name = call.rule.name
+            if name not in self.rule_names:
+                self.diags.error("E012", call.rule.span, f"unknown rule {_code(name)}",
+                                 help=did_you_mean(name, self.rule_names) or
+                                 f"name the rule to cancel: `rule {name}: on ...`")
+                return None
+            return ResolvedCall("cancel", name, {}, {}, call)
+        name = call.name.name
+        canonical = ACTION_ALIASES.get(name, name)
+        if canonical in STANDARD_ACTIONS:
+            self.called.add(canonical)
+            return self._standard_action(canonical, call)
+        if name in self.externs and self.externs[name].kind == "action":
+            info = self.externs[name]
+            self.used_actions.add(name)
+            bound = self._bind(call.name, call.args, info.params, "action")
+            converted = self._convert(bound, info.params) if bound is not None else None
+            if converted is None:
+                return None
+            return ResolvedCall("extern", name, converted[0], converted[1], call)
+        if name in self.actions:
+            self.used_actions.add(name)
+            if call.args:
+                self.diags.error("E016", call.span, f"action {_code(name)} takes no arguments",
+                                 help=f"write `{name}` alone; named actions have no parameters",
+                                 notes=[Note(f"{_code(name)} is defined here", self.actions[name].span)])
+                return None
+            if name in self._resolving:
+                self.diags.error("E023", call.name.span,
+                                 f"action {_code(name)} is defined in terms of itself",
+                                 help="an action cannot run itself; use a `repeat` rule to do something again")
+                return None
+            self._named_action(name)
+            return ResolvedCall("named", name, {}, {}, call)
+        if name in self.externs:      # an extern event used as an action
+            self.diags.error("E011", call.name.span,
+                             f"{_code(name)} is an event, not an action",
+                             notes=[Note("declared here", self.externs[name].node.span)])
+            return None
+        candidates = set(STANDARD_ACTIONS) | set(self.actions) | {
+            n for n, e in self.externs.items() if e.kind == "action"}
+        self.diags.error("E011", call.name.span, f"unknown action {_code(name)}",
+                         help=did_you_mean(name, candidates) or
+                         f"define it with `action {name} = ...` or declare it with "
+                         f"`extern action {name}(...) from \"{name}.c\"`")
+        return None
+
+    def _standard_action(self, name: str, call: ast.Call) -> Optional[ResolvedCall]:
+        params = STANDARD_ACTIONS[name]
+        bound = self._bind(call.name, call.args, params, "action")
+        if bound is None:
+            return None
+        converted = self._convert(bound, params)
+        if converted is None:
+            return None
+        values, shown = converted
+        geo = self.geo
+        if name == "start_straight":
+            q = self._value(bound["distance"].value, DISTANCE, "distance")
+            values["distance_mm"] = round_nearest(q.mm(geo))
+        elif name == "start_curve":
+            radius = self._value(bound["radius"].value, DISTANCE, "radius")
+            if radius.mm(geo) < 0:
+                self.diags.error("E036", bound["radius"].value.span,
+                                 f"`radius` cannot be negative (`{shown['radius']}`)",
+                                 help="a positive `degrees` turns left, a negative one right")
+                return None
+            degrees = self._value(bound["degrees"].value, ANGLE, "degrees").value
+            outer, inner = curve_wheels(radius.mm(geo), degrees, values["speed"], geo)
+            outer_steps = self._fits16(round_nearest(outer), bound["degrees"].value,
+                                       "degrees", " steps of the outer wheel")
+            if outer_steps is None:
+                return None
+            inner_speed = round_nearest(inner)
+            if abs(inner_speed) > geo.max_speed:
+                self.diags.error("E035", call.span,
+                                 f"this curve drives the inner wheel at {abs(inner_speed)} steps/s, "
+                                 f"above the robot's maximum of {geo.max_speed:.0f}",
+                                 help="lower `speed`")
+                return None
+            values["radius"] = round_nearest(radius.mm(geo))
+            values["outer_steps"] = outer_steps
+            values["inner_speed"] = inner_speed
+        return ResolvedCall("standard", name, values, shown, call)
+
+    # -- events --
+
+    def _event(self, call: ast.Call) -> Optional[ResolvedEvent]:
+        name = call.name.name
+        canonical = EVENT_ALIASES.get(name, name)
+        if canonical == "sensor":
+            return self._sensor(call)
+        if canonical in STANDARD_EVENTS:
+            params = STANDARD_EVENTS[canonical]
+            bound = self._bind(call.name, call.args, params, "event")
+            converted = self._convert(bound, params) if bound is not None else None
+            if converted is None:
+                return None
+            return ResolvedEvent("standard", canonical, converted[0], node=call)
+        info = self.externs.get(name)
+        if info is not None and info.kind == "event":
+            bound = self._bind(call.name, call.args, info.params, "event")
+            converted = self._convert(bound, info.params) if bound is not None else None
+            if converted is None:
+                return None
+            return ResolvedEvent("extern", name, converted[0], node=call)
+        if info is not None or name in self.actions:
+            self.diags.error("E010", call.name.span, f"{_code(name)} is an action, not an event",
+                             help="a rule reads `on EVENT do ACTION`")
+            return None
+        candidates = set(STANDARD_EVENTS) | {n for n, e in self.externs.items() if e.kind == "event"}
+        self.diags.error("E010", call.name.span, f"unknown event {_code(name)}",
+                         help=did_you_mean(name, candidates) or
+                         f"the standard events are {', '.join(map(_code, STANDARD_EVENTS))}; "
+                         f"declare others with `extern event {name}(...) from \"{name}.c\"`")
+        return None
+
+    def _sensor(self, call: ast.Call) -> Optional[ResolvedEvent]:
+        if not call.args:
+            self.diags.error("E017", call.span, "`sensor` needs at least one condition",
+                             help="write e.g. `sensor(ir0 > 300, ir7 > 300)`")
+            return None
+        conditions, seen, ok = [], {}, True
+        sensors = [f"ir{i}" for i in range(SENSOR_COUNT)]
+        for arg in call.args:
+            if not isinstance(arg, ast.ConditionArg):
+                self.diags.error("E024", arg.span, "`sensor` takes conditions such as `ir0 > 300`",
+                                 help="compare a sensor ir0..ir7 with a threshold using `>` or `<`")
+                ok = False
+                continue
+            sensor = arg.sensor.name
+            if sensor not in sensors:
+                self.diags.error("E031", arg.sensor.span, f"unknown sensor {_code(sensor)}",
+                                 help=(did_you_mean(sensor, sensors) or "") +
+                                 (" " if did_you_mean(sensor, sensors) else "") +
+                                 "the e-puck's proximity sensors are ir0..ir7")
+                ok = False
+                continue
+            index = int(sensor[2:])
+            if index in seen:
+                self.diags.error("E025", arg.span, f"{_code(sensor)} is listed twice",
+                                 help="each sensor has one threshold; keep one condition",
+                                 notes=[Note("first listed here", seen[index].span)])
+                ok = False
+                continue
+            seen[index] = arg
+            q = self._value(arg.value, INT, "threshold")
+            if q is None or not self._whole(arg.value, q.value):
+                ok = False
+                continue
+            if not 0 <= q.value <= THRESHOLD_MAX:
+                self.diags.error("E032", arg.value.span,
+                                 f"threshold `{_shown(arg.value)}` is outside 0..{THRESHOLD_MAX}",
+                                 help="proximity readings are 12-bit: 0 (nothing near) to 4095 (touching)")
+                ok = False
+                continue
+            conditions.append((index, arg.op, int(q.value)))
+        if not ok:
+            return None
+        return ResolvedEvent("standard", "sensor", {}, tuple(sorted(conditions)), node=call)
+
+    # -- whole-program warnings --
+
+    def _never_fire(self, out: CheckedProgram):
+        needs = {"timer": ("set_timer", "W001", "no action runs `set_timer`",
+                           "add `set_timer` to an action, e.g. `on immediate do set_timer`"),
+                 "sensor": ("start_sensor", "W002", "no action runs `start_sensor`",
+                            "add `start_sensor` to an action, e.g. `on immediate do start_sensor`")}
+        for rule in out.rules:
+            event, node = rule.event, rule.node
+            if event.kind != "standard":
+                continue
+            if event.name in needs:
+                action, code, why, fix = needs[event.name]
+                if action not in self.called:
+                    self.diags.warning(code, node.event.span, f"this rule can never fire: {why}",
+                                       help=fix)
+            elif event.name == "stop_motor" and not (self.called & MOTION_ACTIONS) \
+                    and not any(e.kind == "action" for e in self.externs.values()):
+                self.diags.warning("W003", node.event.span,
+                                   "this rule can never fire: no action starts a motion",
+                                   help="`stop_motor` fires when a `start_straight` or `start_curve` "
+                                        "motion ends")
+            elif event.name == "immediate" and rule.repeat:
+                self.diags.warning("W004", node.span,
+                                   "`immediate repeat` runs its action at every poll, about 1000 times a second",
+                                   help="remove `repeat` to run it once at start, or use `timer(...) repeat`")
+
+    def _unused(self):
+        for name, node in self.actions.items():
+            if name not in self.used_actions:
+                self.diags.warning("W005", node.name.span, f"action {_code(name)} is never used",
+                                   help=f"use it in a rule (`on immediate do {name}`) or remove it")
+        for name, info in self.externs.items():
+            if info.kind == "action" and name not in self.used_actions:
+                self.diags.warning("W005", info.node.name.span,
+                                   f"extern action {_code(name)} is never used",
+                                   help=f"use it in a rule or remove the declaration")
+        for name, node in self.consts.items():
+            if name not in self.const_used:
+                self.diags.warning("W007", node.name.span, f"constant {_code(name)} is never used",
+                                   help="use it or remove it")
+        if not self.program.of_type(ast.Rule) and not self.diags.has_errors:
+            self.diags.warning("W006", Span(1, 1, 1, 1), "this program has no rules: it does nothing",
+                               help="add a rule, e.g. `on immediate do start_straight(200, 10 cm)`")
+
+    def _capacity(self, out: CheckedProgram):
+        from .lower import count_registrations
+        actions, events = count_registrations(out)
+        for count, limit, what, option in ((actions, self.max_actions, "actions", "--max-actions"),
+                                           (events, self.max_events, "events", "--max-events")):
+            if count > limit:
+                rules = out.rules
+                span = rules[-1].node.span if rules else Span(1, 1, 1, 1)
+                self.diags.error("E039", span,
+                                 f"this program registers {count} {what}, but the runtime's array "
+                                 f"holds {limit}",
+                                 help=f"raise the capacity with `{option} {count}` (RAM permitting) "
+                                      f"or merge rules")
+
+
+def _count(n: int) -> str:
+    return {0: "no arguments", 1: "1 argument"}.get(n, f"{n} arguments")
+
+
+def _signature_help(name: str, params) -> str:
+    if not params:
+        return f"write `{name}` with no arguments"
+    return f"write `{name}({', '.join(f'{p.name}: {_example(p.kind)}' for p in params)})`"
+
+
+def _example(kind: str) -> str:
+    return {DISTANCE: "10 cm", SPEED: "300 steps/s", ANGLE: "90 deg",
+            DURATION: "2 s", INT: "3"}[kind]
+
+
+def check(program: ast.Program, diags: Collector, **options) -> CheckedProgram:
+    return Checker(program, diags, **options).check()

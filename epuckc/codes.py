@@ -1,0 +1,69 @@
+"""The stable diagnostic codes and their long explanations (`epuckc explain`).
+
+A code never changes meaning once released; retired codes stay listed."""
+from __future__ import annotations
+
+from pathlib import Path
+
+CODES = {
+    # the text itself
+    "E001": "syntax error",
+    "E002": "unexpected character",
+    "E003": "unterminated string",
+    "E004": "the file is not UTF-8 text",
+    # names
+    "E010": "unknown event",
+    "E011": "unknown action",
+    "E012": "unknown rule",
+    "E013": "unknown constant",
+    "E014": "unknown parameter",
+    "E015": "name defined twice",
+    "E016": "too many arguments",
+    "E017": "missing argument",
+    "E018": "argument given twice",
+    "E019": "quantity of the wrong kind",
+    "E020": "unknown unit",
+    "E021": "positional argument after a named one",
+    "E022": "bad robot block",
+    "E023": "action defined in terms of itself",
+    "E024": "condition in the wrong place",
+    "E025": "sensor listed twice",
+    "E026": "unknown type",
+    # values
+    "E030": "speed above the robot's maximum",
+    "E031": "unknown sensor",
+    "E032": "threshold out of range",
+    "E033": "duration not positive",
+    "E034": "value too large for a 16-bit int",
+    "E035": "curve's inner wheel too fast",
+    "E036": "negative radius",
+    "E037": "impossible robot geometry",
+    "E038": "whole number expected",
+    "E039": "more actions or events than the runtime holds",
+    "E040": "extern source file not found",
+    # warnings
+    "W001": "timer rule that can never fire",
+    "W002": "sensor rule that can never fire",
+    "W003": "stop_motor rule that can never fire",
+    "W004": "`immediate repeat` runs at every poll",
+    "W005": "action never used",
+    "W006": "program with no rules",
+    "W007": "constant never used",
+}
+
+_EXPLANATIONS = Path(__file__).resolve().parent / "explanations"
+
+
+def normalise(code: str) -> str:
+    code = code.strip().upper()
+    if code[:1] in ("E", "W") and code[1:].isdigit():
+        return code[0] + code[1:].zfill(3)
+    return code
+
+
+def explanation(code: str) -> str | None:
+    code = normalise(code)
+    if code not in CODES:
+        return None
+    path = _EXPLANATIONS / f"{code}.md"
+    return path.read_text(encoding="utf-8") if path.is_file() else None

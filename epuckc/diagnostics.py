@@ -1,0 +1,193 @@
+"""Diagnostics: what is wrong, where, and how to fix it; and their renderings.
+
+Every diagnostic has a stable code (E### for errors, W### for warnings, see
+codes.py), a primary span, a message, and optional help and notes. The
+renderings are the human form (with the source line and an underline), the
+one-line gcc form that editors' problem matchers read, rustc's short form, and
+JSON for tools.
+"""
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field
+from typing import Iterable, Optional
+
+from .source import SourceFile, Span
+
+ERROR = "error"
+WARNING = "warning"
+
+
+@dataclass(frozen=True)
+class Note:
+    message: str
+    span: Optional[Span] = None     # shown as file:line:col when given
+
+
+@dataclass(frozen=True)
+class Diagnostic:
+    code: str
+    severity: str
+    message: str
+    file: str
+    span: Span
+    help: Optional[str] = None
+    notes: tuple = ()
+
+    def sort_key(self):
+        return (self.file, self.span.line, self.span.column, self.code)
+
+
+@dataclass
+class Report:
+    """The diagnostics of one run, and the sources they point into."""
+    diagnostics: list = field(default_factory=list)
+    sources: dict = field(default_factory=dict)     # file name -> SourceFile
+
+    def extend(self, diags: Iterable[Diagnostic]):
+        self.diagnostics.extend(diags)
+
+    def sorted(self) -> list:
+        return sorted(self.diagnostics, key=Diagnostic.sort_key)
+
+    @property
+    def error_count(self) -> int:
+        return sum(d.severity == ERROR for d in self.diagnostics)
+
+    @property
+    def warning_count(self) -> int:
+        return sum(d.severity == WARNING for d in self.diagnostics)
+
+
+class Collector:
+    """Collects the diagnostics found in one source file."""
+
+    def __init__(self, source: SourceFile):
+        self.source = source
+        self.items: list = []
+
+    def error(self, code, span, message, help=None, notes=()):
+        self._add(code, ERROR, span, message, help, notes)
+
+    def warning(self, code, span, message, help=None, notes=()):
+        self._add(code, WARNING, span, message, help, notes)
+
+    def _add(self, code, severity, span, message, help, notes):
+        self.items.append(Diagnostic(code, severity, message, self.source.name,
+                                     span, help, tuple(notes)))
+
+    @property
+    def has_errors(self) -> bool:
+        return any(d.severity == ERROR for d in self.items)
+
+
+# ---- renderings -------------------------------------------------------------
+
+_COLOURS = {ERROR: "\033[1;31m", WARNING: "\033[1;33m", "help": "\033[1;36m",
+            "note": "\033[1;32m", "bold": "\033[1m", "dim": "\033[2m"}
+_RESET = "\033[0m"
+_MAX_SHOWN_LINE = 100     # characters of a source line shown around the span
+
+
+class _Paint:
+    def __init__(self, enabled: bool):
+        self.enabled = enabled
+
+    def __call__(self, style: str, text: str) -> str:
+        return f"{_COLOURS[style]}{text}{_RESET}" if self.enabled else text
+
+
+def _excerpt(line: str, start: int, end: int) -> tuple[str, int, int]:
+    """A window of a (possibly huge) line around columns [start, end), with
+    tabs expanded; returns the text and the new start/end columns (0-based)."""
+    line = line.replace("\t", " ")
+    end = max(end, start + 1)
+    if len(line) <= _MAX_SHOWN_LINE:
+        return line, start, end
+    left = max(0, min(start - 20, len(line) - _MAX_SHOWN_LINE))
+    right = min(len(line), left + _MAX_SHOWN_LINE)
+    prefix = "..." if left > 0 else ""
+    suffix = "..." if right < len(line) else ""
+    shift = left - len(prefix)
+    return (prefix + line[left:right] + suffix, start - shift,
+            min(end, right) - shift)
+
+
+def render_human(diag: Diagnostic, source: Optional[SourceFile], colour: bool) -> str:
+    paint = _Paint(colour)
+    s = diag.span
+    head = (f"{paint('bold', f'{diag.file}:{s.line}:{s.column}:')} "
+            f"{paint(diag.severity, f'{diag.severity}[{diag.code}]')}: "
+            f"{paint('bold', diag.message)}")
+    out = [head]
+    if source is not None and 1 <= s.line <= source.line_count:
+        text = source.line_text(s.line)
+        end_col = s.end_column if s.end_line == s.line else len(text) + 1
+        shown, start, end = _excerpt(text, s.column - 1, end_col - 1)
+        gutter = str(s.line)
+        pad = " " * len(gutter)
+        out.append(f" {paint('dim', gutter + ' |')} {shown}".rstrip())
+        out.append(f" {paint('dim', pad + ' |')} {' ' * start}"
+                   f"{paint(diag.severity, '^' * max(1, end - start))}")
+    for note in diag.notes:
+        where = f"{diag.file}:{note.span.line}:{note.span.column}: " if note.span else ""
+        out.append(f"{paint('note', 'note')}: {where}{note.message}")
+    if diag.help:
+        out.append(f"{paint('help', 'help')}: {diag.help}")
+    return "\n".join(out)
+
+
+def render_gcc(diag: Diagnostic) -> str:
+    """file:line:col: severity: message [CODE] - the form gcc prints, which
+    Vim's errorformat, Emacs' compilation mode and VS Code's $gcc read."""
+    s = diag.span
+    text = f"{diag.file}:{s.line}:{s.column}: {diag.severity}: {diag.message} [{diag.code}]"
+    if diag.help:
+        text += f" (help: {diag.help})"
+    return text
+
+
+def render_short(diag: Diagnostic) -> str:
+    """rustc's --error-format=short."""
+    s = diag.span
+    return f"{diag.file}:{s.line}:{s.column}: {diag.severity}[{diag.code}]: {diag.message}"
+
+
+def to_json_object(diag: Diagnostic) -> dict:
+    s = diag.span
+    return {
+        "code": diag.code,
+        "severity": diag.severity,
+        "message": diag.message,
+        "file": diag.file,
+        "line": s.line,
+        "column": s.column,
+        "end_line": s.end_line,
+        "end_column": s.end_column,
+        "help": diag.help,
+        "notes": [n.message for n in diag.notes],
+    }
+
+
+def summary_line(errors: int, warnings: int) -> str:
+    parts = []
+    if errors:
+        parts.append(f"{errors} error{'s' if errors != 1 else ''}")
+    if warnings:
+        parts.append(f"{warnings} warning{'s' if warnings != 1 else ''}")
+    return " and ".join(parts) + (" found" if parts else "")
+
+
+def render_report(report: Report, fmt: str, colour: bool = False) -> str:
+    diags = report.sorted()
+    if fmt == "json":
+        return json.dumps([to_json_object(d) for d in diags], indent=2) + "\n"
+    if fmt == "gcc":
+        return "".join(render_gcc(d) + "\n" for d in diags)
+    if fmt == "short":
+        return "".join(render_short(d) + "\n" for d in diags)
+    blocks = [render_human(d, report.sources.get(d.file), colour) for d in diags]
+    if not blocks:
+        return ""
+    return "\n\n".join(blocks) + "\n\n" + summary_line(report.error_count,
+                                                       report.warning_count) + "\n"

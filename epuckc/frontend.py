@@ -1,0 +1,63 @@
+"""The front end as one call: read a file, parse it, check it."""
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+from functools import lru_cache
+from pathlib import Path
+from typing import Optional
+
+from .checker import CheckedProgram, check
+from .diagnostics import Collector, Report
+from .parser import parse
+from .resources import runtime_dir
+from .source import SourceFile
+
+
+@lru_cache(maxsize=1)
+def runtime_capacity() -> tuple[int, int]:
+    """The default MAX_ACTIONS and MAX_EVENTS of the runtime header, so the
+    compiler and the runtime cannot disagree."""
+    header = (runtime_dir() / "epuckrt.h").read_text(encoding="utf-8")
+    found = dict(re.findall(r"#define\s+(MAX_ACTIONS|MAX_EVENTS)\s+(\d+)", header))
+    return int(found["MAX_ACTIONS"]), int(found["MAX_EVENTS"])
+
+
+@dataclass
+class FrontEndResult:
+    source: Optional[SourceFile]
+    checked: Optional[CheckedProgram]      # None when there are errors
+
+
+class InputError(Exception):
+    """The file cannot be read at all (missing, a directory, no permission)."""
+
+
+def check_file(path: Path, report: Report, shown_name: Optional[str] = None,
+               max_actions: Optional[int] = None, max_events: Optional[int] = None,
+               text: Optional[str] = None) -> FrontEndResult:
+    """Parse and check one rule file, adding its diagnostics to `report`.
+    `text` replaces the file's contents (an editor's unsaved buffer)."""
+    name = shown_name if shown_name is not None else str(path)
+    if text is not None:
+        source, problem = SourceFile(name, text), None
+    else:
+        try:
+            source, problem = SourceFile.from_path(path, name)
+        except OSError as exc:
+            raise InputError(f"cannot read {name}: {exc.strerror or exc}") from None
+    report.sources[source.name] = source
+    diags = Collector(source)
+    if problem is not None:
+        offset, message = problem
+        diags.error("E004", source.span(offset, offset + 1), message,
+                    help="save the file as UTF-8 text; rule files are plain text (.epk)")
+        report.extend(diags.items)
+        return FrontEndResult(source, None)
+    default_actions, default_events = runtime_capacity()
+    program = parse(source, diags)
+    checked = check(program, diags, base_dir=path.parent if text is None or path.exists() else None,
+                    max_actions=max_actions or default_actions,
+                    max_events=max_events or default_events)
+    report.extend(diags.items)
+    return FrontEndResult(source, None if diags.has_errors else checked)

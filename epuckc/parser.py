@@ -1,0 +1,246 @@
+"""Parse a rule file into a Program: tokens -> statements -> LALR -> AST.
+
+Each statement is parsed on its own (see lexer.split_statements), so a
+syntax error costs only its statement: three broken rules give three errors
+and the rest of the file is still checked.
+"""
+from __future__ import annotations
+
+from functools import lru_cache
+
+from lark import Lark, Transformer, v_args
+from lark.exceptions import UnexpectedInput, UnexpectedToken
+from lark.lexer import Lexer
+
+from . import ast
+from .diagnostics import Collector
+from .lexer import split_statements, tokenize
+from .resources import grammar_path
+from .source import SourceFile, Span
+
+
+class _TokenListLexer(Lexer):
+    """Feeds tokens made by lexer.tokenize to the LALR parser."""
+
+    def __init__(self, lexer_conf):
+        pass
+
+    def lex(self, data):
+        return iter(data)
+
+
+@lru_cache(maxsize=1)
+def _lark() -> Lark:
+    return Lark(grammar_path().read_text(encoding="utf-8"), parser="lalr",
+                lexer=_TokenListLexer, start="statement",
+                propagate_positions=True, maybe_placeholders=True)
+
+
+# ---- syntax errors in words -------------------------------------------------
+
+_FRIENDLY = {
+    "NAME": "a name", "NUMBER": "a number", "STRING": 'a file name in quotes ("blink.c")',
+    "CMP": "`>` or `<`", "MINUS": "`-`", "$END": "the end of the statement",
+    "_LPAR": "`(`", "_RPAR": "`)`", "_LBRACE": "`{`", "_RBRACE": "`}`", "_COMMA": "`,`",
+    "_COLON": "`:`", "_EQUAL": "`=`", "_SLASH": "`/`",
+}
+_STATEMENT_LIST = "a statement (`on`, `rule`, `action`, `const`, `extern` or `robot`)"
+
+
+def _friendly(term: str) -> str:
+    if term in _FRIENDLY:
+        return _FRIENDLY[term]
+    if term.startswith("_"):
+        return f"`{term[1:].lower()}`"
+    return term
+
+
+def _describe_found(tok) -> str:
+    if tok.type == "$END":
+        return "the end of the statement"
+    if tok.type in ("NAME", "NUMBER", "STRING"):
+        return f"`{tok.value}`"
+    return f"`{tok.value}`"
+
+
+def _describe_expected(prev, expected: set) -> tuple[str, str | None]:
+    """What the parser wanted, in the user's words, and a hint."""
+    prev_type = prev.type if prev is not None else None
+    if prev is None and expected & {"_ON", "_RULE", "_ACTION"}:
+        return _STATEMENT_LIST, "every statement starts with one of these keywords"
+    if "_CANCEL" in expected:
+        return "an action", "name an action, e.g. `stop_motor`, `start_straight(300, 10 cm)` or `cancel RULE`"
+    if prev_type == "_ON":
+        return "an event", "name an event, e.g. `immediate`, `stop_motor`, `timer(2 s)` or `sensor(ir0 > 300)`"
+    if prev_type == "_ACTION":
+        return "a name for the action", "write `action NAME = ...`"
+    if prev_type == "_CONST":
+        return "a name for the constant", "write `const NAME = VALUE`"
+    if prev_type == "_RULE":
+        return "a name for the rule", "write `rule NAME: on EVENT do ACTION`"
+    if expected >= {"NUMBER", "NAME", "MINUS"}:
+        wanted = "a value or `)`" if "_RPAR" in expected else "a value"
+        return wanted, "a value is a number with an optional unit (`20 cm`) or a constant's name"
+    names = sorted(_friendly(t) for t in expected)
+    wanted = ", ".join(names[:-1]) + " or " + names[-1] if len(names) > 1 else names[0]
+    return wanted, ("a rule reads `on EVENT do ACTION`" if "_DO" in expected else None)
+
+
+def _syntax_error(exc: UnexpectedToken, chunk: list, following, source: SourceFile,
+                  diags: Collector):
+    tok = exc.token
+    if tok.type == "$END":
+        # Point at the last token read: that is where something is missing.
+        prev = chunk[-1]
+        span = Span(prev.line, prev.column, prev.end_line, prev.end_column)
+        if following is not None:
+            found = f"`{following.value}`, which starts a new statement"
+        else:
+            found = "the end of the file"
+    else:
+        index = next(i for i, t in enumerate(chunk) if t is tok)
+        prev = chunk[index - 1] if index > 0 else None
+        found = _describe_found(tok)
+        span = Span(tok.line, tok.column, tok.end_line, tok.end_column)
+    wanted, hint = _describe_expected(prev, set(exc.expected))
+    after = f" after `{prev.value}`" if prev is not None else ""
+    diags.error("E001", span, f"expected {wanted}{after}, found {found}", help=hint)
+
+
+# ---- tree -> AST --------------------------------------------------------------
+
+def _span(meta) -> Span:
+    return Span(meta.line, meta.column, meta.end_line, meta.end_column)
+
+
+def _tok_span(tok) -> Span:
+    return Span(tok.line, tok.column, tok.end_line, tok.end_column)
+
+
+def _ident(tok) -> ast.Ident:
+    return ast.Ident(str(tok), _tok_span(tok))
+
+
+def _unescape(literal: str) -> str:
+    body = literal[1:-1]
+    out, i = [], 0
+    while i < len(body):
+        if body[i] == "\\" and i + 1 < len(body):
+            i += 1
+        out.append(body[i])
+        i += 1
+    return "".join(out)
+
+
+@v_args(meta=True)
+class _ToAst(Transformer):
+    def statement(self, meta, children):
+        return children[0]
+
+    def robot_block(self, meta, children):
+        return ast.RobotBlock(tuple(c for c in children if c is not None), _span(meta))
+
+    def setting(self, meta, children):
+        name, value = children
+        return ast.Setting(_ident(name), value, _span(meta))
+
+    def const_def(self, meta, children):
+        name, value = children
+        return ast.ConstDef(_ident(name), value, _span(meta))
+
+    def action_def(self, meta, children):
+        name, body = children
+        return ast.ActionDef(_ident(name), body, _span(meta))
+
+    def extern_action(self, meta, children):
+        return "action"
+
+    def extern_event(self, meta, children):
+        return "event"
+
+    def extern_def(self, meta, children):
+        kind, name, *params, file_tok = children
+        return ast.ExternDef(kind, _ident(name), tuple(p for p in params if p is not None),
+                             _unescape(str(file_tok)), _tok_span(file_tok), _span(meta))
+
+    def param_decl(self, meta, children):
+        name, type_ = children
+        return ast.ParamDecl(_ident(name), _ident(type_), _span(meta))
+
+    def repeat(self, meta, children):
+        return True
+
+    def rule_def(self, meta, children):
+        name, event, repeat, body = children
+        return ast.Rule(_ident(name) if name is not None else None, event,
+                        bool(repeat), body, _span(meta))
+
+    def event_ref(self, meta, children):
+        name, args = children
+        return ast.Call(_ident(name), args, _span(meta))
+
+    def action_body(self, meta, children):
+        return ast.ActionBody(tuple(children), _span(meta))
+
+    def step(self, meta, children):
+        return ast.Step(tuple(children), _span(meta))
+
+    def plain_call(self, meta, children):
+        name, args = children
+        return ast.Call(_ident(name), args, _span(meta))
+
+    def cancel_call(self, meta, children):
+        (name,) = children
+        return ast.CancelCall(_ident(name), _span(meta))
+
+    def arg_list(self, meta, children):
+        return tuple(c for c in children if c is not None)
+
+    def named_arg(self, meta, children):
+        name, value = children
+        return ast.NamedArg(_ident(name), value, _span(meta))
+
+    def positional_arg(self, meta, children):
+        return ast.PositionalArg(children[0], _span(meta))
+
+    def condition_arg(self, meta, children):
+        name, op, value = children
+        return ast.ConditionArg(_ident(name), str(op), value, _span(meta))
+
+    def number(self, meta, children):
+        minus, number, unit = children
+        text = ("-" if minus is not None else "") + str(number)
+        unit_text, unit_span = unit if unit is not None else (None, None)
+        return ast.Number(float(text), text, unit_text, unit_span, _span(meta))
+
+    def const_ref(self, meta, children):
+        minus, name = children
+        return ast.ConstRef(_ident(name), minus is not None, _span(meta))
+
+    def unit(self, meta, children):
+        first, second = children
+        text = str(first) if second is None else f"{first}/{second}"
+        return text, _span(meta)
+
+
+_TO_AST = _ToAst()
+
+
+def parse(source: SourceFile, diags: Collector) -> ast.Program:
+    """The statements that parse; a diagnostic for each one that does not."""
+    program = ast.Program(source.name)
+    chunks = split_statements(tokenize(source, diags))
+    parser = _lark()
+    for i, chunk in enumerate(chunks):
+        following = chunks[i + 1][0] if i + 1 < len(chunks) else None
+        try:
+            tree = parser.parse(chunk)
+        except UnexpectedToken as exc:
+            _syntax_error(exc, chunk, following, source, diags)
+            continue
+        except UnexpectedInput as exc:      # not expected from a token list
+            tok = chunk[0]
+            diags.error("E001", _tok_span(tok), f"this statement cannot be read: {exc}")
+            continue
+        program.statements.append(_TO_AST.transform(tree))
+    return program

@@ -1,0 +1,79 @@
+"""Source files and spans: what a diagnostic points at."""
+from __future__ import annotations
+
+import bisect
+from dataclasses import dataclass
+from pathlib import Path
+
+
+@dataclass(frozen=True, order=True)
+class Span:
+    """A range of source text. Lines and columns start at 1; the end column
+    is exclusive (it points just past the last character)."""
+    line: int
+    column: int
+    end_line: int
+    end_column: int
+
+    @staticmethod
+    def of(*items) -> "Span":
+        """The smallest span covering every item (Spans or nodes with .span)."""
+        spans = [getattr(i, "span", i) for i in items if i is not None]
+        first = min(spans)
+        last = max(spans, key=lambda s: (s.end_line, s.end_column))
+        return Span(first.line, first.column, last.end_line, last.end_column)
+
+
+class SourceFile:
+    """The text of one rule file and the offsets of its lines."""
+
+    def __init__(self, name: str, text: str):
+        self.name = name
+        self.text = text
+        self._line_starts = [0]
+        newline = text.find("\n")
+        while newline >= 0:
+            self._line_starts.append(newline + 1)
+            newline = text.find("\n", newline + 1)
+
+    @classmethod
+    def from_path(cls, path: Path, shown_name: str | None = None) -> tuple["SourceFile", object]:
+        """Read and decode a file. Returns (source, problem) where problem is
+        None or (offset, message) for bytes that are not UTF-8 text."""
+        data = path.read_bytes()
+        name = shown_name if shown_name is not None else str(path)
+        if data.startswith(b"\xef\xbb\xbf"):
+            data = data[3:]
+        nul = data.find(b"\0")
+        try:
+            text = data.decode("utf-8")
+        except UnicodeDecodeError as exc:
+            good = data[: exc.start].decode("utf-8")
+            return cls(name, good), (len(good), "this file is not UTF-8 text: "
+                                     f"byte 0x{data[exc.start]:02x} cannot be decoded")
+        if nul >= 0:
+            offset = len(data[:nul].decode("utf-8"))
+            return cls(name, text[:offset]), (offset, "this file contains a NUL byte: "
+                                              "it looks like a binary file, not a rule file")
+        return cls(name, text), None
+
+    def position(self, offset: int) -> tuple[int, int]:
+        """(line, column) of a character offset, both from 1."""
+        line = bisect.bisect_right(self._line_starts, offset) - 1
+        return line + 1, offset - self._line_starts[line] + 1
+
+    def span(self, start: int, end: int) -> Span:
+        line, column = self.position(start)
+        end_line, end_column = self.position(end)
+        return Span(line, column, end_line, end_column)
+
+    def line_text(self, line: int) -> str:
+        if line < 1 or line > len(self._line_starts):
+            return ""
+        start = self._line_starts[line - 1]
+        end = self.text.find("\n", start)
+        return self.text[start:] if end < 0 else self.text[start:end]
+
+    @property
+    def line_count(self) -> int:
+        return len(self._line_starts)
