@@ -1,0 +1,669 @@
+/*
+ * epuckrt.c - the core of the event-driven runtime (Ochiai et al., sections
+ * 3-4): the two fixed arrays, registration, the polling main loop (figure 4),
+ * the standard actions and events, motion control, the sequencer and the
+ * millisecond clock.
+ *
+ * The hardware is reached only through the e-puck library API (the real
+ * library on the robot, host/epuck_stub.c on a PC) and rt_platform.h.
+ * Written for 16-bit int: every count of steps or milliseconds that can pass
+ * 32767 is long; products that can pass 2^31 are long long.
+ * docs/runtime.md describes the semantics implemented here.
+ */
+#include <stddef.h>
+
+#include "epuckrt.h"
+#include "rt_platform.h"
+
+#include "motor_led/e_init_port.h"
+#include "motor_led/advance_one_timer/e_motors.h"
+#include "motor_led/advance_one_timer/e_agenda.h"
+#include "a_d/advance_ad_scan/e_prox.h"
+#include "a_d/advance_ad_scan/e_ad_conv.h"
+
+#if MAX_ACTIONS < 1 || MAX_EVENTS < 1
+#error "MAX_ACTIONS and MAX_EVENTS must be at least 1"
+#endif
+
+/* ---- the two arrays (paper 4.1): ids are indices, slots never reused ---- */
+static action actions[MAX_ACTIONS];
+static event events[MAX_EVENTS];
+static int n_actions;   /* slots used so far, cancelled ones included */
+static int n_events;
+
+/* ---- millisecond clock ---------------------------------------------------
+ * A 1 ms e-puck agenda (cycle 10 x 0.1 ms) counts; it runs in the Timer2
+ * interrupt on the robot, hence volatile.  Unsigned so that the increment
+ * never overflows a signed type. */
+static volatile unsigned long ms_ticks;
+
+static void clock_tick(void)
+{
+    ms_ticks++;
+}
+
+long rt_millis(void)
+{
+    unsigned long a, b;
+    /* A 32-bit read is two 16-bit reads on the dsPIC: the interrupt may
+     * change the value in between, so read until two reads agree. */
+    do {
+        a = ms_ticks;
+        b = ms_ticks;
+    } while (a != b);
+    /* 30 bits: callers may add 1 and subtract without overflowing a 32-bit
+     * long.  Wraps after 12.4 days. */
+    return (long)(a & 0x3FFFFFFFUL);
+}
+
+static int initialised;
+
+static void rt_init(void)
+{
+    if (initialised)
+        return;
+    initialised = 1;
+    /* the agenda variant's start-up order, then the A/D scan (Webots'
+     * e-puck cross-compilation layer does the same) */
+    e_init_port();
+    e_start_agendas_processing();
+    e_init_motors();
+    e_init_ad_scan(ALL_ADC);
+    (void)e_activate_agenda(clock_tick, 10);
+    rt_platform_init();
+}
+
+/* ---- state of the standard actions and events --------------------------- */
+
+static int exit_requested;      /* set by exit_main, checked by mainloop */
+static int current_action_id = -1;  /* the action being run by mainloop */
+
+/* Timer (set_timer / reset_timer / event_timer). */
+static int timer_running;
+static long timer_start;        /* rt_millis() at set_timer */
+
+/* Proximity polling (start_sensor / stop_sensor); off at start. */
+static int sensors_on;
+
+/* Motion: at most one at a time.  Progress is measured from the 16-bit step
+ * counters at each poll and accumulated in long. */
+enum { WATCH_BOTH, WATCH_LEFT, WATCH_RIGHT };
+static struct {
+    int active;     /* 1 from its start until its target is reached */
+    int watch;      /* which wheel's progress ends it (BOTH: the larger) */
+    long target;    /* steps, >= 0 */
+    long left;      /* signed steps turned since the start */
+    long right;
+} motion;
+static int last_left;           /* raw counters at the previous poll */
+static int last_right;
+static unsigned motion_starts;  /* incremented at every motion start */
+
+/* stop_motor event latch: see event_stop_motor. */
+static int seen_moving;
+static int stop_sample;         /* the stop_motor condition of this poll */
+
+/* Sequencer: the sequence in progress, if any. */
+static const param_sequence *seq;   /* NULL: none */
+static int seq_next;                /* index of the next step to run */
+static int seq_action_id;           /* id used in the trace of its steps */
+static int seq_waiting;             /* a step's motion is under way */
+static unsigned seq_generation;     /* changes when a sequence replaces one */
+static int in_step;                 /* > 0 while a step's function runs */
+
+/* ---- small arithmetic helpers ------------------------------------------- */
+
+static long abs_l(long v)
+{
+    return v < 0 ? -v : v;
+}
+
+static int clamp_speed(long s)
+{
+    if (s > EPUCK_MAX_SPEED)
+        return EPUCK_MAX_SPEED;
+    if (s < -EPUCK_MAX_SPEED)
+        return -EPUCK_MAX_SPEED;
+    return (int)s;
+}
+
+/* n / d rounded half away from zero; d > 0. */
+static long long div_round(long long n, long long d)
+{
+    if (n >= 0)
+        return (n + d / 2) / d;
+    return -((-n + d / 2) / d);
+}
+
+/* Signed progress of a 16-bit wrapping counter between two reads, portable
+ * to any int width >= 16 (no signed overflow). */
+static long wheel_delta(int now, int last)
+{
+    unsigned d = ((unsigned)now - (unsigned)last) & 0xFFFFu;
+    return d >= 0x8000u ? (long)d - 0x10000L : (long)d;
+}
+
+/* ---- names for the host trace -------------------------------------------- */
+
+static const struct {
+    action_func f;
+    const char *name;
+} std_action_names[] = {
+    { action_start_straight, "action_start_straight" },
+    { action_start_curve, "action_start_curve" },
+    { action_stop_motor, "action_stop_motor" },
+    { action_set_timer, "action_set_timer" },
+    { action_reset_timer, "action_reset_timer" },
+    { action_start_sensor, "action_start_sensor" },
+    { action_stop_sensor, "action_stop_sensor" },
+    { action_exit_main, "action_exit_main" },
+    { action_run_sequence, "action_run_sequence" },
+    { start_straight, "start_straight" },
+    { start_curve, "start_curve" },
+    { stop_motor, "stop_motor" },
+    { set_timer, "set_timer" },
+    { reset_timer, "reset_timer" },
+    { start_sensor, "start_sensor" },
+    { stop_sensor, "stop_sensor" },
+    { exit_main, "exit_main" },
+    { run_sequence, "run_sequence" },
+};
+
+static const struct {
+    event_func f;
+    const char *name;
+} std_event_names[] = {
+    { event_sensor, "event_sensor" },
+    { event_timer, "event_timer" },
+    { event_immediate, "event_immediate" },
+    { event_stop_motor, "event_stop_motor" },
+    { sensor, "sensor" },
+    { timer, "timer" },
+    { immediate, "immediate" },
+};
+
+static const char *std_action_name(action_func f)
+{
+    size_t i;
+    for (i = 0; i < sizeof std_action_names / sizeof std_action_names[0]; i++)
+        if (std_action_names[i].f == f)
+            return std_action_names[i].name;
+    return NULL;
+}
+
+static const char *std_event_name(event_func f)
+{
+    size_t i;
+    for (i = 0; i < sizeof std_event_names / sizeof std_event_names[0]; i++)
+        if (std_event_names[i].f == f)
+            return std_event_names[i].name;
+    return NULL;
+}
+
+/* ---- paper table 1 -------------------------------------------------------- */
+
+static int action_ok(int id)
+{
+    return id >= 0 && id < n_actions && actions[id].action_function != NULL;
+}
+
+static int event_ok(int id)
+{
+    return id >= 0 && id < n_events && events[id].event_function != NULL;
+}
+
+int register_action(action_func f, void *action_param)
+{
+    int id;
+    if (f == NULL || n_actions >= MAX_ACTIONS)
+        return -1;
+    id = n_actions++;
+    actions[id].action_function = f;
+    actions[id].action_param = action_param;
+    rt_name_action(id, std_action_name(f));
+    return id;
+}
+
+int register_event(event_func f, void *event_param, int action_id)
+{
+    int id;
+    event *e;
+    if (f == NULL || n_events >= MAX_EVENTS || !action_ok(action_id))
+        return -1;
+    id = n_events++;
+    e = &events[id];
+    e->event_function = f;
+    e->event_param = event_param;
+    e->action_id = action_id;
+    e->valid_flag = 1;
+    e->repeat_flag = 0;
+    e->status.occurred = 0;
+    e->status.memory = 0;
+    rt_name_event(id, std_event_name(f));
+    return id;
+}
+
+void cancel_action(int action_id)
+{
+    if (!action_ok(action_id))
+        return;
+    /* A NULL function marks the slot cancelled; it is never reused. */
+    actions[action_id].action_function = NULL;
+    actions[action_id].action_param = NULL;
+}
+
+void cancel_event(int event_id)
+{
+    if (!event_ok(event_id))
+        return;
+    events[event_id].valid_flag = 0;
+    events[event_id].event_function = NULL;
+}
+
+void set_event_repeat(int event_id, int repeat)
+{
+    if (event_ok(event_id))
+        events[event_id].repeat_flag = repeat != 0;
+}
+
+void name_action(int action_id, const char *name)
+{
+    if (action_id >= 0 && action_id < n_actions)
+        rt_name_action(action_id, name);
+}
+
+void name_event(int event_id, const char *name)
+{
+    if (event_id >= 0 && event_id < n_events)
+        rt_name_event(event_id, name);
+}
+
+/* ---- motion control -------------------------------------------------------- */
+
+static void sequence_outside_command(void);
+
+static void wheels(int left, int right)
+{
+    e_set_speed_left(left);
+    e_set_speed_right(right);
+}
+
+/* Start a motion (replacing the current one): wheel speeds, and the number
+ * of steps of the watched wheel after which it ends. */
+static void motion_begin(int left, int right, long target, int watch)
+{
+    int watched_speed;
+
+    sequence_outside_command();
+    if (watch == WATCH_LEFT)
+        watched_speed = left;
+    else if (watch == WATCH_RIGHT)
+        watched_speed = right;
+    else
+        watched_speed = left != 0 ? left : right;
+    if (watched_speed == 0 || target <= 0) {
+        /* nothing to drive: the motion ends at the next poll */
+        target = 0;
+        left = 0;
+        right = 0;
+    }
+    motion.active = 1;
+    motion.watch = watch;
+    motion.target = target;
+    motion.left = 0;
+    motion.right = 0;
+    wheels(left, right);
+    /* steps made since this poll's measurement belong to the replaced motion */
+    last_left = e_get_steps_left();
+    last_right = e_get_steps_right();
+    seen_moving = 1;
+    motion_starts++;
+}
+
+/* Phase (2) of a poll: measure the wheels, end the motion at its target. */
+static void motion_update(void)
+{
+    int l = e_get_steps_left();
+    int r = e_get_steps_right();
+    long dl = wheel_delta(l, last_left);
+    long dr = wheel_delta(r, last_right);
+    long progress;
+
+    last_left = l;
+    last_right = r;
+    if (!motion.active)
+        return;
+    motion.left += dl;
+    motion.right += dr;
+    if (motion.watch == WATCH_LEFT) {
+        progress = abs_l(motion.left);
+    } else if (motion.watch == WATCH_RIGHT) {
+        progress = abs_l(motion.right);
+    } else {
+        long al = abs_l(motion.left), ar = abs_l(motion.right);
+        progress = al > ar ? al : ar;
+    }
+    if (progress >= motion.target) {
+        motion.active = 0;
+        wheels(0, 0);
+    }
+}
+
+/* mm -> steps with the default geometry, mm >= 0. */
+static long mm_to_steps(long mm)
+{
+    long long n = (long long)mm * 1000LL * EPUCK_STEPS_PER_REV;
+    return (long)div_round(n, EPUCK_WHEEL_CIRCUMFERENCE_UM);
+}
+
+void action_start_straight(void *param)
+{
+    const param_start_straight *p = (const param_start_straight *)param;
+    long steps;
+    int backwards, speed;
+
+    if (p == NULL)
+        return;
+    if (p->steps != 0) {
+        steps = abs_l(p->steps);
+        backwards = (p->speed < 0) != (p->steps < 0);
+    } else {
+        steps = mm_to_steps(abs_l(p->distance));
+        backwards = (p->speed < 0) != (p->distance < 0);
+    }
+    speed = clamp_speed(abs_l(p->speed));
+    if (backwards)
+        speed = -speed;
+    motion_begin(speed, speed, steps, WATCH_BOTH);
+}
+
+void action_start_curve(void *param)
+{
+    const param_start_curve *p = (const param_start_curve *)param;
+    int outer, inner, left_turn;
+    long outer_steps;
+
+    if (p == NULL)
+        return;
+    outer = clamp_speed(p->speed);
+    left_turn = p->degrees >= 0;    /* left: the right wheel is outer */
+    if (p->outer_steps != 0) {
+        /* exact figures from the compiler */
+        outer_steps = abs_l(p->outer_steps);
+        inner = clamp_speed(p->inner_speed);
+    } else {
+        long long two_r = 2LL * 1000LL * abs_l(p->radius);   /* um */
+        long long num = (two_r + EPUCK_AXLE_UM) * abs_l(p->degrees)
+                        * EPUCK_STEPS_PER_REV * 355LL;      /* pi = 355/113 */
+        long long den = 360LL * EPUCK_WHEEL_CIRCUMFERENCE_UM * 113LL;
+        outer_steps = (long)div_round(num, den);
+        inner = clamp_speed((long)div_round((long long)outer * (two_r - EPUCK_AXLE_UM),
+                                            two_r + EPUCK_AXLE_UM));
+    }
+    if (left_turn)
+        motion_begin(inner, outer, outer_steps, WATCH_RIGHT);
+    else
+        motion_begin(outer, inner, outer_steps, WATCH_LEFT);
+}
+
+void action_stop_motor(void *param)
+{
+    (void)param;
+    sequence_outside_command();
+    motion.active = 0;
+    wheels(0, 0);
+}
+
+/* ---- the other standard actions ------------------------------------------- */
+
+void action_set_timer(void *param)
+{
+    (void)param;
+    timer_running = 1;
+    timer_start = rt_millis();
+}
+
+void action_reset_timer(void *param)
+{
+    (void)param;
+    timer_running = 0;
+}
+
+void action_start_sensor(void *param)
+{
+    (void)param;
+    sensors_on = 1;
+}
+
+void action_stop_sensor(void *param)
+{
+    (void)param;
+    sensors_on = 0;
+}
+
+void action_exit_main(void *param)
+{
+    (void)param;
+    exit_requested = 1;
+}
+
+/* ---- sequencer -------------------------------------------------------------- */
+
+/* A motion start or stop_motor from outside a step takes the wheels from a
+ * waiting sequence: the sequence is abandoned. */
+static void sequence_outside_command(void)
+{
+    if (seq != NULL && in_step == 0) {
+        seq = NULL;
+        seq_waiting = 0;
+    }
+}
+
+/* Run steps from seq_next on, until one starts a motion (then wait for it
+ * to end) or the sequence is over. */
+static void sequence_run_steps(void)
+{
+    unsigned generation = seq_generation;
+
+    while (seq != NULL && seq_next < seq->count) {
+        const action *step = &seq->steps[seq_next];
+        unsigned starts_before = motion_starts;
+        int index = seq_next++;
+
+        rt_trace_action(seq_action_id, index, seq->count);
+        if (step->action_function != NULL) {
+            int previous = current_action_id;
+            /* a step that runs a sequence names it after this one */
+            current_action_id = seq_action_id;
+            in_step++;
+            step->action_function(step->action_param);
+            in_step--;
+            current_action_id = previous;
+        }
+        if (generation != seq_generation || seq == NULL)
+            return;     /* the step ran a sequence that replaced this one */
+        if (exit_requested) {
+            seq = NULL;
+            return;
+        }
+        if (motion_starts != starts_before && motion.active) {
+            seq_waiting = 1;
+            return;
+        }
+    }
+    seq = NULL;
+}
+
+void action_run_sequence(void *param)
+{
+    const param_sequence *p = (const param_sequence *)param;
+
+    seq_generation++;
+    seq = NULL;
+    seq_waiting = 0;
+    if (p == NULL || p->steps == NULL || p->count <= 0)
+        return;
+    seq = p;
+    seq_next = 0;
+    seq_action_id = current_action_id;
+    sequence_run_steps();
+}
+
+/* Phase (3) of a poll: continue a sequence whose step's motion has ended. */
+static void sequence_advance(void)
+{
+    if (seq != NULL && seq_waiting && !motion.active) {
+        seq_waiting = 0;
+        sequence_run_steps();
+    }
+}
+
+/* ---- standard events -------------------------------------------------------- */
+
+void event_immediate(void *param, void *status)
+{
+    (void)param;
+    ((event_status *)status)->occurred = 1;
+}
+
+/* "The wheels went from moving to at rest between two polls": stop_sample,
+ * computed once per poll before the events are polled. */
+void event_stop_motor(void *param, void *status)
+{
+    (void)param;
+    ((event_status *)status)->occurred = stop_sample;
+}
+
+/* Occurs when the timer runs and has run >= time ms.  status->memory holds
+ * 1 + the clock time of the last firing (0: never), so that a repeating
+ * event fires at time, 2*time, ... of the timer, and a restarted timer
+ * restarts the phase. */
+void event_timer(void *param, void *status)
+{
+    const param_event_timer *p = (const param_event_timer *)param;
+    event_status *st = (event_status *)status;
+    long now, elapsed, base = 0;
+
+    st->occurred = 0;
+    if (p == NULL || !timer_running)
+        return;
+    now = rt_millis();
+    elapsed = now - timer_start;
+    if (p->time > 0 && st->memory != 0 && st->memory - 1 >= timer_start) {
+        /* fired before in this run of the timer: the current period
+         * starts at the last multiple of time not after that firing */
+        long since = st->memory - 1 - timer_start;
+        base = since - since % p->time;
+    }
+    if (elapsed - base >= p->time) {
+        st->occurred = 1;
+        st->memory = now + 1;
+    }
+}
+
+/* Occurs when the condition becomes true (status->memory: the condition at
+ * the previous poll, 0 before the first). */
+void event_sensor(void *param, void *status)
+{
+    const param_event_sensor *p = (const param_event_sensor *)param;
+    event_status *st = (event_status *)status;
+    int cond = 0;
+    unsigned n;
+
+    if (p != NULL && sensors_on) {
+        for (n = 0; n < 8; n++) {
+            int threshold = p->sensef[n];
+            int value;
+            if (threshold == SENSOR_OFF)
+                continue;
+            value = e_get_prox(n);
+            if ((p->below >> n) & 1u ? value < threshold : value > threshold) {
+                cond = 1;
+                break;
+            }
+        }
+    }
+    st->occurred = cond && st->memory == 0;
+    st->memory = cond;
+}
+
+/* ---- the paper's short spellings -------------------------------------------- */
+
+void start_straight(void *param) { action_start_straight(param); }
+void start_curve(void *param) { action_start_curve(param); }
+void stop_motor(void *param) { action_stop_motor(param); }
+void set_timer(void *param) { action_set_timer(param); }
+void reset_timer(void *param) { action_reset_timer(param); }
+void start_sensor(void *param) { action_start_sensor(param); }
+void stop_sensor(void *param) { action_stop_sensor(param); }
+void exit_main(void *param) { action_exit_main(param); }
+void run_sequence(void *param) { action_run_sequence(param); }
+void sensor(void *param, void *status) { event_sensor(param, status); }
+void timer(void *param, void *status) { event_timer(param, status); }
+void immediate(void *param, void *status) { event_immediate(param, status); }
+
+/* ---- main loop (paper figure 4) ---------------------------------------------- */
+
+static void run_action(int action_id)
+{
+    int previous = current_action_id;
+
+    if (!action_ok(action_id))
+        return;     /* cancelled: the event fires but runs nothing */
+    rt_trace_action(action_id, -1, 0);
+    current_action_id = action_id;
+    actions[action_id].action_function(actions[action_id].action_param);
+    current_action_id = previous;
+}
+
+/* Phase (5): poll the armed events in index order.  Returns 1 when exit_main
+ * ran. */
+static int poll_events(void)
+{
+    int i;
+
+    /* n_events is re-read: an action may register events, polled at once */
+    for (i = 0; i < n_events; i++) {
+        event *e = &events[i];
+        if (!e->valid_flag || e->event_function == NULL)
+            continue;
+        e->status.occurred = 0;
+        e->event_function(e->event_param, &e->status);
+        if (e->status.occurred) {
+            rt_trace_event(i);
+            run_action(e->action_id);
+            if (!e->repeat_flag)
+                e->valid_flag = 0;
+        }
+        if (exit_requested)
+            return 1;
+    }
+    return 0;
+}
+
+void mainloop(void)
+{
+    rt_init();
+    exit_requested = 0;
+    last_left = e_get_steps_left();
+    last_right = e_get_steps_right();
+    for (;;) {
+        rt_platform_idle();         /* (1) wait for / advance time by 1 ms */
+        motion_update();            /* (2) */
+        sequence_advance();         /* (3) */
+        if (exit_requested)
+            break;
+        stop_sample = seen_moving && !motion.active;    /* (4) */
+        seen_moving = motion.active;
+        if (poll_events())          /* (5) */
+            break;
+    }
+    /* exit_main: stop at once */
+    motion.active = 0;
+    wheels(0, 0);
+    seq = NULL;
+    seq_waiting = 0;
+    seen_moving = 0;
+    exit_requested = 0;
+    rt_trace_exit();
+}

@@ -1,0 +1,352 @@
+/*
+ * epuck_stub.c - a stub of the e-puck library for the host harness: the
+ * prototypes of ../epuck_api/ implemented over a virtual robot.
+ *
+ * Motors: speeds clamped to +-1000 steps/s like the library; each wheel
+ * steps whole steps (one every 1000/|speed| ms, phase restarted when the
+ * speed changes), counted in a 16-bit counter that wraps like the real one,
+ * and in an unwrapped total for the trace.  Odometry from the steps with the
+ * default geometry of epuckrt.h.  Proximity: values set by the scenario.
+ * Agendas: a fixed table, run by the host platform once per virtual ms.
+ *
+ * Deterministic: no real time, no randomness; the trigonometry is computed
+ * here (Taylor series) so that no libm is needed and results do not depend
+ * on the C library.
+ */
+#include <stdint.h>
+#include <stddef.h>
+
+#include "epuckrt.h"
+#include "epuck_stub.h"
+#include "motor_led/e_init_port.h"
+#include "motor_led/advance_one_timer/e_motors.h"
+#include "motor_led/advance_one_timer/e_agenda.h"
+#include "a_d/advance_ad_scan/e_prox.h"
+#include "a_d/advance_ad_scan/e_ad_conv.h"
+
+#define STUB_PI 3.14159265358979323846
+#define MM_PER_STEP ((double)EPUCK_WHEEL_CIRCUMFERENCE_UM / 1000.0 / (double)EPUCK_STEPS_PER_REV)
+#define AXLE_MM ((double)EPUCK_AXLE_UM / 1000.0)
+
+/* ---- ports ---------------------------------------------------------------- */
+
+void e_init_port(void)
+{
+}
+
+/* ---- agendas ---------------------------------------------------------------- */
+
+#define STUB_MAX_AGENDAS 16
+
+static struct {
+    void (*func)(void);
+    int cycle;      /* 0.1 ms; 0 = inactive */
+    long count;     /* 0.1 ms ticks since the last call */
+    int paused;
+} agendas[STUB_MAX_AGENDAS];
+static int agendas_running;
+
+static int agenda_find(void (*func)(void))
+{
+    int i;
+    for (i = 0; i < STUB_MAX_AGENDAS; i++)
+        if (agendas[i].func != NULL && agendas[i].func == func)
+            return i;
+    return -1;
+}
+
+void e_start_agendas_processing(void)
+{
+    agendas_running = 1;
+}
+
+void e_end_agendas_processing(void)
+{
+    agendas_running = 0;
+}
+
+/* Returns 0 on success, 1 when func already has an agenda or none is free. */
+int e_activate_agenda(void (*func)(void), int cycle)
+{
+    int i;
+    if (func == NULL || agenda_find(func) >= 0)
+        return 1;
+    for (i = 0; i < STUB_MAX_AGENDAS; i++) {
+        if (agendas[i].func == NULL) {
+            agendas[i].func = func;
+            agendas[i].cycle = cycle < 0 ? 0 : cycle;
+            agendas[i].count = 0;
+            agendas[i].paused = 0;
+            return 0;
+        }
+    }
+    return 1;
+}
+
+int e_destroy_agenda(void (*func)(void))
+{
+    int i = agenda_find(func);
+    if (i < 0)
+        return 1;
+    agendas[i].func = NULL;
+    return 0;
+}
+
+int e_set_agenda_cycle(void (*func)(void), int cycle)
+{
+    int i = agenda_find(func);
+    if (i < 0)
+        return 1;
+    agendas[i].cycle = cycle < 0 ? 0 : cycle;
+    return 0;
+}
+
+int e_reset_agenda(void (*func)(void))
+{
+    int i = agenda_find(func);
+    if (i < 0)
+        return 1;
+    agendas[i].count = 0;
+    return 0;
+}
+
+int e_pause_agenda(void (*func)(void))
+{
+    int i = agenda_find(func);
+    if (i < 0)
+        return 1;
+    agendas[i].paused = 1;
+    return 0;
+}
+
+int e_restart_agenda(void (*func)(void))
+{
+    int i = agenda_find(func);
+    if (i < 0)
+        return 1;
+    agendas[i].paused = 0;
+    return 0;
+}
+
+void stub_agendas_1ms(void)
+{
+    int i;
+    if (!agendas_running)
+        return;
+    for (i = 0; i < STUB_MAX_AGENDAS; i++) {
+        if (agendas[i].func == NULL || agendas[i].cycle <= 0 || agendas[i].paused)
+            continue;
+        agendas[i].count += 10;     /* 1 ms = 10 ticks of 0.1 ms */
+        while (agendas[i].func != NULL && agendas[i].count >= agendas[i].cycle) {
+            agendas[i].count -= agendas[i].cycle;
+            agendas[i].func();
+        }
+    }
+}
+
+/* ---- motors ------------------------------------------------------------------ */
+
+typedef struct {
+    int speed;          /* steps/s, clamped */
+    long phase;         /* thousandths of a step towards the next step */
+    uint16_t counter;   /* what e_get_steps_* reports, wraps */
+    long total;         /* unwrapped, for the trace */
+} wheel;
+
+static wheel left_wheel, right_wheel;
+static double pose_x, pose_y;
+
+static int clamp(int s)
+{
+    return s > 1000 ? 1000 : s < -1000 ? -1000 : s;
+}
+
+static void wheel_set_speed(wheel *w, int speed)
+{
+    speed = clamp(speed);
+    if (speed != w->speed) {
+        w->speed = speed;
+        w->phase = 0;
+    }
+}
+
+/* Returns the step made in this ms: -1, 0 or 1 (|speed| <= 1000). */
+static int wheel_1ms(wheel *w)
+{
+    if (w->speed == 0)
+        return 0;
+    w->phase += w->speed > 0 ? w->speed : -w->speed;
+    if (w->phase < 1000)
+        return 0;
+    w->phase -= 1000;
+    if (w->speed > 0) {
+        w->counter = (uint16_t)(w->counter + 1u);
+        w->total++;
+        return 1;
+    }
+    w->counter = (uint16_t)(w->counter - 1u);
+    w->total--;
+    return -1;
+}
+
+static int counter_value(uint16_t c)
+{
+    return c >= 0x8000u ? (int)((long)c - 65536L) : (int)c;
+}
+
+void e_init_motors(void)
+{
+}
+
+void e_set_speed_left(int motor_speed)
+{
+    wheel_set_speed(&left_wheel, motor_speed);
+}
+
+void e_set_speed_right(int motor_speed)
+{
+    wheel_set_speed(&right_wheel, motor_speed);
+}
+
+/* as the agenda variant of the library: linear +- angular */
+void e_set_speed(int linear_speed, int angular_speed)
+{
+    long l = (long)linear_speed - angular_speed;
+    long r = (long)linear_speed + angular_speed;
+    e_set_speed_left(l > 1000 ? 1000 : l < -1000 ? -1000 : (int)l);
+    e_set_speed_right(r > 1000 ? 1000 : r < -1000 ? -1000 : (int)r);
+}
+
+int e_get_steps_left(void)
+{
+    return counter_value(left_wheel.counter);
+}
+
+int e_get_steps_right(void)
+{
+    return counter_value(right_wheel.counter);
+}
+
+void e_set_steps_left(int set_steps)
+{
+    left_wheel.counter = (uint16_t)(unsigned)set_steps;
+}
+
+void e_set_steps_right(int set_steps)
+{
+    right_wheel.counter = (uint16_t)(unsigned)set_steps;
+}
+
+long stub_total_steps_left(void)
+{
+    return left_wheel.total;
+}
+
+long stub_total_steps_right(void)
+{
+    return right_wheel.total;
+}
+
+/* ---- odometry ------------------------------------------------------------------ */
+
+/* a reduced to (-pi, pi] */
+static double wrap_pi(double a)
+{
+    long n = (long)(a / (2.0 * STUB_PI));
+    a -= (double)n * 2.0 * STUB_PI;
+    if (a > STUB_PI)
+        a -= 2.0 * STUB_PI;
+    else if (a <= -STUB_PI)
+        a += 2.0 * STUB_PI;
+    return a;
+}
+
+/* Taylor series on (-pi, pi]; 20 terms leave an error far below 1e-12. */
+static double stub_sin(double a)
+{
+    double x = wrap_pi(a), term = x, sum = x;
+    int k;
+    for (k = 1; k < 20; k++) {
+        term *= -x * x / (double)((2 * k) * (2 * k + 1));
+        sum += term;
+    }
+    return sum;
+}
+
+static double stub_cos(double a)
+{
+    double x = wrap_pi(a), term = 1.0, sum = 1.0;
+    int k;
+    for (k = 1; k < 20; k++) {
+        term *= -x * x / (double)((2 * k - 1) * (2 * k));
+        sum += term;
+    }
+    return sum;
+}
+
+/* Heading in radians, exact from the step totals (no drift). */
+static double heading_rad(void)
+{
+    return (double)(right_wheel.total - left_wheel.total) * MM_PER_STEP / AXLE_MM;
+}
+
+void stub_motors_1ms(void)
+{
+    double before = heading_rad();
+    int dl = wheel_1ms(&left_wheel);
+    int dr = wheel_1ms(&right_wheel);
+    if (dl + dr != 0) {
+        /* move along the mean heading of this ms */
+        double mid = (before + heading_rad()) / 2.0;
+        double ds = (double)(dl + dr) * 0.5 * MM_PER_STEP;
+        pose_x += ds * stub_cos(mid);
+        pose_y += ds * stub_sin(mid);
+    }
+}
+
+void stub_pose(double *x_mm, double *y_mm, double *heading_deg)
+{
+    *x_mm = pose_x;
+    *y_mm = pose_y;
+    *heading_deg = wrap_pi(heading_rad()) * 180.0 / STUB_PI;
+}
+
+/* ---- proximity ---------------------------------------------------------------- */
+
+static int prox[8];
+static int ad_scan_on;      /* e_init_ad_scan(ALL_ADC) called */
+
+void stub_set_prox(int n, int value)
+{
+    if (n >= 0 && n < 8)
+        prox[n] = value;
+}
+
+void e_init_ad_scan(unsigned char only_micro)
+{
+    /* MICRO_ONLY scans the microphones only: no proximity readings */
+    ad_scan_on = only_micro == ALL_ADC;
+}
+
+void e_calibrate_ir(void)
+{
+}
+
+int e_get_prox(unsigned int sensor_number)
+{
+    if (!ad_scan_on || sensor_number > 7)
+        return 0;
+    return prox[sensor_number];
+}
+
+/* no ambient light in the scenario: calibrated = raw */
+int e_get_calibrated_prox(unsigned int sensor_number)
+{
+    return e_get_prox(sensor_number);
+}
+
+int e_get_ambient_light(unsigned int sensor_number)
+{
+    (void)sensor_number;
+    return 0;
+}

@@ -1,0 +1,418 @@
+/*
+ * platform_host.c - the runtime's platform layer on a PC (the "stub
+ * harness"): virtual time (1 ms per poll cycle), the virtual robot of
+ * epuck_stub.c, a scenario of proximity readings, a time limit, and the
+ * trace (JSON lines to a file, readable lines to stdout).
+ *
+ * Settings come from the environment (the paper's main() has no arguments),
+ * read by rt_platform_init, i.e. when mainloop first runs:
+ *   EPUCK_SCENARIO       scenario file (.scn); none: every reading is 0
+ *   EPUCK_TRACE          JSON-lines trace output path; none: no JSON trace
+ *   EPUCK_TIME_LIMIT_MS  virtual time limit, default 60000
+ *   EPUCK_QUIET          set and not "0": no readable trace on stdout
+ * Exit statuses: 2 bad setting or scenario, 3 time limit reached.
+ * docs/runtime.md describes the formats.
+ */
+#include <ctype.h>
+#include <errno.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "epuckrt.h"
+#include "rt_platform.h"
+#include "epuck_stub.h"
+
+#define EXIT_BAD_SETTING 2
+#define EXIT_TIMEOUT 3
+#define DEFAULT_TIME_LIMIT_MS 60000L
+#define MAX_SCENARIO_MS 1000000000L     /* 11.6 days of virtual time */
+
+static long now_ms;                 /* virtual time */
+static long limit_ms = DEFAULT_TIME_LIMIT_MS;
+static FILE *trace_file;
+static int quiet;
+static long events_fired, actions_run, steps_run;
+
+/* ---- names ------------------------------------------------------------------ */
+
+typedef struct {
+    char **names;   /* malloc'd copies, NULL: no name */
+    int size;
+} name_table;
+
+static name_table action_names, event_names;
+
+static char *copy_string(const char *s)
+{
+    size_t n = strlen(s) + 1;
+    char *c = malloc(n);
+    if (c != NULL)
+        memcpy(c, s, n);
+    return c;
+}
+
+static void set_name(name_table *t, int id, const char *name)
+{
+    if (id < 0)
+        return;
+    if (id >= t->size) {
+        int size = id + 16, i;
+        char **grown = realloc(t->names, (size_t)size * sizeof *grown);
+        if (grown == NULL)
+            return;     /* out of memory: the trace shows the id instead */
+        for (i = t->size; i < size; i++)
+            grown[i] = NULL;
+        t->names = grown;
+        t->size = size;
+    }
+    free(t->names[id]);
+    t->names[id] = name != NULL ? copy_string(name) : NULL;
+}
+
+/* The name for the trace, or fallback#id. */
+static const char *get_name(const name_table *t, int id, const char *fallback,
+                            char *buf, size_t bufsize)
+{
+    if (id >= 0 && id < t->size && t->names[id] != NULL)
+        return t->names[id];
+    snprintf(buf, bufsize, "%s#%d", fallback, id);
+    return buf;
+}
+
+void rt_name_action(int action_id, const char *name)
+{
+    set_name(&action_names, action_id, name);
+}
+
+void rt_name_event(int event_id, const char *name)
+{
+    set_name(&event_names, event_id, name);
+}
+
+/* ---- settings errors ------------------------------------------------------ */
+
+static void fail(const char *fmt, ...)
+{
+    va_list ap;
+    fputs("epuck host: ", stderr);
+    va_start(ap, fmt);
+    vfprintf(stderr, fmt, ap);
+    va_end(ap);
+    fputc('\n', stderr);
+    exit(EXIT_BAD_SETTING);
+}
+
+/* ---- scenario ---------------------------------------------------------------
+ * One line per change: "<time> ms|s irN=V ...", values hold until changed. */
+
+typedef struct {
+    long t_ms;
+    int set[8];     /* 1: sensor n gets value[n] */
+    int value[8];
+} scenario_line;
+
+static scenario_line *scenario;
+static size_t scenario_size, scenario_next;
+
+/* Parses a time token (and maybe the unit token after it) into ms.  Returns
+ * the number of tokens used (1 or 2), or 0 with *err set. */
+static int parse_time(char **tok, int ntok, long *ms, const char **err)
+{
+    const char *s = tok[0];
+    long whole = 0, frac = 0;
+    int frac_digits = 0, digits = 0, used = 1;
+    const char *unit;
+
+    while (isdigit((unsigned char)*s)) {
+        if (++digits > 9) {
+            *err = "time too large";
+            return 0;
+        }
+        whole = whole * 10 + (*s++ - '0');
+    }
+    if (*s == '.') {
+        s++;
+        while (isdigit((unsigned char)*s)) {
+            if (++frac_digits > 3) {
+                *err = "time finer than 1 ms";
+                return 0;
+            }
+            frac = frac * 10 + (*s++ - '0');
+        }
+    }
+    if (digits == 0) {
+        *err = "expected a time (\"<number> ms\" or \"<number> s\")";
+        return 0;
+    }
+    unit = s;
+    if (*unit == '\0' && ntok > 1 && (strcmp(tok[1], "ms") == 0 || strcmp(tok[1], "s") == 0)) {
+        unit = tok[1];
+        used = 2;
+    }
+    if (strcmp(unit, "s") == 0) {
+        if (whole > MAX_SCENARIO_MS / 1000) {
+            *err = "time too large";
+            return 0;
+        }
+        while (frac_digits++ < 3)
+            frac *= 10;
+        *ms = whole * 1000 + frac;
+    } else if (strcmp(unit, "ms") == 0 || *unit == '\0') {
+        if (frac_digits > 0 || s[-1] == '.') {
+            *err = "milliseconds must be a whole number";
+            return 0;
+        }
+        *ms = whole;
+    } else {
+        *err = "unknown time unit (use ms or s)";
+        return 0;
+    }
+    if (*ms > MAX_SCENARIO_MS) {
+        *err = "time too large";
+        return 0;
+    }
+    return used;
+}
+
+/* "irN=V" */
+static int parse_assignment(const char *s, int *n, int *v)
+{
+    long value = 0;
+    int digits = 0;
+    if ((s[0] != 'i' && s[0] != 'I') || (s[1] != 'r' && s[1] != 'R'))
+        return 0;
+    if (s[2] < '0' || s[2] > '7' || s[3] != '=')
+        return 0;
+    *n = s[2] - '0';
+    s += 4;
+    while (isdigit((unsigned char)*s)) {
+        value = value * 10 + (*s++ - '0');
+        if (++digits > 5)
+            return 0;
+    }
+    if (digits == 0 || *s != '\0' || value > 4095)
+        return 0;
+    *v = (int)value;
+    return 1;
+}
+
+static void load_scenario(const char *path)
+{
+    FILE *f = fopen(path, "r");
+    char line[1024];
+    long lineno = 0, last_t = 0;
+
+    if (f == NULL)
+        fail("%s: cannot open scenario: %s", path, strerror(errno));
+    while (fgets(line, sizeof line, f) != NULL) {
+        char *tok[64];
+        int ntok = 0, i, used, n, v;
+        char *p, *hash;
+        const char *err = NULL;
+        scenario_line sl;
+
+        lineno++;
+        if (strchr(line, '\n') == NULL && !feof(f))
+            fail("%s:%ld: line too long", path, lineno);
+        hash = strchr(line, '#');
+        if (hash != NULL)
+            *hash = '\0';
+        for (p = strtok(line, " \t\r\n"); p != NULL; p = strtok(NULL, " \t\r\n")) {
+            if (ntok == 64)
+                fail("%s:%ld: too many items on one line", path, lineno);
+            tok[ntok++] = p;
+        }
+        if (ntok == 0)
+            continue;
+        memset(&sl, 0, sizeof sl);
+        used = parse_time(tok, ntok, &sl.t_ms, &err);
+        if (used == 0)
+            fail("%s:%ld: %s: '%s'", path, lineno, err, tok[0]);
+        if (sl.t_ms < last_t)
+            fail("%s:%ld: time %ld ms is before the previous line's %ld ms",
+                 path, lineno, sl.t_ms, last_t);
+        last_t = sl.t_ms;
+        for (i = used; i < ntok; i++) {
+            if (!parse_assignment(tok[i], &n, &v))
+                fail("%s:%ld: expected irN=V with N 0..7 and V 0..4095, got '%s'",
+                     path, lineno, tok[i]);
+            sl.set[n] = 1;
+            sl.value[n] = v;
+        }
+        {
+            scenario_line *grown = realloc(scenario, (scenario_size + 1) * sizeof *grown);
+            if (grown == NULL)
+                fail("%s:%ld: out of memory", path, lineno);
+            scenario = grown;
+            scenario[scenario_size++] = sl;
+        }
+    }
+    if (ferror(f))
+        fail("%s: read error", path);
+    fclose(f);
+}
+
+/* Apply the scenario lines whose time has come. */
+static void scenario_apply(long t)
+{
+    while (scenario_next < scenario_size && scenario[scenario_next].t_ms <= t) {
+        const scenario_line *sl = &scenario[scenario_next++];
+        int n;
+        for (n = 0; n < 8; n++)
+            if (sl->set[n])
+                stub_set_prox(n, sl->value[n]);
+    }
+}
+
+/* ---- trace ----------------------------------------------------------------------- */
+
+/* %.1f, without "-0.0" */
+static double tidy(double v)
+{
+    return v > -0.05 && v < 0.05 ? 0.0 : v;
+}
+
+static void json_string(FILE *f, const char *s)
+{
+    fputc('"', f);
+    for (; *s != '\0'; s++) {
+        unsigned char c = (unsigned char)*s;
+        if (c == '"' || c == '\\')
+            fprintf(f, "\\%c", c);
+        else if (c < 0x20)
+            fprintf(f, "\\u%04x", c);
+        else
+            fputc(c, f);
+    }
+    fputc('"', f);
+}
+
+static void record(const char *kind, const char *name, int id, int step, int steps)
+{
+    double x, y, h;
+    stub_pose(&x, &y, &h);
+    if (trace_file == NULL)
+        return;
+    fprintf(trace_file, "{\"t_ms\": %ld, \"kind\": \"%s\", \"name\": ", now_ms, kind);
+    json_string(trace_file, name);
+    fprintf(trace_file, ", \"id\": %d, \"left_steps\": %ld, \"right_steps\": %ld, "
+            "\"x_mm\": %.1f, \"y_mm\": %.1f, \"heading_deg\": %.1f",
+            id, stub_total_steps_left(), stub_total_steps_right(),
+            tidy(x), tidy(y), tidy(h));
+    if (step >= 0)
+        fprintf(trace_file, ", \"step\": %d, \"steps\": %d", step, steps);
+    fputs("}\n", trace_file);
+    fflush(trace_file);
+}
+
+static void print_pose(void)
+{
+    double x, y, h;
+    stub_pose(&x, &y, &h);
+    printf("pose (%.1f, %.1f) %.1f deg", tidy(x), tidy(y), tidy(h));
+}
+
+static void summary(const char *how)
+{
+    if (quiet)
+        return;
+    printf("%s at %ld ms: ", how, now_ms);
+    print_pose();
+    printf(", %ld events fired, %ld actions run, %ld sequence steps\n",
+           events_fired, actions_run, steps_run);
+    fflush(stdout);
+}
+
+void rt_trace_event(int event_id)
+{
+    char buf[32];
+    const char *name = get_name(&event_names, event_id, "event", buf, sizeof buf);
+    events_fired++;
+    record("event", name, event_id, -1, 0);
+    if (!quiet) {
+        printf("[%6ld ms] event  #%d %-23s ", now_ms, event_id, name);
+        print_pose();
+        putchar('\n');
+    }
+}
+
+void rt_trace_action(int action_id, int step, int steps)
+{
+    char buf[32];
+    const char *name = get_name(&action_names, action_id, "action", buf, sizeof buf);
+    if (step < 0)
+        actions_run++;
+    else
+        steps_run++;
+    record("action", name, action_id, step, steps);
+    if (!quiet) {
+        printf("[%6ld ms] action #%d %s", now_ms, action_id, name);
+        if (step >= 0)
+            printf(" step %d of %d", step, steps);
+        putchar('\n');
+    }
+}
+
+void rt_trace_exit(void)
+{
+    record("exit", "exit_main", -1, -1, 0);
+    if (!quiet) {
+        printf("[%6ld ms] exit      ", now_ms);
+        print_pose();
+        putchar('\n');
+    }
+    summary("exit");
+}
+
+/* ---- platform ------------------------------------------------------------------- */
+
+void rt_platform_init(void)
+{
+    const char *limit = getenv("EPUCK_TIME_LIMIT_MS");
+    const char *scn = getenv("EPUCK_SCENARIO");
+    const char *trace = getenv("EPUCK_TRACE");
+    const char *q = getenv("EPUCK_QUIET");
+
+    quiet = q != NULL && *q != '\0' && strcmp(q, "0") != 0;
+    if (limit != NULL && *limit != '\0') {
+        char *end;
+        long v;
+        errno = 0;
+        v = strtol(limit, &end, 10);
+        if (errno != 0 || *end != '\0' || v <= 0 || v > MAX_SCENARIO_MS || !isdigit((unsigned char)*limit))
+            fail("EPUCK_TIME_LIMIT_MS: expected a whole number of milliseconds "
+                 "from 1 to %ld, got '%s'", MAX_SCENARIO_MS, limit);
+        limit_ms = v;
+    }
+    if (scn != NULL && *scn != '\0')
+        load_scenario(scn);
+    if (trace != NULL && *trace != '\0') {
+        trace_file = fopen(trace, "w");
+        if (trace_file == NULL)
+            fail("EPUCK_TRACE: cannot write '%s': %s", trace, strerror(errno));
+    }
+    scenario_apply(0);
+}
+
+/* One poll cycle = 1 ms of virtual time. */
+void rt_platform_idle(void)
+{
+    if (now_ms >= limit_ms) {
+        record("timeout", "timeout", -1, -1, 0);
+        if (!quiet) {
+            printf("[%6ld ms] timeout   ", now_ms);
+            print_pose();
+            putchar('\n');
+        }
+        summary("timeout");
+        if (trace_file != NULL)
+            fclose(trace_file);
+        exit(EXIT_TIMEOUT);
+    }
+    stub_motors_1ms();      /* the wheels move during the ms ... */
+    now_ms++;
+    scenario_apply(now_ms); /* ... the readings of the new ms hold ... */
+    stub_agendas_1ms();     /* ... and the clock agenda ticks */
+}

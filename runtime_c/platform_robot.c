@@ -1,0 +1,52 @@
+/*
+ * platform_robot.c - the runtime's platform layer on the e-puck itself.
+ *
+ * The core (epuckrt.c) already initialises the e-puck library in the
+ * agenda variant's order (e_init_port, e_start_agendas_processing,
+ * e_init_motors, e_init_ad_scan(ALL_ADC)) and starts the 1 ms clock agenda,
+ * so that the robot and the host harness share one code path.  What is left
+ * here is waiting for the clock, and trace hooks that do nothing (there is
+ * no trace on the robot).
+ */
+#include "rt_platform.h"
+
+void rt_platform_init(void)
+{
+}
+
+/* One poll cycle per millisecond: wait until the clock agenda has ticked. */
+void rt_platform_idle(void)
+{
+    long start = rt_millis();
+    while (rt_millis() == start) {
+        /* busy wait; the agenda runs in the Timer2 interrupt */
+    }
+}
+
+void rt_trace_event(int event_id)
+{
+    (void)event_id;
+}
+
+void rt_trace_action(int action_id, int step, int steps)
+{
+    (void)action_id;
+    (void)step;
+    (void)steps;
+}
+
+void rt_trace_exit(void)
+{
+}
+
+void rt_name_action(int action_id, const char *name)
+{
+    (void)action_id;
+    (void)name;
+}
+
+void rt_name_event(int event_id, const char *name)
+{
+    (void)event_id;
+    (void)name;
+}

@@ -1,0 +1,41 @@
+/*
+ * rt_platform.h - the runtime's internal platform interface (not for user
+ * programs).  The core (epuckrt.c) drives the hardware only through the
+ * e-puck library API; what differs between the robot and the host harness
+ * is behind these few functions:
+ *
+ *   platform_robot.c      on the e-puck: wait for the 1 ms tick; no trace.
+ *   host/platform_host.c  on a PC: virtual time, virtual robot, trace.
+ */
+#ifndef RT_PLATFORM_H
+#define RT_PLATFORM_H
+
+/* Called once, by the core, after the e-puck library has been initialised
+ * (e_init_port, agendas, motors, A/D scan) and the 1 ms clock agenda started. */
+void rt_platform_init(void);
+
+/* Called once at the start of every poll cycle.  Robot: returns when the
+ * millisecond clock has ticked since the previous call.  Host: advances the
+ * virtual robot and virtual time by exactly 1 ms (the agendas run, so the
+ * core's clock ticks); may end the process when the time limit is reached. */
+void rt_platform_idle(void);
+
+/* Trace hooks, called by the core.  step is -1 for an action run by an event;
+ * for a step of a sequence it is the step index and steps the step count
+ * (action_id is then the sequence action's id). */
+void rt_trace_event(int event_id);
+void rt_trace_action(int action_id, int step, int steps);
+void rt_trace_exit(void);
+
+/* Names for the trace.  The core calls these at registration with the
+ * standard function's name (or NULL for a user function), and again for
+ * name_action/name_event.  The string is copied (host) or ignored (robot). */
+void rt_name_action(int action_id, const char *name);
+void rt_name_event(int event_id, const char *name);
+
+/* Provided by the core: milliseconds since the runtime was initialised,
+ * counted by a 1 ms e-puck agenda; 0 before.  Wraps to 0 after 2^31-1 ms
+ * (24.8 days). */
+long rt_millis(void);
+
+#endif /* RT_PLATFORM_H */
