@@ -1,0 +1,26 @@
+/* A motion started outside a waiting sequence abandons it; exit_main as a
+ * step ends mainloop. */
+#include "epuckrt.h"
+
+int main(void)
+{
+    static param_start_straight s1 = { 1000, 0, 1000 };
+    static param_start_straight s2 = { 1000, 0, 50 };
+    static param_start_straight other = { -1000, 0, 20 };
+    static const action steps[] = { { start_straight, &s1 }, { start_straight, &s1 } };
+    static const action steps2[] = { { start_straight, &s2 }, { exit_main, NULL },
+                                     { start_straight, &s2 } };
+    static param_sequence seq = { steps, 2 };
+    static param_sequence seq2 = { steps2, 3 };
+    static param_event_timer t300 = { 300 };
+    int a_seq = register_action(run_sequence, &seq);
+    int a_other = register_action(start_straight, &other);
+    int a_seq2 = register_action(action_run_sequence, &seq2);
+
+    set_timer(NULL);
+    register_event(immediate, NULL, a_seq);
+    register_event(event_timer, &t300, a_other);
+    register_event(event_stop_motor, NULL, a_seq2);
+    mainloop();
+    return 0;
+}
