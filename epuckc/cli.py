@@ -11,7 +11,7 @@ from .codes import CODES, explanation, normalise
 from .diagnostics import Report, render_report
 from .frontend import InputError, check_file
 
-EXIT_OK, EXIT_ERRORS, EXIT_USAGE = 0, 1, 2
+EXIT_OK, EXIT_ERRORS, EXIT_USAGE, EXIT_NO_TOOLCHAIN = 0, 1, 2, 3
 
 
 def _colour_wanted(stream) -> bool:
@@ -65,11 +65,107 @@ def cmd_explain(args) -> int:
     return EXIT_OK
 
 
+def _error(message: str):
+    print(f"epuckc: error: {message}", file=sys.stderr)
+
+
+def _load(args):
+    """The C program for FILE (a rule file, compiled, or hand-written C), or
+    an exit status after printing why there is none."""
+    from .driver import load_program
+    report = Report()
+    try:
+        program = load_program(Path(args.file), report, args.max_actions, args.max_events)
+    except InputError as exc:
+        _error(str(exc))
+        return None, EXIT_USAGE
+    _print_report(report, "human")
+    if program is None or _failed(report, getattr(args, "werror", False)):
+        return None, EXIT_ERRORS
+    return program, EXIT_OK
+
+
+def cmd_compile(args) -> int:
+    from .build import write_atomic
+    if Path(args.file).suffix == ".c":
+        _error(f"{args.file} is already C; `epuckc build` and `epuckc run` take it as it is")
+        return EXIT_USAGE
+    program, status = _load(args)
+    if program is None:
+        return status
+    out = Path(args.output) if args.output else Path(args.file).with_suffix(".c")
+    try:
+        write_atomic(out, program.c_text)
+    except OSError as exc:
+        _error(f"cannot write {out}: {exc.strerror or exc}")
+        return EXIT_USAGE
+    return EXIT_OK
+
+
+def cmd_build(args) -> int:
+    from .build import BuildError
+    from .driver import build
+    program, status = _load(args)
+    if program is None:
+        return status
+    try:
+        message = build(program, args.target, Path(args.output) if args.output else None)
+    except BuildError as exc:
+        _error(str(exc))
+        return exc.status
+    except OSError as exc:
+        _error(f"{exc.strerror or exc}: {exc.filename or ''}".rstrip(": "))
+        return EXIT_USAGE
+    print(message)
+    return EXIT_OK
+
+
+def cmd_run(args) -> int:
+    from .build import BuildError
+    from .driver import run_host
+    program, status = _load(args)
+    if program is None:
+        return status
+    if args.scenario and not Path(args.scenario).is_file():
+        _error(f"the scenario file {args.scenario} does not exist")
+        return EXIT_USAGE
+    try:
+        return run_host(program, scenario=args.scenario, time_limit_ms=args.time_limit,
+                        trace=args.trace)
+    except BuildError as exc:
+        _error(str(exc))
+        return exc.status
+
+
 def _positive(value: str) -> int:
-    n = int(value)
+    try:
+        n = int(value)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{value!r} is not a whole number") from None
     if n <= 0:
         raise argparse.ArgumentTypeError("must be a positive number")
     return n
+
+
+def _duration_ms(value: str) -> int:
+    """`60s`, `1500ms`, `2min` or a bare number of milliseconds."""
+    import re
+    m = re.fullmatch(r"\s*([0-9]+(?:\.[0-9]+)?)\s*(ms|s|min)?\s*", value)
+    if not m:
+        raise argparse.ArgumentTypeError(f"{value!r} is not a duration such as 60s or 500ms")
+    ms = float(m.group(1)) * {"ms": 1, None: 1, "s": 1000, "min": 60000}[m.group(2)]
+    if ms < 1:
+        raise argparse.ArgumentTypeError("the time limit must be at least 1 ms")
+    return int(ms)
+
+
+def _add_program_options(p: argparse.ArgumentParser):
+    p.add_argument("file", metavar="FILE", help="a rule file (.epk) or a C program using the runtime")
+    p.add_argument("--max-actions", type=_positive, metavar="N",
+                   help="capacity of the runtime's action array (default: the runtime's MAX_ACTIONS)")
+    p.add_argument("--max-events", type=_positive, metavar="N",
+                   help="capacity of the runtime's event array (default: the runtime's MAX_EVENTS)")
+    p.add_argument("--werror", action="store_true", help="treat warnings as errors")
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -90,6 +186,37 @@ def build_parser() -> argparse.ArgumentParser:
                        description="Print the long explanation of a diagnostic code.")
     p.add_argument("code", metavar="CODE")
     p.set_defaults(run=cmd_explain)
+
+    p = sub.add_parser("compile", help="compile a rule file to C",
+                       description="Compile a rule file to one C file for the runtime. Nothing is "
+                                   "written when the file has errors.")
+    _add_program_options(p)
+    p.add_argument("-o", "--output", metavar="OUT.c", help="the C file (default: FILE with .c)")
+    p.add_argument("--target", choices=("host", "dspic"), default="host",
+                   help="the C is the same for both targets; accepted for symmetry with build")
+    p.set_defaults(run=cmd_compile)
+
+    p = sub.add_parser("build", help="build for the host harness or the e-puck",
+                       description="host: the harness executable, built with the system C compiler "
+                                   "(CC honoured). dspic: a project directory with a Makefile for "
+                                   "Microchip XC16, built when xc16-gcc is found (PATH or XC16_DIR); "
+                                   "exit status 3 when it is not.")
+    _add_program_options(p)
+    p.add_argument("--target", choices=("host", "dspic"), default="host")
+    p.add_argument("-o", "--output", metavar="DIR",
+                   help="output directory (default: build/NAME-TARGET)")
+    p.set_defaults(run=cmd_build)
+
+    p = sub.add_parser("run", help="build for the host and run on the simulated e-puck",
+                       description="Build for the host harness (cached) and run, printing the trace. "
+                                   "Exit status: 0 when the program reached exit_main, 3 on a "
+                                   "time-out, 1 when it does not build.")
+    _add_program_options(p)
+    p.add_argument("--scenario", metavar="FILE.scn", help="proximity readings over time")
+    p.add_argument("--time-limit", type=_duration_ms, default=60000, metavar="DURATION",
+                   help="virtual time limit, e.g. 60s or 500ms (default 60s)")
+    p.add_argument("--trace", metavar="OUT.jsonl", help="also write the trace as JSON lines")
+    p.set_defaults(run=cmd_run)
     return parser
 
 

@@ -1,0 +1,80 @@
+"""From a file on the command line to a built or running program."""
+from __future__ import annotations
+
+import os
+import re
+import subprocess
+import sys
+from pathlib import Path
+from typing import Optional
+
+from .build import (BuildError, Program, build_host, find_xc16, run_make,
+                    write_dspic_project)
+from .diagnostics import Report
+from .frontend import InputError, check_file
+
+
+def _program_name(path: Path) -> str:
+    return re.sub(r"[^A-Za-z0-9_-]", "_", path.stem) or "program"
+
+
+def load_program(path: Path, report: Report, max_actions: Optional[int] = None,
+                 max_events: Optional[int] = None) -> Optional[Program]:
+    """A rule file is checked and compiled; a .c file is taken as it is."""
+    name = _program_name(path)
+    if path.suffix == ".c":
+        try:
+            text = path.read_text(encoding="utf-8")
+        except (OSError, UnicodeDecodeError) as exc:
+            raise InputError(f"cannot read {path}: {getattr(exc, 'strerror', None) or exc}") from None
+        return Program(name, text, path.resolve().parent, [], max_actions, max_events)
+    result = check_file(path, report, shown_name=str(path),
+                        max_actions=max_actions, max_events=max_events)
+    if result.checked is None:
+        return None
+    from .emit import emit_c
+    c_text = emit_c(result.checked, result.source.text)
+    user_files = sorted({e.file for e in result.checked.externs.values()})
+    return Program(name, c_text, path.resolve().parent, user_files, max_actions, max_events)
+
+
+def build(program: Program, target: str, out_dir: Optional[Path]) -> str:
+    """Build for a target; returns what to tell the user."""
+    out_dir = out_dir or Path("build") / f"{program.name}-{target}"
+    if target == "host":
+        exe = build_host(program, out_dir)
+        return f"built {exe}"
+    from .emit import render_template
+    write_dspic_project(program, out_dir, render_template)
+    xc16 = find_xc16()
+    if xc16 is None:
+        raise BuildError(
+            f"the project was written to {out_dir}, but it was not built: xc16-gcc "
+            "(Microchip MPLAB XC16) was found neither on PATH nor in $XC16_DIR/bin.\n"
+            f"Install XC16, then run: make -C {out_dir} EPUCK_LIB=/path/to/e-puck-library",
+            status=3)
+    if not os.environ.get("EPUCK_LIB"):
+        raise BuildError(
+            f"the project was written to {out_dir}, but it was not built: EPUCK_LIB is not set.\n"
+            "Set it to the e-puck library's folder (the one that holds library/), then run: "
+            f"make -C {out_dir}", status=3)
+    run_make(out_dir, xc16)
+    return f"built {out_dir / (program.name + '.hex')}"
+
+
+def run_host(program: Program, scenario: Optional[str], time_limit_ms: int,
+             trace: Optional[str]) -> int:
+    exe = build_host(program)
+    env = dict(os.environ)
+    env["EPUCK_TIME_LIMIT_MS"] = str(time_limit_ms)
+    env.pop("EPUCK_SCENARIO", None)
+    env.pop("EPUCK_TRACE", None)
+    if scenario:
+        env["EPUCK_SCENARIO"] = str(Path(scenario).resolve())
+    if trace:
+        env["EPUCK_TRACE"] = str(Path(trace).resolve())
+    sys.stdout.flush()
+    try:
+        return subprocess.run([str(exe)], env=env).returncode
+    except OSError as exc:
+        raise BuildError(f"cannot run {exe}: {exc.strerror or exc}") from None
