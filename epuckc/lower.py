@@ -124,7 +124,7 @@ def c_comment(text: str) -> str:
     return " ".join(text.split()).replace("*/", "* /")
 
 
-def _shorten(text: str, limit: int = 72) -> str:
+def _shorten(text: str, limit: int = 100) -> str:
     text = " ".join(text.split())
     return text if len(text) <= limit else text[: limit - 3] + "..."
 
