@@ -1,5 +1,14 @@
 /* One curve; -DRADIUS=.. -DDEGREES=.. -DSPEED=.. -DOUTER=.. -DINNER=.. */
 #include "epuckrt.h"
+#ifndef RADIUS
+#define RADIUS 0
+#endif
+#ifndef DEGREES
+#define DEGREES 90
+#endif
+#ifndef SPEED
+#define SPEED 500
+#endif
 #ifndef OUTER
 #define OUTER 0
 #endif
