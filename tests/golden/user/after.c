@@ -1,0 +1,10 @@
+/* after.c - an extern event: occurs once `ms` milliseconds of polls have
+ * passed since it was registered (one poll per millisecond on the harness). */
+void after(void *param, void *status)
+{
+    const param_after *p = (const param_after *)param;
+    event_status *s = (event_status *)status;
+    s->memory++;
+    if (s->memory >= p->ms)
+        s->occurred = 1;
+}
