@@ -143,63 +143,6 @@ static long wheel_delta(int now, int last)
     return d >= 0x8000u ? (long)d - 0x10000L : (long)d;
 }
 
-/* ---- names for the host trace -------------------------------------------- */
-
-static const struct {
-    action_func f;
-    const char *name;
-} std_action_names[] = {
-    { action_start_straight, "action_start_straight" },
-    { action_start_curve, "action_start_curve" },
-    { action_stop_motor, "action_stop_motor" },
-    { action_set_timer, "action_set_timer" },
-    { action_reset_timer, "action_reset_timer" },
-    { action_start_sensor, "action_start_sensor" },
-    { action_stop_sensor, "action_stop_sensor" },
-    { action_exit_main, "action_exit_main" },
-    { action_run_sequence, "action_run_sequence" },
-    { start_straight, "start_straight" },
-    { start_curve, "start_curve" },
-    { stop_motor, "stop_motor" },
-    { set_timer, "set_timer" },
-    { reset_timer, "reset_timer" },
-    { start_sensor, "start_sensor" },
-    { stop_sensor, "stop_sensor" },
-    { exit_main, "exit_main" },
-    { run_sequence, "run_sequence" },
-};
-
-static const struct {
-    event_func f;
-    const char *name;
-} std_event_names[] = {
-    { event_sensor, "event_sensor" },
-    { event_timer, "event_timer" },
-    { event_immediate, "event_immediate" },
-    { event_stop_motor, "event_stop_motor" },
-    { sensor, "sensor" },
-    { timer, "timer" },
-    { immediate, "immediate" },
-};
-
-static const char *std_action_name(action_func f)
-{
-    size_t i;
-    for (i = 0; i < sizeof std_action_names / sizeof std_action_names[0]; i++)
-        if (std_action_names[i].f == f)
-            return std_action_names[i].name;
-    return NULL;
-}
-
-static const char *std_event_name(event_func f)
-{
-    size_t i;
-    for (i = 0; i < sizeof std_event_names / sizeof std_event_names[0]; i++)
-        if (std_event_names[i].f == f)
-            return std_event_names[i].name;
-    return NULL;
-}
-
 /* ---- paper table 1 -------------------------------------------------------- */
 
 static int action_ok(int id)
@@ -220,7 +163,7 @@ int register_action(action_func f, void *action_param)
     id = n_actions++;
     actions[id].action_function = f;
     actions[id].action_param = action_param;
-    rt_name_action(id, std_action_name(f));
+    rt_new_action(id, f);
     return id;
 }
 
@@ -239,7 +182,7 @@ int register_event(event_func f, void *event_param, int action_id)
     e->repeat_flag = 0;
     e->status.occurred = 0;
     e->status.memory = 0;
-    rt_name_event(id, std_event_name(f));
+    rt_new_event(id, f);
     return id;
 }
 

@@ -39,6 +39,18 @@ void rt_trace_exit(void)
 {
 }
 
+void rt_new_action(int action_id, action_func f)
+{
+    (void)action_id;
+    (void)f;
+}
+
+void rt_new_event(int event_id, event_func f)
+{
+    (void)event_id;
+    (void)f;
+}
+
 void rt_name_action(int action_id, const char *name)
 {
     (void)action_id;

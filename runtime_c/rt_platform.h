@@ -27,9 +27,15 @@ void rt_trace_event(int event_id);
 void rt_trace_action(int action_id, int step, int steps);
 void rt_trace_exit(void);
 
-/* Names for the trace.  The core calls these at registration with the
- * standard function's name (or NULL for a user function), and again for
- * name_action/name_event.  The string is copied (host) or ignored (robot). */
+/* Registration and names, for the trace.  The core calls rt_new_action /
+ * rt_new_event at each registration (the host names standard functions
+ * after themselves, e.g. "start_straight"; the function tables stay out of
+ * the robot build), and rt_name_action / rt_name_event for name_action /
+ * name_event (the host copies the string; NULL: back to "action#<id>").
+ * The robot ignores all four. */
+#include "epuckrt.h"
+void rt_new_action(int action_id, action_func f);
+void rt_new_event(int event_id, event_func f);
 void rt_name_action(int action_id, const char *name);
 void rt_name_event(int event_id, const char *name);
 

@@ -81,6 +81,64 @@ static const char *get_name(const name_table *t, int id, const char *fallback,
     return buf;
 }
 
+/* standard functions are named after themselves in the trace */
+static const struct {
+    action_func f;
+    const char *name;
+} std_action_names[] = {
+    { action_start_straight, "action_start_straight" },
+    { action_start_curve, "action_start_curve" },
+    { action_stop_motor, "action_stop_motor" },
+    { action_set_timer, "action_set_timer" },
+    { action_reset_timer, "action_reset_timer" },
+    { action_start_sensor, "action_start_sensor" },
+    { action_stop_sensor, "action_stop_sensor" },
+    { action_exit_main, "action_exit_main" },
+    { action_run_sequence, "action_run_sequence" },
+    { start_straight, "start_straight" },
+    { start_curve, "start_curve" },
+    { stop_motor, "stop_motor" },
+    { set_timer, "set_timer" },
+    { reset_timer, "reset_timer" },
+    { start_sensor, "start_sensor" },
+    { stop_sensor, "stop_sensor" },
+    { exit_main, "exit_main" },
+    { run_sequence, "run_sequence" },
+};
+
+static const struct {
+    event_func f;
+    const char *name;
+} std_event_names[] = {
+    { event_sensor, "event_sensor" },
+    { event_timer, "event_timer" },
+    { event_immediate, "event_immediate" },
+    { event_stop_motor, "event_stop_motor" },
+    { sensor, "sensor" },
+    { timer, "timer" },
+    { immediate, "immediate" },
+};
+
+void rt_new_action(int action_id, action_func f)
+{
+    const char *name = NULL;
+    size_t i;
+    for (i = 0; i < sizeof std_action_names / sizeof std_action_names[0]; i++)
+        if (std_action_names[i].f == f)
+            name = std_action_names[i].name;
+    set_name(&action_names, action_id, name);
+}
+
+void rt_new_event(int event_id, event_func f)
+{
+    const char *name = NULL;
+    size_t i;
+    for (i = 0; i < sizeof std_event_names / sizeof std_event_names[0]; i++)
+        if (std_event_names[i].f == f)
+            name = std_event_names[i].name;
+    set_name(&event_names, event_id, name);
+}
+
 void rt_name_action(int action_id, const char *name)
 {
     set_name(&action_names, action_id, name);

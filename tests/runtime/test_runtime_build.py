@@ -210,3 +210,13 @@ def test_scenario_time_formats(tmp_path):
     r = run(exe, tmp_path, scenario=scn)
     assert r.returncode == 0, r.stderr
     assert r.times("event", "sensor") == [1, 100, 200, 300]
+
+
+def test_bench_runtime_size_runs():
+    require_tool("avr-gcc")
+    require_tool("avr-size")
+    res = subprocess.run(["bash", str(REPO / "bench" / "runtime_size.sh")],
+                         capture_output=True, text=True)
+    assert res.returncode == 0, res.stdout + res.stderr
+    assert "epuckrt.o" in res.stdout and "rules10.elf" in res.stdout
+    assert res.stdout.count("(TOTALS)") == 2
