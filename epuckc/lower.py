@@ -144,7 +144,7 @@ class _Primitive:
 class _Lowerer:
     def __init__(self, program: CheckedProgram, source_text: str, version: str):
         self.program = program
-        self.source_text = source_text
+        self.source_lines = source_text.split("\n")
         self.source_name = PurePath(program.file).name
         self.out = CProgram(self.source_name, version)
         self.params: dict = {}           # id(ResolvedCall) -> param expression
@@ -153,16 +153,18 @@ class _Lowerer:
         self.rule_ids: dict = {}         # rule name -> file-scope id variable
 
     def text_of(self, node) -> str:
-        """The source text of a node, from its span."""
+        """The source text of a node, from its span, on one line and without
+        comments (rule bodies hold no strings, so `#` always starts one)."""
         span = node.span
-        lines = self.source_text.split("\n")[span.line - 1: span.end_line]
+        lines = self.source_lines[span.line - 1: span.end_line]
         if not lines:
             return ""
         if len(lines) == 1:
-            return lines[0][span.column - 1: span.end_column - 1]
-        lines[0] = lines[0][span.column - 1:]
-        lines[-1] = lines[-1][: span.end_column - 1]
-        return " ".join(line.strip() for line in lines)
+            lines = [lines[0][span.column - 1: span.end_column - 1]]
+        else:
+            lines[0] = lines[0][span.column - 1:]
+            lines[-1] = lines[-1][: span.end_column - 1]
+        return " ".join(" ".join(line.split("#", 1)[0].split()) for line in lines).strip()
 
     def where(self, node) -> str:
         return f"{self.source_name}:{node.span.line}"
