@@ -1,14 +1,12 @@
 """Tokeniser and statement splitter.
 
-Tokens are lark.Token objects with positions, so the LALR parser can take
-them directly. Characters that start no token are reported (one diagnostic
+Tokens carry their positions, so the LALR driver (lalr.py) can take them
+directly. Characters that start no token are reported (one diagnostic
 per run of them) and skipped, so the rest of the file is still checked.
 """
 from __future__ import annotations
 
 import re
-
-from lark import Token
 
 from .diagnostics import Collector
 from .source import SourceFile
@@ -24,6 +22,29 @@ PUNCTUATION = {
     ":": "_COLON", "=": "_EQUAL", "/": "_SLASH", "-": "MINUS", ">": "CMP",
     "<": "CMP",
 }
+class Token:
+    """One token: its terminal name (`NAME`, `_ON`, ...), its text and where
+    it is (lines and columns from 1, end column exclusive)."""
+    __slots__ = ("type", "value", "start_pos", "line", "column", "end_line",
+                 "end_column", "end_pos")
+
+    def __init__(self, type, value, start_pos, line, column, end_line, end_column, end_pos):
+        self.type = type
+        self.value = value
+        self.start_pos = start_pos
+        self.line = line
+        self.column = column
+        self.end_line = end_line
+        self.end_column = end_column
+        self.end_pos = end_pos
+
+    def __str__(self):
+        return self.value
+
+    def __repr__(self):
+        return f"Token({self.type!r}, {self.value!r}, {self.line}:{self.column})"
+
+
 # Keywords that begin a statement: the parser restarts at each of them.
 STATEMENT_STARTS = {"_ROBOT", "_CONST", "_ACTION", "_EXTERN", "_ON", "_RULE"}
 
@@ -45,14 +66,17 @@ _TOKEN_RE = re.compile(r"""
 def tokenize(source: SourceFile, diags: Collector) -> list:
     text = source.text
     tokens = []
+    append = tokens.append
     pos = 0
     errors = 0
     n = len(text)
     match = _TOKEN_RE.match
+    line, line_start = 1, 0         # where `pos` is, kept up to date by hand
+    keywords, punctuation = KEYWORDS, PUNCTUATION
     while pos < n:
         m = match(text, pos)
         if m is None:
-            start = pos
+            start = pos             # no token starts with a newline: same line
             while pos < n and match(text, pos) is None:
                 pos += 1
             errors += 1
@@ -70,22 +94,29 @@ def tokenize(source: SourceFile, diags: Collector) -> list:
             continue
         kind = m.lastgroup
         end = m.end()
-        if kind in ("space", "comment"):
+        if kind == "space":
+            newlines = text.count("\n", pos, end)
+            if newlines:
+                line += newlines
+                line_start = text.rindex("\n", pos, end) + 1
+            pos = end
+            continue
+        if kind == "comment":
             pos = end
             continue
         value = m.group()
-        if kind == "open_string":
+        if kind == "NAME":
+            kind = keywords.get(value, "NAME")
+        elif kind == "punct":
+            kind = punctuation[value]
+        elif kind == "open_string":
             diags.error("E003", source.span(pos, end), "this string has no closing `\"`",
                         help="close the string on the same line")
             kind = "STRING"
             value += '"'
-        elif kind == "NAME":
-            kind = KEYWORDS.get(value, "NAME")
-        elif kind == "punct":
-            kind = PUNCTUATION[value]
-        line, column = source.position(pos)
-        end_line, end_column = source.position(end)
-        tokens.append(Token(kind, value, pos, line, column, end_line, end_column, end))
+        # A token never spans a newline, so it ends on the line it starts on.
+        column = pos - line_start + 1
+        append(Token(kind, value, pos, line, column, line, column + (end - pos), end))
         pos = end
     return tokens
 

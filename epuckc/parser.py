@@ -8,32 +8,18 @@ from __future__ import annotations
 
 from functools import lru_cache
 
-from lark import Lark, Transformer, v_args
-from lark.exceptions import UnexpectedInput, UnexpectedToken
-from lark.lexer import Lexer
-
 from . import ast
+from . import lalr
 from .diagnostics import Collector
 from .lexer import split_statements, tokenize
 from .resources import grammar_path
 from .source import SourceFile, Span
 
 
-class _TokenListLexer(Lexer):
-    """Feeds tokens made by lexer.tokenize to the LALR parser."""
-
-    def __init__(self, lexer_conf):
-        pass
-
-    def lex(self, data):
-        return iter(data)
-
-
 @lru_cache(maxsize=1)
-def _lark() -> Lark:
-    return Lark(grammar_path().read_text(encoding="utf-8"), parser="lalr",
-                lexer=_TokenListLexer, start="statement",
-                propagate_positions=True, maybe_placeholders=True)
+def _tables() -> lalr.Tables:
+    """The LALR tables of grammar/epuck.lark (cached on disk, see lalr.py)."""
+    return lalr.load_tables(grammar_path().read_text(encoding="utf-8"), "statement")
 
 
 # ---- syntax errors in words -------------------------------------------------
@@ -86,7 +72,7 @@ def _describe_expected(prev, expected: set) -> tuple[str, str | None]:
     return wanted, ("a rule reads `on EVENT do ACTION`" if "_DO" in expected else None)
 
 
-def _syntax_error(exc: UnexpectedToken, chunk: list, following, source: SourceFile,
+def _syntax_error(exc: lalr.ParseError, chunk: list, following, source: SourceFile,
                   diags: Collector):
     tok = exc.token
     if tok.type == "$END":
@@ -110,7 +96,7 @@ def _syntax_error(exc: UnexpectedToken, chunk: list, following, source: SourceFi
 # ---- tree -> AST --------------------------------------------------------------
 
 def _span(meta) -> Span:
-    return Span(meta.line, meta.column, meta.end_line, meta.end_column)
+    return meta         # lalr.parse makes the Spans itself (see parse below)
 
 
 def _tok_span(tok) -> Span:
@@ -132,8 +118,9 @@ def _unescape(literal: str) -> str:
     return "".join(out)
 
 
-@v_args(meta=True)
-class _ToAst(Transformer):
+class _ToAst:
+    """Builds the AST while parsing: lalr.parse calls the method named after
+    each grammar rule (or its `-> alias`) with its span and kept children."""
     def statement(self, meta, children):
         return children[0]
 
@@ -224,23 +211,20 @@ class _ToAst(Transformer):
 
 
 _TO_AST = _ToAst()
+_CALLBACKS = {name: getattr(_TO_AST, name) for name in dir(_ToAst) if not name.startswith("_")}
 
 
 def parse(source: SourceFile, diags: Collector) -> ast.Program:
     """The statements that parse; a diagnostic for each one that does not."""
     program = ast.Program(source.name)
     chunks = split_statements(tokenize(source, diags))
-    parser = _lark()
+    tables = _tables()
     for i, chunk in enumerate(chunks):
         following = chunks[i + 1][0] if i + 1 < len(chunks) else None
         try:
-            tree = parser.parse(chunk)
-        except UnexpectedToken as exc:
+            statement = lalr.parse(tables, chunk, _CALLBACKS, meta=Span)
+        except lalr.ParseError as exc:
             _syntax_error(exc, chunk, following, source, diags)
             continue
-        except UnexpectedInput as exc:      # not expected from a token list
-            tok = chunk[0]
-            diags.error("E001", _tok_span(tok), f"this statement cannot be read: {exc}")
-            continue
-        program.statements.append(_TO_AST.transform(tree))
+        program.statements.append(statement)
     return program

@@ -1,0 +1,256 @@
+"""A small LALR(1) driver over tables that Lark computes from grammar/epuck.lark.
+
+Lark builds the tables (which takes tens of milliseconds, and importing Lark
+itself as long again), and they are kept in a cache file between runs; the
+common run then loads plain tuples with `marshal` and never imports Lark.
+The driver shapes its results the way Lark's tree builder does with
+`maybe_placeholders=True` and `propagate_positions=True`: tokens whose names
+start with `_` are dropped, rules whose names start with `_` are spliced into
+their parent, a missing `[optional]` gives None, and every node's span runs
+from its first to its last token, dropped tokens included. Instead of
+building a tree and transforming it afterwards, each reduction calls the
+transformer's method for the rule at once: callback(meta, children).
+
+The cache key hashes the grammar text and the Lark, Python and format
+versions, so an edited grammar is honoured on the next run. When no cache
+folder is writable the tables are built in memory each time.
+"""
+from __future__ import annotations
+
+import hashlib
+import marshal
+import os
+import sys
+from pathlib import Path
+
+FORMAT = 1          # bump when the table layout below changes
+
+
+class ParseError(Exception):
+    """The token `token` cannot come next; `expected` are the terminal
+    names that could have."""
+
+    def __init__(self, token, expected):
+        super().__init__(f"unexpected {token.type}")
+        self.token = token
+        self.expected = expected
+
+
+class Meta:
+    __slots__ = ("line", "column", "end_line", "end_column")
+
+    def __init__(self, line, column, end_line, end_column):
+        self.line = line
+        self.column = column
+        self.end_line = end_line
+        self.end_column = end_column
+
+
+class Tables:
+    """states: state -> {symbol: code}; a code >= 0 shifts to that state,
+    a code < 0 reduces by rule -code - 1.
+    rules: (origin, callback name or None to splice, size,
+            ((index, splice, nones_before), ...), nones_after)."""
+
+    def __init__(self, data):
+        self.states, self.start, self.end, self.rules = data
+        self.bound = {}     # id(callbacks) -> the rules' callbacks as a list
+
+
+# ---- building the tables with Lark ------------------------------------------------
+
+def _child_filter(expansion, empty_indices):
+    """Lark's maybe_create_child_filter (parse_tree_builder.py), as data."""
+    if empty_indices:
+        ones = "".join(str(int(b)) for b in empty_indices).split("0")
+        empties = [len(x) for x in ones]
+    else:
+        empties = [0] * (len(expansion) + 1)
+    include, nones = [], 0
+    for i, sym in enumerate(expansion):
+        nones += empties[i]
+        if not (sym.is_term and sym.filter_out):
+            include.append((i, bool((not sym.is_term) and sym.name.startswith("_")), nones))
+            nones = 0
+    return tuple(include), nones + empties[len(expansion)]
+
+
+def build_tables(grammar: str, start: str):
+    """Run Lark's LALR analysis and return the tables as plain data."""
+    from lark import Lark
+    from lark.lexer import Lexer
+    from lark.parsers.lalr_analysis import Shift
+
+    class _NoLexer(Lexer):
+        def __init__(self, conf):
+            pass
+
+        def lex(self, data):
+            return iter(data)
+
+    lark = Lark(grammar, parser="lalr", lexer=_NoLexer, start=start,
+                propagate_positions=True, maybe_placeholders=True)
+    for rule in lark.rules:
+        if rule.options.expand1 or rule.options.keep_all_tokens:
+            raise ValueError(f"the LALR driver does not support `?` or `!` rules ({rule.origin.name})")
+    table = lark.parser.parser.parser.parse_table
+    rule_index, rules = {}, []
+
+    def index_of(rule):
+        if rule not in rule_index:
+            rule_index[rule] = len(rules)
+            include, after = _child_filter(rule.expansion, rule.options.empty_indices)
+            name = str(rule.origin.name)
+            callback = str(rule.alias or name)
+            if name.startswith("_") and not rule.alias:
+                callback = None
+            rules.append((name, callback, len(rule.expansion), include, after))
+        return rule_index[rule]
+
+    states = {}
+    for state, actions in table.states.items():
+        row = {}
+        for symbol, (action, arg) in actions.items():
+            row[str(symbol)] = int(arg) if action is Shift else -index_of(arg) - 1
+        states[state] = row
+    return (states, int(table.start_states[start]), int(table.end_states[start]), tuple(rules))
+
+
+# ---- the cache ----------------------------------------------------------------------
+
+def cache_dir() -> Path:
+    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    return Path(base) / "epuckc"
+
+
+def _lark_version() -> str:
+    """Lark's version, read from its source rather than by importing it
+    (importing Lark costs ~30 ms, importlib.metadata ~10 ms)."""
+    import importlib.util
+    import re
+    try:
+        spec = importlib.util.find_spec("lark")
+        with open(spec.origin, encoding="utf-8") as f:
+            found = re.search(r"__version__\s*(?::\s*str\s*)?=\s*['\"]([^'\"]+)", f.read())
+        if found:
+            return found.group(1)
+    except Exception:
+        pass
+    import lark
+    return lark.__version__
+
+
+def load_tables(grammar: str, start: str) -> Tables:
+    """The tables for `grammar`, from the cache when it holds them."""
+    if os.environ.get("EPUCKC_NO_CACHE"):
+        return Tables(build_tables(grammar, start))
+    key = hashlib.sha256("\0".join((grammar, start, str(FORMAT), _lark_version(),
+                                    sys.version)).encode("utf-8")).hexdigest()[:24]
+    path = cache_dir() / f"tables-{key}.marshal"
+    try:
+        with open(path, "rb") as f:
+            data = marshal.load(f)
+        if isinstance(data, tuple) and len(data) == 5 and data[0] == key:
+            return Tables(data[1:])
+    except (OSError, EOFError, ValueError, TypeError):
+        pass
+    data = build_tables(grammar, start)
+    tmp = path.with_name(f"{path.name}.{os.getpid()}.tmp")
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        with open(tmp, "wb") as f:
+            marshal.dump((key,) + data, f)
+        os.replace(tmp, path)       # atomic: a parallel run sees all or nothing
+    except (OSError, ValueError):
+        try:                        # read-only home: build each time
+            tmp.unlink()
+        except OSError:
+            pass
+    return Tables(data)
+
+
+# ---- parsing --------------------------------------------------------------------------
+
+class _Spliced(list):
+    """The children of a `_rule`, to be spliced into the parent; `span` is
+    where its tokens were."""
+    __slots__ = ("span",)
+
+
+class EndToken:
+    """The `$END` token, placed where the last token ends."""
+    type = "$END"
+    value = ""
+
+    def __init__(self, last):
+        if last is None:
+            self.line = self.column = self.end_line = self.end_column = 1
+            self.start_pos = self.end_pos = 0
+        else:
+            self.line, self.column = last.end_line, last.end_column
+            self.end_line, self.end_column = last.end_line, last.end_column
+            self.start_pos = self.end_pos = last.end_pos
+
+
+def parse(tables: Tables, tokens, callbacks, meta=Meta) -> object:
+    """Parse a list of tokens (with .type, .line, .column, .end_line,
+    .end_column); `callbacks` maps a rule's name or alias to f(meta, children),
+    where meta = meta(line, column, end_line, end_column) is the rule's span."""
+    states, rules = tables.states, tables.rules
+    end_state = tables.end
+    funcs = tables.bound.get(id(callbacks))
+    if funcs is None:
+        funcs = [callbacks[r[1]] if r[1] is not None else None for r in rules]
+        tables.bound[id(callbacks)] = funcs
+    state_stack = [tables.start]
+    values = []         # (value, span) with span (line, col, end_line, end_col) or None
+    last = None
+    tokens = list(tokens)
+    tokens.append(None)
+    for token in tokens:
+        is_end = token is None
+        if is_end:
+            token = EndToken(last)
+        ttype = token.type
+        while True:
+            code = states[state_stack[-1]].get(ttype)
+            if code is None:
+                raise ParseError(token, {s for s in states[state_stack[-1]] if s.isupper()})
+            if code >= 0:
+                state_stack.append(code)
+                values.append((token, (token.line, token.column, token.end_line, token.end_column)))
+                last = token
+                break
+            origin, callback, size, include, after = rules[-code - 1]
+            if size:
+                children = values[-size:]
+                del state_stack[-size:]
+                del values[-size:]
+                first = children[0][1]
+                final = children[-1][1]
+                if first is None or final is None:      # only after empty rules
+                    first = next((s for _, s in children if s is not None), None)
+                    final = next((s for _, s in reversed(children) if s is not None), None)
+            else:
+                children = []
+                first = final = None
+            span = None if first is None else (first[0], first[1], final[2], final[3])
+            kept = []
+            for i, splice, nones in include:
+                if nones:
+                    kept.extend([None] * nones)
+                if splice:
+                    kept.extend(children[i][0])
+                else:
+                    kept.append(children[i][0])
+            if after:
+                kept.extend([None] * after)
+            if callback is None:
+                value = _Spliced(kept)
+            else:
+                value = funcs[-code - 1](meta(*span) if span is not None else meta(1, 1, 1, 1), kept)
+            state_stack.append(states[state_stack[-1]][origin])
+            values.append((value, span))
+            if is_end and state_stack[-1] == end_state:
+                return value
+    raise ParseError(token, set())      # not reached with a sound table
