@@ -11,7 +11,7 @@ from .codes import CODES, explanation, normalise
 from .diagnostics import Report, render_report
 from .frontend import InputError, check_file
 
-EXIT_OK, EXIT_ERRORS, EXIT_USAGE, EXIT_NO_TOOLCHAIN = 0, 1, 2, 3
+EXIT_OK, EXIT_ERRORS, EXIT_USAGE, EXIT_NO_TOOLCHAIN, EXIT_INTERNAL = 0, 1, 2, 3, 4
 
 
 def _colour_wanted(stream) -> bool:
@@ -233,3 +233,9 @@ def main(argv=None) -> int:
         return args.run(args)
     except KeyboardInterrupt:
         return 130
+    except Exception as exc:  # a bug in epuckc: say so plainly, no traceback
+        if os.environ.get("EPUCKC_DEBUG"):
+            raise
+        _error(f"internal error ({type(exc).__name__}: {exc}); this is a bug in epuckc, "
+               "please report it with the input (EPUCKC_DEBUG=1 shows the traceback)")
+        return EXIT_INTERNAL

@@ -27,7 +27,8 @@ def load_program(path: Path, report: Report, max_actions: Optional[int] = None,
             text = path.read_text(encoding="utf-8")
         except (OSError, UnicodeDecodeError) as exc:
             raise InputError(f"cannot read {path}: {getattr(exc, 'strerror', None) or exc}") from None
-        return Program(name, text, path.resolve().parent, [], max_actions, max_events)
+        return Program(name, text, path.resolve().parent, [], max_actions, max_events,
+                       generated=False)
     result = check_file(path, report, shown_name=str(path),
                         max_actions=max_actions, max_events=max_events)
     if result.checked is None:

@@ -31,5 +31,5 @@ def emit_c(program: CheckedProgram, source_text: str) -> str:
     return _environment().get_template("program.c.j2").render(program=cprogram)
 
 
-def render_template(name: str, **context) -> str:
-    return _environment().get_template(name).render(**context)
+def render_template(template: str, **context) -> str:
+    return _environment().get_template(template).render(**context)
