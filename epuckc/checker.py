@@ -17,7 +17,7 @@ from .diagnostics import Collector, Note
 from .source import Span
 from .stdlib import (ACTION_ALIASES, EVENT_ALIASES, EXTERN_TYPES, MOTION_ACTIONS,
                      SENSOR_COUNT, STANDARD_ACTIONS, STANDARD_EVENTS, THRESHOLD_MAX, Param)
-from .units import (ANGLE, DISTANCE, DURATION, INT, INT16_MAX, INT16_MIN, INT32_MAX,
+from .units import (ANGLE, ARTICLE, DISTANCE, DURATION, INT, INT16_MAX, INT16_MIN, INT32_MAX,
                     KIND_UNITS, SPEED, UNITS, Geometry, Quantity, curve_wheels,
                     describe_kind, quantity, round_nearest)
 
@@ -109,6 +109,7 @@ class Checker:
         self.const_used: set = set()
         self.actions: dict = {}          # name -> ActionDef
         self.externs: dict = {}          # name -> ExternInfo
+        self.broken_externs: dict = {}   # name -> kind, of externs with bad declarations
         self.rule_names: dict = {}       # name -> Rule
         self.used_actions: set = set()
         self.called: set = set()         # standard actions called anywhere
@@ -198,13 +199,20 @@ class Checker:
                 ok = False
             names[p.name.name] = p.name
             params.append(Param(p.name.name, p.type.name))
-        if self.base_dir is not None and not (self.base_dir / stmt.file).is_file():
+        unterminated = any(d.code == "E003" and d.span == stmt.file_span for d in self.diags.items)
+        if self.base_dir is not None and not unterminated \
+                and not (self.base_dir / stmt.file).is_file():
+            looked = self.base_dir / stmt.file
             self.diags.error("E040", stmt.file_span,
-                             f"{_code(stmt.file)} does not exist",
-                             help=f"the path is relative to the rule file's folder ({self.base_dir})")
-        if claim(stmt.kind, stmt.name, f"{stmt.kind}") and ok:
-            self.externs[stmt.name.name] = ExternInfo(stmt.kind, stmt.name.name,
-                                                      tuple(params), stmt.file, stmt)
+                             f"the C file {_code(stmt.file)} does not exist",
+                             help=f"epuckc looked for `{looked}`: the path is relative to "
+                                  "the folder of the rule file")
+        if claim(stmt.kind, stmt.name, f"{stmt.kind}"):
+            if ok:
+                self.externs[stmt.name.name] = ExternInfo(stmt.kind, stmt.name.name,
+                                                          tuple(params), stmt.file, stmt)
+            else:       # reported above; its uses are not errors of their own
+                self.broken_externs[stmt.name.name] = stmt.kind
 
     # -- the robot block --
 
@@ -222,9 +230,10 @@ class Checker:
         for setting in blocks[0].settings:
             name = setting.name.name
             if name not in kinds:
+                settings = "the settings are " + ", ".join(map(_code, kinds))
+                guess = did_you_mean(name, kinds)
                 self.diags.error("E022", setting.name.span, f"unknown robot setting {_code(name)}",
-                                 help=did_you_mean(name, kinds) or
-                                 "the settings are " + ", ".join(map(_code, kinds)))
+                                 help=f"{guess} {settings}" if guess else settings)
                 continue
             if name in given:
                 self.diags.error("E018", setting.name.span, f"{_code(name)} is given twice",
@@ -239,7 +248,8 @@ class Checker:
                                  help="give it in mm")
                 continue
             if q.value <= 0:
-                self.diags.error("E037", setting.value.span, f"{_code(name)} must be positive")
+                self.diags.error("E037", setting.value.span, f"{_code(name)} must be positive",
+                                 help=f"for the e-puck, write `{name}: {_ROBOT_EXAMPLE[name]}`")
                 continue
             if kinds[name] == INT and not self._whole(setting.value, q.value):
                 continue
@@ -281,8 +291,9 @@ class Checker:
             if value.unit not in UNITS:
                 all_units = sorted(UNITS)
                 hint = did_you_mean(value.unit, KIND_UNITS.get(kind, all_units)) or (
-                    f"units of {describe_kind(kind)}" if kind != INT
-                    else "this parameter takes a plain number")
+                    f"`{param}` is {ARTICLE[kind]}: write it in "
+                    + _either(KIND_UNITS[kind]) if kind != INT
+                    else f"`{param}` takes a plain number, without a unit")
                 self.diags.error("E020", value.unit_span, f"unknown unit {_code(value.unit)}",
                                  help=hint)
                 return None
@@ -359,12 +370,13 @@ class Checker:
         seen_named = False
         positional = 0
         by_name = {p.name: p for p in params}
+        extra = []                  # positional arguments beyond the parameters
         for arg in args:
             if isinstance(arg, ast.ConditionArg):
                 self.diags.error("E024", arg.span,
                                  f"a condition such as `{arg.sensor.name} {arg.op} ...` "
                                  f"can only be given to `sensor`",
-                                 help=f"{what} {_code(call_name.name)} takes values")
+                                 help=_signature_help(call_name.name, params))
                 ok = False
                 continue
             if isinstance(arg, ast.NamedArg):
@@ -392,15 +404,18 @@ class Checker:
                 ok = False
                 continue
             if positional >= len(params):
-                self.diags.error("E016", arg.span,
-                                 f"{what} {_code(call_name.name)} takes {_count(len(params))}, "
-                                 f"but more are given",
-                                 help=_signature_help(call_name.name, params))
-                ok = False
+                extra.append(arg)
                 positional += 1
                 continue
             bound[params[positional].name] = arg
             positional += 1
+        if extra:
+            given = sum(not isinstance(a, ast.NamedArg) for a in args)
+            self.diags.error("E016", Span.of(extra[0], extra[-1]),
+                             f"{what} {_code(call_name.name)} takes {_count(len(params))}, "
+                             f"but {given} are given",
+                             help=_signature_help(call_name.name, params))
+            ok = False
         missing = [p.name for p in params if p.name not in bound]
         if missing and ok:
             span = call_name.span if not args else Span.of(call_name, args[-1])
@@ -532,6 +547,8 @@ class Checker:
                 return None
             self._named_action(name)
             return ResolvedCall("named", name, {}, {}, call)
+        if self.broken_externs.get(name) == "action":
+            return None               # its declaration is already reported
         if name in self.externs:      # an extern event used as an action
             self.diags.error("E011", call.name.span,
                              f"{_code(name)} is an event, not an action",
@@ -604,6 +621,8 @@ class Checker:
             if converted is None:
                 return None
             return ResolvedEvent("extern", name, converted[0], node=call)
+        if self.broken_externs.get(name) == "event":
+            return None
         if info is not None or name in self.actions:
             self.diags.error("E010", call.name.span, f"{_code(name)} is an action, not an event",
                              help="a rule reads `on EVENT do ACTION`")
@@ -717,6 +736,15 @@ class Checker:
                                  f"holds {limit}",
                                  help=f"raise the capacity with `{option} {count}` (RAM permitting) "
                                       f"or merge rules")
+
+
+_ROBOT_EXAMPLE = {"wheel_diameter": "41 mm", "wheel_circumference": "128.8 mm",
+                  "axle": "53 mm", "steps_per_rev": "1000", "max_speed": "1000 steps/s"}
+
+
+def _either(names) -> str:
+    names = [_code(n) for n in names]
+    return names[0] if len(names) == 1 else ", ".join(names[:-1]) + " or " + names[-1]
 
 
 def _count(n: int) -> str:

@@ -192,6 +192,34 @@ class EndToken:
             self.start_pos = self.end_pos = last.end_pos
 
 
+def _accepts(tables: Tables, stack: list, terminal: str) -> bool:
+    """Whether `terminal` can be shifted from this stack, following the
+    reductions it would cause (which a state's own row does not show)."""
+    states, rules = tables.states, tables.rules
+    stack = list(stack)
+    for _ in range(10000):
+        code = states[stack[-1]].get(terminal)
+        if code is None:
+            return False
+        if code >= 0:
+            return True
+        origin, _, size, _, _ = rules[-code - 1]
+        if size:
+            del stack[-size:]
+        stack.append(states[stack[-1]][origin])
+        if terminal == "$END" and stack[-1] == tables.end:
+            return True
+    return False
+
+
+def expected(tables: Tables, stack: list) -> set:
+    """The terminals that can really come next. LALR merges states, so a
+    state's row may list terminals that only fit in another context (a `}`
+    after a number inside `sensor(...)`); those are left out."""
+    row = tables.states[stack[-1]]
+    return {t for t in row if t.isupper() and _accepts(tables, stack, t)}
+
+
 def parse(tables: Tables, tokens, callbacks, meta=Meta) -> object:
     """Parse a list of tokens (with .type, .line, .column, .end_line,
     .end_column); `callbacks` maps a rule's name or alias to f(meta, children),
@@ -215,7 +243,7 @@ def parse(tables: Tables, tokens, callbacks, meta=Meta) -> object:
         while True:
             code = states[state_stack[-1]].get(ttype)
             if code is None:
-                raise ParseError(token, {s for s in states[state_stack[-1]] if s.isupper()})
+                raise ParseError(token, expected(tables, state_stack))
             if code >= 0:
                 state_stack.append(code)
                 values.append((token, (token.line, token.column, token.end_line, token.end_column)))

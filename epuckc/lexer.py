@@ -26,7 +26,7 @@ class Token:
     """One token: its terminal name (`NAME`, `_ON`, ...), its text and where
     it is (lines and columns from 1, end column exclusive)."""
     __slots__ = ("type", "value", "start_pos", "line", "column", "end_line",
-                 "end_column", "end_pos")
+                 "end_column", "end_pos", "after_bad")
 
     def __init__(self, type, value, start_pos, line, column, end_line, end_column, end_pos):
         self.type = type
@@ -37,6 +37,7 @@ class Token:
         self.end_line = end_line
         self.end_column = end_column
         self.end_pos = end_pos
+        self.after_bad = False      # unexpected characters come just before it
 
     def __str__(self):
         return self.value
@@ -73,6 +74,7 @@ def tokenize(source: SourceFile, diags: Collector) -> list:
     match = _TOKEN_RE.match
     line, line_start = 1, 0         # where `pos` is, kept up to date by hand
     keywords, punctuation = KEYWORDS, PUNCTUATION
+    after_bad = False
     while pos < n:
         m = match(text, pos)
         if m is None:
@@ -80,6 +82,7 @@ def tokenize(source: SourceFile, diags: Collector) -> list:
             while pos < n and match(text, pos) is None:
                 pos += 1
             errors += 1
+            after_bad = True
             bad = text[start:pos]
             shown = bad if len(bad) <= 10 else bad[:10] + "..."
             diags.error("E002", source.span(start, pos),
@@ -116,7 +119,10 @@ def tokenize(source: SourceFile, diags: Collector) -> list:
             value += '"'
         # A token never spans a newline, so it ends on the line it starts on.
         column = pos - line_start + 1
-        append(Token(kind, value, pos, line, column, line, column + (end - pos), end))
+        token = Token(kind, value, pos, line, column, line, column + (end - pos), end)
+        if after_bad:
+            token.after_bad, after_bad = True, False
+        append(token)
         pos = end
     return tokens
 

@@ -67,14 +67,28 @@ def _describe_expected(prev, expected: set) -> tuple[str, str | None]:
     if expected >= {"NUMBER", "NAME", "MINUS"}:
         wanted = "a value or `)`" if "_RPAR" in expected else "a value"
         return wanted, "a value is a number with an optional unit (`20 cm`) or a constant's name"
-    names = sorted(_friendly(t) for t in expected)
+    names = sorted(_friendly(t) for t in expected if not (t == "NAME" and prev_type == "NUMBER"))
+    if prev_type == "NUMBER" and "NAME" in expected:
+        names.append("a unit")
+    if not names:
+        return "nothing more", None
     wanted = ", ".join(names[:-1]) + " or " + names[-1] if len(names) > 1 else names[0]
-    return wanted, ("a rule reads `on EVENT do ACTION`" if "_DO" in expected else None)
+    if "_DO" in expected:
+        hint = "a rule reads `on EVENT do ACTION`"
+    elif "_RPAR" in expected:
+        hint = "is a `)` missing?"
+    elif "_RBRACE" in expected:
+        hint = "is a `}` missing?"
+    else:
+        hint = None
+    return wanted, hint
 
 
 def _syntax_error(exc: lalr.ParseError, chunk: list, following, source: SourceFile,
                   diags: Collector):
     tok = exc.token
+    if getattr(tok, "after_bad", False):
+        return      # the unexpected character just before it is already reported (E002)
     if tok.type == "$END":
         # Point at the last token read: that is where something is missing.
         prev = chunk[-1]

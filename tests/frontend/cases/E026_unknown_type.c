@@ -1,0 +1,1 @@
+void E026_unknown_type(void *param) { (void)param; }
