@@ -56,8 +56,8 @@ _EXPLANATIONS = Path(__file__).resolve().parent / "explanations"
 
 def normalise(code: str) -> str:
     code = code.strip().upper()
-    if code[:1] in ("E", "W") and code[1:].isdigit():
-        return code[0] + code[1:].zfill(3)
+    if code[:1] in ("E", "W") and code[1:].isascii() and code[1:].isdigit():
+        return code[0] + str(int(code[1:])).zfill(3)      # e12, E0012 -> E012
     return code
 
 
