@@ -19,6 +19,7 @@ from pathlib import PurePath
 from typing import Optional
 
 from .checker import CheckedProgram, ResolvedCall
+from .units import INT16_MAX, INT16_MIN, round_nearest
 
 # C types of extern parameters, by declared type.
 EXTERN_C_TYPES = {"int": "int", "distance": "int", "speed": "int", "angle": "int",
@@ -101,6 +102,7 @@ class CProgram:
     registrations: list = field(default_factory=list)
     actions_needed: int = 0
     events_needed: int = 0
+    geometry: Optional[str] = None   # set_robot_geometry arguments, for a robot block
 
 
 # ---- C text helpers ------------------------------------------------------------
@@ -194,8 +196,11 @@ class _Lowerer:
     def param_struct(self, call: ResolvedCall) -> tuple[str, str, str]:
         v = call.values
         if call.name == "start_straight":
+            # `distance` (mm) is only read when `steps` is 0; with a large
+            # wheel it may not fit a 16-bit int, and then 0 says "see steps".
+            mm = v["distance_mm"] if INT16_MIN <= v["distance_mm"] <= INT16_MAX else 0
             return ("param_start_straight",
-                    f"{{{v['speed']}, {v['distance_mm']}, {v['distance']}}}",
+                    f"{{{v['speed']}, {mm}, {v['distance']}}}",
                     f"{v['speed']} steps/s, {v['distance']} steps")
         if call.name == "start_curve":
             return ("param_start_curve",
@@ -336,6 +341,10 @@ class _Lowerer:
                                               + (" repeat" if rule.repeat else ""))),
                 repeat=rule.repeat, rule_id_var=self.rule_ids.get(rule.name)))
         out.actions_needed, out.events_needed = count_registrations(self.program)
+        if self.program.robot_given:
+            geo = self.program.geometry
+            out.geometry = (f"{round_nearest(geo.wheel_circumference_mm * 1000)}L, "
+                            f"{round_nearest(geo.axle_mm * 1000)}L, {geo.steps_per_rev}L")
         return out
 
     def uses_cancel(self, rule_name: str) -> bool:

@@ -292,11 +292,26 @@ static void motion_update(void)
     }
 }
 
-/* mm -> steps with the default geometry, mm >= 0. */
+/* The geometry that converts millimetres and degrees (set_robot_geometry). */
+static long geo_circumference_um = EPUCK_WHEEL_CIRCUMFERENCE_UM;
+static long geo_axle_um = EPUCK_AXLE_UM;
+static long geo_steps_per_rev = EPUCK_STEPS_PER_REV;
+
+void set_robot_geometry(long wheel_circumference_um, long axle_um, long steps_per_rev)
+{
+    if (wheel_circumference_um <= 0 || axle_um <= 0 || steps_per_rev <= 0)
+        return;
+    geo_circumference_um = wheel_circumference_um;
+    geo_axle_um = axle_um;
+    geo_steps_per_rev = steps_per_rev;
+    rt_geometry(wheel_circumference_um, axle_um, steps_per_rev);
+}
+
+/* mm -> steps with the robot's geometry, mm >= 0. */
 static long mm_to_steps(long mm)
 {
-    long long n = (long long)mm * 1000LL * EPUCK_STEPS_PER_REV;
-    return (long)div_round(n, EPUCK_WHEEL_CIRCUMFERENCE_UM);
+    long long n = (long long)mm * 1000LL * geo_steps_per_rev;
+    return (long)div_round(n, geo_circumference_um);
 }
 
 void action_start_straight(void *param)
@@ -336,12 +351,12 @@ void action_start_curve(void *param)
         inner = clamp_speed(p->inner_speed);
     } else {
         long long two_r = 2LL * 1000LL * abs_l(p->radius);   /* um */
-        long long num = (two_r + EPUCK_AXLE_UM) * abs_l(p->degrees)
-                        * EPUCK_STEPS_PER_REV * 355LL;      /* pi = 355/113 */
-        long long den = 360LL * EPUCK_WHEEL_CIRCUMFERENCE_UM * 113LL;
+        long long num = (two_r + geo_axle_um) * abs_l(p->degrees)
+                        * geo_steps_per_rev * 355LL;        /* pi = 355/113 */
+        long long den = 360LL * geo_circumference_um * 113LL;
         outer_steps = (long)div_round(num, den);
-        inner = clamp_speed((long)div_round((long long)outer * (two_r - EPUCK_AXLE_UM),
-                                            two_r + EPUCK_AXLE_UM));
+        inner = clamp_speed((long)div_round((long long)outer * (two_r - geo_axle_um),
+                                            two_r + geo_axle_um));
     }
     if (left_turn)
         motion_begin(inner, outer, outer_steps, WATCH_RIGHT);

@@ -84,6 +84,10 @@ void mainloop(void);
 
 /* ---- Extensions to table 1 -------------------------------------------- */
 void set_event_repeat(int event_id, int repeat);   /* unknown ids ignored */
+/* The robot's geometry, replacing the EPUCK_* defaults above for the
+ * conversion of millimetres and degrees and for the host's odometry;
+ * non-positive values are ignored.  epuckc calls it for a `robot { }` block. */
+void set_robot_geometry(long wheel_circumference_um, long axle_um, long steps_per_rev);
 /* Names shown in the host harness's trace; ignored on the robot. */
 void name_action(int action_id, const char *name);
 void name_event(int event_id, const char *name);

@@ -51,6 +51,14 @@ void rt_new_event(int event_id, event_func f)
     (void)f;
 }
 
+/* The robot needs no odometry: the core converts with the geometry itself. */
+void rt_geometry(long wheel_circumference_um, long axle_um, long steps_per_rev)
+{
+    (void)wheel_circumference_um;
+    (void)axle_um;
+    (void)steps_per_rev;
+}
+
 void rt_name_action(int action_id, const char *name)
 {
     (void)action_id;

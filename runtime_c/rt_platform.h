@@ -36,6 +36,7 @@ void rt_trace_exit(void);
 #include "epuckrt.h"
 void rt_new_action(int action_id, action_func f);
 void rt_new_event(int event_id, event_func f);
+void rt_geometry(long wheel_circumference_um, long axle_um, long steps_per_rev);
 void rt_name_action(int action_id, const char *name);
 void rt_name_event(int event_id, const char *name);
 

@@ -25,8 +25,14 @@
 #include "a_d/advance_ad_scan/e_ad_conv.h"
 
 #define STUB_PI 3.14159265358979323846
-#define MM_PER_STEP ((double)EPUCK_WHEEL_CIRCUMFERENCE_UM / 1000.0 / (double)EPUCK_STEPS_PER_REV)
-#define AXLE_MM ((double)EPUCK_AXLE_UM / 1000.0)
+static double mm_per_step = (double)EPUCK_WHEEL_CIRCUMFERENCE_UM / 1000.0 / (double)EPUCK_STEPS_PER_REV;
+static double axle_mm = (double)EPUCK_AXLE_UM / 1000.0;
+
+void stub_set_geometry(long wheel_circumference_um, long axle_um, long steps_per_rev)
+{
+    mm_per_step = (double)wheel_circumference_um / 1000.0 / (double)steps_per_rev;
+    axle_mm = (double)axle_um / 1000.0;
+}
 
 /* ---- ports ---------------------------------------------------------------- */
 
@@ -287,7 +293,7 @@ static double stub_cos(double a)
 /* Heading in radians, exact from the step totals (no drift). */
 static double heading_rad(void)
 {
-    return (double)(right_wheel.total - left_wheel.total) * MM_PER_STEP / AXLE_MM;
+    return (double)(right_wheel.total - left_wheel.total) * mm_per_step / axle_mm;
 }
 
 void stub_motors_1ms(void)
@@ -298,7 +304,7 @@ void stub_motors_1ms(void)
     if (dl + dr != 0) {
         /* move along the mean heading of this ms */
         double mid = (before + heading_rad()) / 2.0;
-        double ds = (double)(dl + dr) * 0.5 * MM_PER_STEP;
+        double ds = (double)(dl + dr) * 0.5 * mm_per_step;
         pose_x += ds * stub_cos(mid);
         pose_y += ds * stub_sin(mid);
     }

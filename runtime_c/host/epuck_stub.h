@@ -20,5 +20,7 @@ long stub_total_steps_right(void);
 /* Odometry pose from the wheel steps with the default geometry: x, y in mm
  * (start 0,0 facing +x), heading in degrees in (-180, 180], positive = left. */
 void stub_pose(double *x_mm, double *y_mm, double *heading_deg);
+/* The geometry of the odometry (set_robot_geometry); defaults from epuckrt.h. */
+void stub_set_geometry(long wheel_circumference_um, long axle_um, long steps_per_rev);
 
 #endif

@@ -139,6 +139,11 @@ void rt_new_event(int event_id, event_func f)
     set_name(&event_names, event_id, name);
 }
 
+void rt_geometry(long wheel_circumference_um, long axle_um, long steps_per_rev)
+{
+    stub_set_geometry(wheel_circumference_um, axle_um, steps_per_rev);
+}
+
 void rt_name_action(int action_id, const char *name)
 {
     set_name(&action_names, action_id, name);

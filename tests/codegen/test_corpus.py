@@ -27,6 +27,10 @@ def test_units_convert_with_the_robots_geometry(tmp_path):
     assert starts[3][1] - starts[2][1] == 39 and starts[3][0] - starts[2][0] == 500
     # 40 steps backwards
     assert starts[4][1] - starts[3][1] == -40
+    # the simulated odometry uses the robot block's geometry too: after the
+    # -45 deg curve (a right turn) the robot faces -45 deg
+    [end] = [r for r in records if r["kind"] == "exit"]
+    assert abs(end["heading_deg"] + 45) < 0.5
     # the timer starts with the last step; only the 1500 ms timer fires
     assert exit_time(records) == starts[-1][0] + 1500
     assert events(records, "timer(2 s)") == []
@@ -87,3 +91,24 @@ def test_timeout_exits_non_zero(tmp_path):
     records, out = run_program(GOLDEN / "cancel.epk", tmp_path, "--time-limit", "500ms",
                                expect=3)
     assert records[-1]["kind"] == "timeout"
+
+
+def test_set_robot_geometry_converts_the_papers_millimetres(tmp_path):
+    """Hand-written C: the paper's figure 2 with the paper's own step length."""
+    prog = tmp_path / "fig2_paper_step.c"
+    prog.write_text("""#include "utility.h"
+int main(void){
+    int a1, a2;
+    param_start_straight sample = {250, 100, 0};
+    set_robot_geometry(257610L, 53000L, 1000L);
+    a1 = register_action(start_straight, &sample);
+    a2 = register_action(exit_main, NULL);
+    register_event(immediate, NULL, a1);
+    register_event(event_stop_motor, NULL, a2);
+    mainloop();
+    return 0;
+}
+""")
+    records, _ = run_program(prog, tmp_path)
+    [end] = [r for r in records if r["kind"] == "exit"]
+    assert end["left_steps"] == 388 and abs(end["x_mm"] - 100) < 0.2

@@ -38,6 +38,9 @@ int main(void)
     int a1, a2, a3;
     int e1, e2, e3;
 
+    /* the robot block: converts the runtime's millimetres and the simulated odometry */
+    set_robot_geometry(257610L, 53000L, 1000L);
+
     /* units.epk:4: on immediate do start_straight(250, 100) then start_straight(100 mm/s, 5 cm) then start_straight(speed: 2 cm/s, distance: 0.01 m) then start_straight(distance: 40 steps, speed: -200 steps/s) then start_curve(radius: 10 cm, degrees: -45 deg, speed: 300) then set_timer */
     a1 = register_action(run_sequence, &seq_r1);
     name_action(a1, "start_straight(250, 100) then start_straight(100 mm/s, 5 cm) then start_straight(speed: 2 cm/s, d...");
