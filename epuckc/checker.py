@@ -287,6 +287,11 @@ class Checker:
         reporting why it cannot be one."""
         if isinstance(value, ast.ConstRef):
             return self._const_value(value, kind, param)
+        if not abs(value.value) < 1e12:     # also inf, from a 400-digit number
+            self.diags.error("E034", value.span,
+                             f"`{_shown(value)}` is far too large for {_code(param)}",
+                             help="the runtime stores values in 16-bit ints and 32-bit longs")
+            return None
         if value.unit is not None:
             if value.unit not in UNITS:
                 all_units = sorted(UNITS)

@@ -172,9 +172,8 @@ def load_tables(grammar: str, start: str) -> Tables:
 # ---- parsing --------------------------------------------------------------------------
 
 class _Spliced(list):
-    """The children of a `_rule`, to be spliced into the parent; `span` is
-    where its tokens were."""
-    __slots__ = ("span",)
+    """The children of a `_rule`, to be spliced into its parent."""
+    __slots__ = ()
 
 
 class EndToken:
@@ -263,18 +262,21 @@ def parse(tables: Tables, tokens, callbacks, meta=Meta) -> object:
                 children = []
                 first = final = None
             span = None if first is None else (first[0], first[1], final[2], final[3])
-            kept = []
+            kept = _Spliced()
             for i, splice, nones in include:
                 if nones:
                     kept.extend([None] * nones)
                 if splice:
-                    kept.extend(children[i][0])
+                    if kept:
+                        kept.extend(children[i][0])
+                    else:   # left recursion (`a (, b)*`): grow the list in place, not O(n^2)
+                        kept = children[i][0]
                 else:
                     kept.append(children[i][0])
             if after:
                 kept.extend([None] * after)
             if callback is None:
-                value = _Spliced(kept)
+                value = kept
             else:
                 value = funcs[-code - 1](meta(*span) if span is not None else meta(1, 1, 1, 1), kept)
             state_stack.append(states[state_stack[-1]][origin])

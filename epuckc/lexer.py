@@ -63,6 +63,9 @@ _TOKEN_RE = re.compile(r"""
   | (?P<punct>[(){},:=/\-><])
 """, re.VERBOSE)
 
+# A run of characters that start no token (every other character starts one).
+_BAD_RE = re.compile(r"""[^ \t\r\n\f\v#A-Za-z_0-9"(){},:=/\-><]+""")
+
 
 def tokenize(source: SourceFile, diags: Collector) -> list:
     text = source.text
@@ -79,8 +82,7 @@ def tokenize(source: SourceFile, diags: Collector) -> list:
         m = match(text, pos)
         if m is None:
             start = pos             # no token starts with a newline: same line
-            while pos < n and match(text, pos) is None:
-                pos += 1
+            pos = _BAD_RE.match(text, pos).end()
             errors += 1
             after_bad = True
             bad = text[start:pos]
