@@ -230,7 +230,9 @@ def parse(tables: Tables, tokens, callbacks, meta=Meta) -> object:
         funcs = [callbacks[r[1]] if r[1] is not None else None for r in rules]
         tables.bound[id(callbacks)] = funcs
     state_stack = [tables.start]
-    values = []         # (value, span) with span (line, col, end_line, end_col) or None
+    # Three stacks in step: each value, and its first and last token (None
+    # for a rule that matched nothing), which give the value's span.
+    values, firsts, lasts = [], [], []
     last = None
     tokens = list(tokens)
     tokens.append(None)
@@ -245,42 +247,50 @@ def parse(tables: Tables, tokens, callbacks, meta=Meta) -> object:
                 raise ParseError(token, expected(tables, state_stack))
             if code >= 0:
                 state_stack.append(code)
-                values.append((token, (token.line, token.column, token.end_line, token.end_column)))
+                values.append(token)
+                firsts.append(token)
+                lasts.append(token)
                 last = token
                 break
             origin, callback, size, include, after = rules[-code - 1]
             if size:
                 children = values[-size:]
+                first = firsts[-size]
+                final = lasts[-1]
+                if first is None or final is None:      # only after empty rules
+                    first = next((t for t in firsts[-size:] if t is not None), None)
+                    final = next((t for t in reversed(lasts[-size:]) if t is not None), None)
                 del state_stack[-size:]
                 del values[-size:]
-                first = children[0][1]
-                final = children[-1][1]
-                if first is None or final is None:      # only after empty rules
-                    first = next((s for _, s in children if s is not None), None)
-                    final = next((s for _, s in reversed(children) if s is not None), None)
+                del firsts[-size:]
+                del lasts[-size:]
             else:
                 children = []
                 first = final = None
-            span = None if first is None else (first[0], first[1], final[2], final[3])
             kept = _Spliced()
             for i, splice, nones in include:
                 if nones:
                     kept.extend([None] * nones)
                 if splice:
                     if kept:
-                        kept.extend(children[i][0])
+                        kept.extend(children[i])
                     else:   # left recursion (`a (, b)*`): grow the list in place, not O(n^2)
-                        kept = children[i][0]
+                        kept = children[i]
                 else:
-                    kept.append(children[i][0])
+                    kept.append(children[i])
             if after:
                 kept.extend([None] * after)
             if callback is None:
                 value = kept
+            elif first is None:
+                value = funcs[-code - 1](meta(1, 1, 1, 1), kept)
             else:
-                value = funcs[-code - 1](meta(*span) if span is not None else meta(1, 1, 1, 1), kept)
+                value = funcs[-code - 1](meta(first.line, first.column,
+                                              final.end_line, final.end_column), kept)
             state_stack.append(states[state_stack[-1]][origin])
-            values.append((value, span))
+            values.append(value)
+            firsts.append(first)
+            lasts.append(final)
             if is_end and state_stack[-1] == end_state:
                 return value
     raise ParseError(token, set())      # not reached with a sound table
