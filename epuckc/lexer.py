@@ -68,9 +68,12 @@ _BAD_RE = re.compile(r"""[^ \t\r\n\f\v#A-Za-z_0-9"(){},:=/\-><]+""")
 
 
 def tokenize(source: SourceFile, diags: Collector) -> list:
+    return list(iter_tokens(source, diags))
+
+
+def iter_tokens(source: SourceFile, diags: Collector):
+    """The tokens of a file, one at a time (a 10 MB file has millions)."""
     text = source.text
-    tokens = []
-    append = tokens.append
     pos = 0
     errors = 0
     n = len(text)
@@ -124,16 +127,18 @@ def tokenize(source: SourceFile, diags: Collector) -> list:
         token = Token(kind, value, pos, line, column, line, column + (end - pos), end)
         if after_bad:
             token.after_bad, after_bad = True, False
-        append(token)
+        yield token
         pos = end
-    return tokens
 
 
-def split_statements(tokens: list) -> list:
+def split_statements(tokens) -> list:
+    return list(iter_statements(tokens))
+
+
+def iter_statements(tokens):
     """Cut the token stream before every keyword that starts a statement.
     `action` after `extern`, and the `on` of `rule NAME: on ...`, belong to
-    the statement already under way."""
-    chunks = []
+    the statement already under way. Yields each statement's token list."""
     current: list = []
     seen_on = False
     for tok in tokens:
@@ -143,11 +148,10 @@ def split_statements(tokens: list) -> list:
         if starts and tok.type == "_ON" and current[0].type == "_RULE" and not seen_on:
             starts = False
         if starts:
-            chunks.append(current)
+            yield current
             current = []
             seen_on = False
         seen_on = seen_on or tok.type == "_ON"
         current.append(tok)
     if current:
-        chunks.append(current)
-    return chunks
+        yield current

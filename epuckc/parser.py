@@ -11,7 +11,7 @@ from functools import lru_cache
 from . import ast
 from . import lalr
 from .diagnostics import Collector
-from .lexer import split_statements, tokenize
+from .lexer import iter_statements, iter_tokens
 from .resources import grammar_path
 from .source import SourceFile, Span
 
@@ -231,14 +231,19 @@ _CALLBACKS = {name: getattr(_TO_AST, name) for name in dir(_ToAst) if not name.s
 def parse(source: SourceFile, diags: Collector) -> ast.Program:
     """The statements that parse; a diagnostic for each one that does not."""
     program = ast.Program(source.name)
-    chunks = split_statements(tokenize(source, diags))
     tables = _tables()
-    for i, chunk in enumerate(chunks):
-        following = chunks[i + 1][0] if i + 1 < len(chunks) else None
+    # One statement at a time, so that a huge file never holds all its
+    # tokens at once; `following` is the next statement's first token.
+    chunks = iter_statements(iter_tokens(source, diags))
+    chunk = next(chunks, None)
+    while chunk is not None:
+        following_chunk = next(chunks, None)
+        following = following_chunk[0] if following_chunk is not None else None
         try:
             statement = lalr.parse(tables, chunk, _CALLBACKS, meta=Span)
         except lalr.ParseError as exc:
             _syntax_error(exc, chunk, following, source, diags)
-            continue
-        program.statements.append(statement)
+        else:
+            program.statements.append(statement)
+        chunk = following_chunk
     return program
