@@ -21,7 +21,20 @@ from .units import (ANGLE, ARTICLE, DISTANCE, DURATION, INT, INT16_MAX, INT16_MI
                     KIND_UNITS, SPEED, UNITS, Geometry, Quantity, curve_wheels,
                     describe_kind, quantity, round_nearest)
 
-DEFAULT_CAPACITY = 32      # replaced by the runtime header's value, see capacity.py
+DEFAULT_CAPACITY = 32      # frontend.py passes the runtime header's MAX_ACTIONS/MAX_EVENTS
+
+# Names an extern's C function cannot have: C99's keywords, `main`, and the
+# runtime's own functions and types (epuckrt.h). User names elsewhere never
+# reach C unprefixed (see lower.py).
+RESERVED_C_NAMES = frozenset("""
+    auto break case char const continue default do double else enum extern float for
+    goto if inline int long register restrict return short signed sizeof static struct
+    switch typedef union unsigned void volatile while _Bool _Complex _Imaginary main
+    register_action register_event cancel_action cancel_event mainloop set_event_repeat
+    set_robot_geometry name_action name_event run_sequence action event event_status
+    action_func event_func immediate sensor timer wait getselector
+""".split())
+RESERVED_C_PREFIXES = ("action_", "event_", "param_", "e_", "rt_", "stub_", "EPUCK_", "MAX_")
 
 
 # ---- the checked program ------------------------------------------------------
@@ -183,6 +196,13 @@ class Checker:
 
     def _extern(self, stmt: ast.ExternDef, claim):
         if self._clashes_with_standard(stmt.name, stmt.kind):
+            return
+        if stmt.name.name in RESERVED_C_NAMES or stmt.name.name.startswith(RESERVED_C_PREFIXES):
+            # an extern is a C function of exactly this name in the program
+            self.diags.error("E027", stmt.name.span,
+                             f"an extern {stmt.kind} cannot be named {_code(stmt.name.name)}: "
+                             "C or the runtime already uses that name",
+                             help=f"rename it in both files, e.g. `my_{stmt.name.name}`")
             return
         params, ok = [], True
         names: dict = {}
@@ -489,7 +509,7 @@ class Checker:
                          f"{_code(param)} of `{_shown(node)}` is {v}{unit}, which does not fit "
                          f"the robot's 16-bit int ({INT16_MIN}..{INT16_MAX})",
                          help="split the motion into several shorter ones with `then`"
-                         if unit == " steps" else None)
+                         if param == "distance" else None)
         return None
 
     # -- actions --
@@ -600,7 +620,10 @@ class Checker:
                                  f"above the robot's maximum of {geo.max_speed:.0f}",
                                  help="lower `speed`")
                 return None
-            values["radius"] = round_nearest(radius.mm(geo))
+            values["radius"] = self._fits16(round_nearest(radius.mm(geo)), bound["radius"].value,
+                                            "radius", " mm")
+            if values["radius"] is None:
+                return None
             values["outer_steps"] = outer_steps
             values["inner_speed"] = inner_speed
         return ResolvedCall("standard", name, values, shown, call)

@@ -29,6 +29,7 @@ CODES = {
     "E024": "condition in the wrong place",
     "E025": "sensor listed twice",
     "E026": "unknown type",
+    "E027": "extern name reserved in C",
     # values
     "E030": "speed above the robot's maximum",
     "E031": "unknown sensor",
