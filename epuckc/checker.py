@@ -8,6 +8,7 @@ starts from that and never re-derives a value.
 from __future__ import annotations
 
 import difflib
+import math
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Optional
@@ -279,7 +280,6 @@ class Checker:
                              "give the wheel's diameter or its circumference, not both",
                              notes=[Note("the diameter is given here", given["wheel_diameter"][0].span)])
             return
-        import math
         geo = Geometry()
         circumference = geo.wheel_circumference_mm
         if "wheel_diameter" in given:
