@@ -16,7 +16,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Optional
 
-from .resources import runtime_dir
+from .resources import cache_dir, runtime_dir
 
 HOST_CFLAGS = ["-std=c99", "-Wall", "-Wextra", "-pedantic", "-O2"]
 # Generated C is warning-free by design, so a warning there is a bug in
@@ -27,6 +27,9 @@ GENERATED_CFLAGS = HOST_CFLAGS + ["-Werror"]
 HOST_SOURCES = ["epuckrt.c", "host/platform_host.c", "host/epuck_stub.c"]
 HOST_INCLUDES = [".", "epuck_api", "host"]
 ROBOT_FILES = ["epuckrt.c", "platform_robot.c", "epuckrt.h", "rt_platform.h", "utility.h"]
+
+
+EXIT_NO_TOOLCHAIN = 3      # the project is written but XC16, the library or make is missing
 
 
 class BuildError(Exception):
@@ -65,13 +68,6 @@ def write_atomic(path: Path, data, mode: int = 0o644):
         except OSError:
             pass
         raise
-
-
-def cache_dir() -> Path:
-    if os.environ.get("EPUCKC_CACHE_DIR"):
-        return Path(os.environ["EPUCKC_CACHE_DIR"])
-    base = os.environ.get("XDG_CACHE_HOME") or str(Path.home() / ".cache")
-    return Path(base) / "epuckc"
 
 
 def c_compiler() -> list:
@@ -190,7 +186,8 @@ def run_make(out_dir: Path, xc16: Path) -> None:
     env["PATH"] = f"{xc16.parent}{os.pathsep}{env.get('PATH', '')}"
     make = shutil.which("make")
     if make is None:
-        raise BuildError(f"`make` was not found; the project is in {out_dir}", status=3)
+        raise BuildError(f"`make` was not found; the project is in {out_dir}",
+                         status=EXIT_NO_TOOLCHAIN)
     result = subprocess.run([make, "-C", str(out_dir), f"XC16_BIN={xc16.parent}"],
                             capture_output=True, text=True, env=env)
     if result.returncode != 0:

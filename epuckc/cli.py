@@ -11,7 +11,7 @@ from .codes import CODES, explanation, normalise
 from .diagnostics import Report, render_report
 from .frontend import InputError, check_file
 
-EXIT_OK, EXIT_ERRORS, EXIT_USAGE, EXIT_NO_TOOLCHAIN, EXIT_INTERNAL = 0, 1, 2, 3, 4
+EXIT_OK, EXIT_ERRORS, EXIT_USAGE, EXIT_INTERNAL = 0, 1, 2, 4   # 3: build.EXIT_NO_TOOLCHAIN
 
 
 def _colour_wanted(stream) -> bool:

@@ -8,7 +8,7 @@ import sys
 from pathlib import Path
 from typing import Optional
 
-from .build import (BuildError, Program, build_host, find_xc16, run_make,
+from .build import (EXIT_NO_TOOLCHAIN, BuildError, Program, build_host, find_xc16, run_make,
                     write_dspic_project)
 from .diagnostics import Report
 from .frontend import InputError, check_file
@@ -53,12 +53,12 @@ def build(program: Program, target: str, out_dir: Optional[Path]) -> str:
             f"the project was written to {out_dir}, but it was not built: xc16-gcc "
             "(Microchip MPLAB XC16) was found neither on PATH nor in $XC16_DIR/bin.\n"
             f"Install XC16, then run: make -C {out_dir} EPUCK_LIB=/path/to/e-puck-library",
-            status=3)
+            status=EXIT_NO_TOOLCHAIN)
     if not os.environ.get("EPUCK_LIB"):
         raise BuildError(
             f"the project was written to {out_dir}, but it was not built: EPUCK_LIB is not set.\n"
             "Set it to the e-puck library's folder (the one that holds library/), then run: "
-            f"make -C {out_dir}", status=3)
+            f"make -C {out_dir}", status=EXIT_NO_TOOLCHAIN)
     run_make(out_dir, xc16)
     return f"built {out_dir / (program.name + '.hex')}"
 

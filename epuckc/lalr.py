@@ -21,7 +21,8 @@ import hashlib
 import marshal
 import os
 import sys
-from pathlib import Path
+
+from .resources import cache_dir
 
 FORMAT = 1          # bump when the table layout below changes
 
@@ -117,11 +118,6 @@ def build_tables(grammar: str, start: str):
 
 
 # ---- the cache ----------------------------------------------------------------------
-
-def cache_dir() -> Path:
-    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
-    return Path(base) / "epuckc"
-
 
 def _lark_version() -> str:
     """Lark's version, read from its source rather than by importing it

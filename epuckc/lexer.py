@@ -67,10 +67,6 @@ _TOKEN_RE = re.compile(r"""
 _BAD_RE = re.compile(r"""[^ \t\r\n\f\v#A-Za-z_0-9"(){},:=/\-><]+""")
 
 
-def tokenize(source: SourceFile, diags: Collector) -> list:
-    return list(iter_tokens(source, diags))
-
-
 def iter_tokens(source: SourceFile, diags: Collector):
     """The tokens of a file, one at a time (a 10 MB file has millions)."""
     text = source.text
@@ -129,10 +125,6 @@ def iter_tokens(source: SourceFile, diags: Collector):
             token.after_bad, after_bad = True, False
         yield token
         pos = end
-
-
-def split_statements(tokens) -> list:
-    return list(iter_statements(tokens))
 
 
 def iter_statements(tokens):

@@ -1,6 +1,6 @@
 """Parse a rule file into a Program: tokens -> statements -> LALR -> AST.
 
-Each statement is parsed on its own (see lexer.split_statements), so a
+Each statement is parsed on its own (see lexer.iter_statements), so a
 syntax error costs only its statement: three broken rules give three errors
 and the rest of the file is still checked.
 """

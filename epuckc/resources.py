@@ -6,6 +6,7 @@ tried, the package first.
 """
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 _PACKAGE = Path(__file__).resolve().parent
@@ -28,3 +29,12 @@ def templates_dir() -> Path:
 
 def runtime_dir() -> Path:
     return resource_dir("runtime_c")
+
+
+def cache_dir() -> Path:
+    """Where epuckc keeps what it can rebuild (parse tables, host builds):
+    $EPUCKC_CACHE_DIR, else $XDG_CACHE_HOME/epuckc, else ~/.cache/epuckc."""
+    if os.environ.get("EPUCKC_CACHE_DIR"):
+        return Path(os.environ["EPUCKC_CACHE_DIR"])
+    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    return Path(base) / "epuckc"
