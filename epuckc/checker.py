@@ -17,7 +17,7 @@ from . import ast
 from .diagnostics import Collector, Note
 from .source import Span
 from .stdlib import (ACTION_ALIASES, EVENT_ALIASES, EXTERN_TYPES, MOTION_ACTIONS,
-                     SENSOR_COUNT, STANDARD_ACTIONS, STANDARD_EVENTS, THRESHOLD_MAX, Param)
+                     SENSOR_NAMES, STANDARD_ACTIONS, STANDARD_EVENTS, THRESHOLD_MAX, Param)
 from .units import (ANGLE, ARTICLE, DISTANCE, DURATION, INT, INT16_MAX, INT16_MIN, INT32_MAX,
                     KIND_UNITS, SPEED, UNITS, Geometry, Quantity, curve_wheels,
                     describe_kind, quantity, round_nearest)
@@ -588,7 +588,7 @@ class Checker:
         return None
 
     def _standard_action(self, name: str, call: ast.Call) -> Optional[ResolvedCall]:
-        params = STANDARD_ACTIONS[name]
+        params = STANDARD_ACTIONS[name].params
         bound = self._bind(call.name, call.args, params, "action")
         if bound is None:
             return None
@@ -636,7 +636,7 @@ class Checker:
         if canonical == "sensor":
             return self._sensor(call)
         if canonical in STANDARD_EVENTS:
-            params = STANDARD_EVENTS[canonical]
+            params = STANDARD_EVENTS[canonical].params
             bound = self._bind(call.name, call.args, params, "event")
             converted = self._convert(bound, params) if bound is not None else None
             if converted is None:
@@ -668,7 +668,7 @@ class Checker:
                              help="write e.g. `sensor(ir0 > 300, ir7 > 300)`")
             return None
         conditions, seen, ok = [], {}, True
-        sensors = [f"ir{i}" for i in range(SENSOR_COUNT)]
+        sensors = SENSOR_NAMES
         for arg in call.args:
             if not isinstance(arg, ast.ConditionArg):
                 self.diags.error("E024", arg.span, "`sensor` takes conditions such as `ir0 > 300`",

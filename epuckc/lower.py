@@ -19,6 +19,7 @@ from pathlib import PurePath
 from typing import Optional
 
 from .checker import CheckedProgram, ResolvedCall
+from .stdlib import STANDARD_ACTIONS, STANDARD_EVENTS
 from .units import INT16_MAX, INT16_MIN, round_nearest
 
 # C types of extern parameters, by declared type.
@@ -178,8 +179,9 @@ class _Lowerer:
         if call.kind == "cancel":
             var = self.rule_ids[call.name]
             return _Primitive(None, "", f"cancel_event({var});", text)
+        function = STANDARD_ACTIONS[call.name].runtime if call.kind == "standard" else call.name
         if not call.values:       # stop_motor, exit_main, an extern without parameters...
-            return _Primitive(call.name, "NULL", f"{call.name}(NULL);", text)
+            return _Primitive(function, "NULL", f"{function}(NULL);", text)
         key = id(call)
         if key not in self.params:
             n = self.owner_counts.get(owner, 0) + 1
@@ -191,7 +193,7 @@ class _Lowerer:
                                                       + (f" ({comment})" if comment else ""))))
             self.params[key] = f"&{name}"
         param = self.params[key]
-        return _Primitive(call.name, param, f"{call.name}({param});", text)
+        return _Primitive(function, param, f"{function}({param});", text)
 
     def param_struct(self, call: ResolvedCall) -> tuple[str, str, str]:
         v = call.values
@@ -275,23 +277,22 @@ class _Lowerer:
             self.out.structs.append(CStruct(f"param_{ev.name}", f"when_{owner}",
                                             self.extern_init(info.params, ev.values), comment))
             return ev.name, f"&when_{owner}"
-        if ev.name == "immediate":
-            return "immediate", "NULL"
-        if ev.name == "stop_motor":
-            return "event_stop_motor", "NULL"
+        spec = STANDARD_EVENTS[ev.name]
+        if spec.runtime_param is None:      # immediate, stop_motor
+            return spec.runtime, "NULL"
         if ev.name == "timer":
-            self.out.structs.append(CStruct("param_event_timer", f"when_{owner}",
+            self.out.structs.append(CStruct(spec.runtime_param, f"when_{owner}",
                                             f"{{{ev.values['time']}L}}", comment))
-            return "timer", f"&when_{owner}"
+            return spec.runtime, f"&when_{owner}"
         thresholds = ["SENSOR_OFF"] * 8
         below = 0
         for sensor, op, value in ev.conditions:
             thresholds[sensor] = str(value)
             if op == "<":
                 below |= 1 << sensor
-        self.out.structs.append(CStruct("param_event_sensor", f"when_{owner}",
+        self.out.structs.append(CStruct(spec.runtime_param, f"when_{owner}",
                                         f"{{{{{', '.join(thresholds)}}}, 0x{below:02x}}}", comment))
-        return "sensor", f"&when_{owner}"
+        return spec.runtime, f"&when_{owner}"
 
     # -- the whole program --
 

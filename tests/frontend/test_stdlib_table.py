@@ -1,0 +1,46 @@
+"""The table of standard actions and events is the one source: the language
+reference prints it, the runtime declares every function it names, and the
+codes it cites exist."""
+import re
+
+from epuckc import stdlib
+from epuckc.codes import CODES
+from tests.conftest import REPO
+
+
+def test_language_reference_prints_the_table():
+    doc = (REPO / "docs" / "language.md").read_text()
+    start = doc.index("### 3.1 Actions")
+    end = doc.index("<!-- end of generated tables -->")
+    assert doc[start:end] == stdlib.reference_markdown(), \
+        "docs/language.md section 3 is stale: paste `python3 -m epuckc.stdlib` over it"
+
+
+def test_every_runtime_name_is_declared_by_the_runtime():
+    header = (REPO / "runtime_c" / "epuckrt.h").read_text()
+    declared = set(re.findall(r"\b(\w+)\s*\(void \*param", header)) | \
+        set(re.findall(r"\}\s*(\w+)\s*;", header)) | \
+        set(re.findall(r"typedef \w+ (\w+);", header))
+    for spec in (*stdlib.ACTIONS, *stdlib.EVENTS):
+        assert spec.runtime in declared, f"{spec.name}: {spec.runtime} is not in epuckrt.h"
+        if isinstance(spec, stdlib.EventSpec) and spec.runtime_param:
+            assert spec.runtime_param in declared, spec.runtime_param
+
+
+def test_every_cited_code_exists_and_every_entry_is_documented():
+    for spec in (*stdlib.ACTIONS, *stdlib.EVENTS):
+        assert spec.doc and not spec.doc.endswith(".")
+        for p in spec.params or ():
+            assert p.doc and p.range, f"{spec.name}.{p.name} needs a doc and a range"
+            for code in re.findall(r"\[([EW]\d{3})\]", p.range):
+                assert code in CODES, code
+    for code in re.findall(r"\[([EW]\d{3})\]", stdlib.SENSOR_CONDITION_DOC):
+        assert code in CODES
+
+
+def test_aliases_follow_the_table():
+    assert set(stdlib.ACTION_ALIASES.values()) == set(stdlib.STANDARD_ACTIONS)
+    assert stdlib.MOTION_ACTIONS == {"start_straight", "start_curve"}
+    assert stdlib.STANDARD_EVENTS["sensor"].signature.startswith("sensor(irN")
+    assert stdlib.STANDARD_ACTIONS["start_curve"].signature == \
+        "start_curve(radius: distance, degrees: angle, speed: speed)"
