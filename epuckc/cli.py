@@ -65,6 +65,12 @@ def cmd_explain(args) -> int:
     return EXIT_OK
 
 
+def cmd_fmt(args) -> int:
+    from .fmt import run
+    return run(args.files, check=args.check, diff=args.diff,
+               colour=_colour_wanted(sys.stderr))
+
+
 def _error(message: str):
     print(f"epuckc: error: {message}", file=sys.stderr)
 
@@ -186,6 +192,19 @@ def build_parser() -> argparse.ArgumentParser:
                        description="Print the long explanation of a diagnostic code.")
     p.add_argument("code", metavar="CODE")
     p.set_defaults(run=cmd_explain)
+
+    p = sub.add_parser("fmt", help="lay rule files out in the one canonical layout",
+                       description="Rewrite rule files (or the .epk files under a folder) "
+                                   "in place, in the canonical layout (docs/formatting.md); "
+                                   "`-` reads standard input and writes standard output. "
+                                   "Exit status: 0 done, 1 syntax errors (nothing is written) "
+                                   "or, with --check, files that would change, 2 I/O error.")
+    p.add_argument("files", nargs="+", metavar="FILE")
+    p.add_argument("--check", action="store_true",
+                   help="write nothing; name the files that would change and exit 1 if any")
+    p.add_argument("--diff", action="store_true",
+                   help="write nothing; print a unified diff of the changes")
+    p.set_defaults(run=cmd_fmt)
 
     p = sub.add_parser("compile", help="compile a rule file to C",
                        description="Compile a rule file to one C file for the runtime. Nothing is "

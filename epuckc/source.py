@@ -42,8 +42,12 @@ class SourceFile:
     def from_path(cls, path: Path, shown_name: str | None = None) -> tuple["SourceFile", object]:
         """Read and decode a file. Returns (source, problem) where problem is
         None or (offset, message) for bytes that are not UTF-8 text."""
-        data = path.read_bytes()
-        name = shown_name if shown_name is not None else str(path)
+        return cls.from_bytes(path.read_bytes(),
+                              shown_name if shown_name is not None else str(path))
+
+    @classmethod
+    def from_bytes(cls, data: bytes, name: str) -> tuple["SourceFile", object]:
+        """Decode a file's bytes (or standard input's), as from_path does."""
         if data.startswith(b"\xef\xbb\xbf"):
             data = data[3:]
         nul = data.find(b"\0")
