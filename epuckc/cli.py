@@ -19,8 +19,10 @@ def _colour_wanted(stream) -> bool:
 
 
 def _add_check_options(p: argparse.ArgumentParser):
-    p.add_argument("--format", choices=("human", "gcc", "short", "json"), default="human",
-                   help="how diagnostics are printed (default: human)")
+    p.add_argument("--format", choices=("human", "gcc", "short", "json", "sarif"),
+                   default="human",
+                   help="how diagnostics are printed (default: human); json and sarif (SARIF "
+                        "2.1.0, for code scanning in CI) go to standard output")
     p.add_argument("--werror", action="store_true", help="treat warnings as errors")
     p.add_argument("--max-actions", type=int, metavar="N",
                    help="capacity of the runtime's action array (default: the runtime's MAX_ACTIONS)")
@@ -30,7 +32,7 @@ def _add_check_options(p: argparse.ArgumentParser):
 
 def _print_report(report: Report, fmt: str):
     text = render_report(report, fmt, colour=_colour_wanted(sys.stderr) and fmt == "human")
-    if fmt == "json":
+    if fmt in ("json", "sarif"):
         sys.stdout.write(text)
     elif text:
         sys.stderr.write(text)

@@ -3,8 +3,8 @@
 Every diagnostic has a stable code (E### for errors, W### for warnings, see
 codes.py), a primary span, a message, and optional help and notes. The
 renderings are the human form (with the source line and an underline), the
-one-line gcc form that editors' problem matchers read, rustc's short form, and
-JSON for tools.
+one-line gcc form that editors' problem matchers read, rustc's short form,
+JSON for tools, and SARIF 2.1.0 for code scanning (sarif.py).
 """
 from __future__ import annotations
 
@@ -179,6 +179,9 @@ def summary_line(errors: int, warnings: int) -> str:
 
 
 def render_report(report: Report, fmt: str, colour: bool = False) -> str:
+    if fmt == "sarif":
+        from .sarif import render_sarif
+        return render_sarif(report)
     diags = report.sorted()
     if fmt == "json":
         return json.dumps([to_json_object(d) for d in diags], indent=2) + "\n"
