@@ -195,11 +195,13 @@ def test_wheel_in_a_fresh_virtual_environment_runs_an_example(tmp_path):
     venv = tmp_path / "venv"
     subprocess.run([sys.executable, "-m", "venv", str(venv)], check=True)
     pip = venv / "bin" / "pip"
-    subprocess.run([str(pip), "install", "--quiet", str(wheel)], check=True)
+    # Without PYTHONPATH: a checkout on it (with the epuckc.egg-info the build
+    # leaves there) would make pip think epuckc is installed already.
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    subprocess.run([str(pip), "install", "--quiet", str(wheel)], check=True, env=env)
     work = tmp_path / "elsewhere"
     work.mkdir()
     shutil.copy(EXAMPLES / "square.epk", work)
-    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
     result = subprocess.run([str(venv / "bin" / "epuckc"), "run", "square.epk"], cwd=work,
                             env=env, capture_output=True, text=True)
     assert result.returncode == 0, result.stdout + result.stderr
