@@ -541,7 +541,7 @@ def format_text(text: str, filename: str = "<stdin>") -> str:
 
     for chunk, statement in zip(chunks, statements):
         first = chunk[0].start_pos
-        for k, (blank_before, comment) in enumerate(comments.leading.get(first, ())):
+        for blank_before, comment in comments.leading.get(first, ()):
             if blank_before:
                 blank()
             lines.append(comment)

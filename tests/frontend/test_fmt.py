@@ -22,7 +22,7 @@ from epuckc.frontend import check_file
 from epuckc.lexer import iter_tokens
 from epuckc.lower import lower
 from epuckc.source import SourceFile
-from epuckc.stdlib import STANDARD_ACTIONS, STANDARD_EVENTS
+from epuckc.stdlib import STANDARD_ACTIONS
 from epuckc.units import UNITS
 
 from .helpers import run_cli
