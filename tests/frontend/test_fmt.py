@@ -111,6 +111,11 @@ def check_properties(text: str, path: Path = Path("generated.epk"), rnd=None):
     assert formatted == "" or formatted.endswith("\n") and not formatted.endswith("\n\n")
     assert "\n\n\n" not in formatted
     assert all(line == line.rstrip() for line in formatted.split("\n"))
+    # A line longer than WIDTH (comments aside) could not have been broken:
+    # it holds no `then`, no `do` after other words and no `, `.
+    for line in formatted.split("\n"):
+        if len(line) > WIDTH and "#" not in line:
+            assert not re.search(r", |\S then |\S do ", line), line
     # Without comments, the layout of the input does not matter.
     tokens = tokens_of(text)
     canonical = format_text(" ".join(t.value for t in tokens))
@@ -135,7 +140,8 @@ def test_corpus_is_not_empty():
 
 # ---- generated programs ----------------------------------------------------------------
 
-NAMES = st.sampled_from(["go", "turn", "x", "speed", "CRUISE", "a_1", "tick", "near"])
+NAMES = st.sampled_from(["go", "turn", "x", "speed", "CRUISE", "a_1", "tick", "near",
+                         "a_name_so_long_that_a_few_of_them_fill_a_whole_line_of_the_file"])
 CALLEES = st.sampled_from(sorted(STANDARD_ACTIONS) + ["go", "turn", "spin", "action_stop_motor"])
 NUMBERS = st.sampled_from(["0", "1", "10", "300", "2.5", "1000", "0.01", "4095"])
 UNIT_TOKENS = st.sampled_from([[]] + [u.replace("/", " / ").split() for u in sorted(UNITS)])
