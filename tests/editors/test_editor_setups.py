@@ -1,18 +1,17 @@
 """The set-ups of editors/README.md read what epuckc prints: the VS Code
-problem matcher, the Vim errorformat (run in Vim) and the regular expression
-for other editors all find file, line, column, severity and message in
-`check --format gcc`; the Helix configuration is valid TOML."""
+problem matcher and the regular expression for other editors find file,
+line, column, severity and message in `check --format gcc` (the Vim
+errorformat is run in Vim by test_vim.py); the Helix configuration is valid
+TOML."""
 from __future__ import annotations
 
 import json
 import re
-import subprocess
 import sys
 from pathlib import Path
 
 import pytest
 
-from tests.conftest import require_tool
 from tests.frontend.helpers import run_cli
 
 REPO = Path(__file__).resolve().parents[2]
@@ -34,7 +33,6 @@ def gcc_output(tmp_path, monkeypatch, capsys) -> str:
     (tmp_path / "prog.epk").write_text(PROGRAM)
     status, out, err = run_cli(["check", "--format", "gcc", "prog.epk"], capsys)
     assert status == 1 and len(err.splitlines()) == 2
-    (tmp_path / "out.txt").write_text(err)
     return err
 
 
@@ -61,25 +59,6 @@ def test_the_regular_expression_for_other_editors(gcc_output):
         found.append((m.group(1), int(m.group(2)), int(m.group(3)), m.group(4)))
     assert [(f, l, c) for f, l, c, _ in found] == [e[:3] for e in EXPECTED]
     assert all(message.startswith(e[4]) for (*_, message), e in zip(found, EXPECTED))
-
-
-def test_the_vim_errorformat_in_vim(gcc_output, tmp_path):
-    vim = require_tool("vim")
-    [block] = code_blocks("vim")
-    errorformat = re.search(r"(errorformat=(?:\\ |\S)+)", block).group(1)
-    script = tmp_path / "qf.vim"
-    script.write_text(
-        f"set {errorformat}\n"
-        "cgetfile out.txt\n"
-        "call writefile(map(getqflist(), {_, e -> bufname(e.bufnr) . '|' . e.lnum . '|' . e.col"
-        " . '|' . e.type . '|' . e.text}), 'qf.txt')\n"
-        "qa!\n")
-    subprocess.run([vim, "-Es", "-u", "NONE", "-N", "-S", str(script)], cwd=tmp_path,
-                   timeout=60, check=False, stdin=subprocess.DEVNULL)
-    rows = [line.split("|", 4) for line in (tmp_path / "qf.txt").read_text().splitlines()]
-    assert [(f, int(l), int(c), t) for f, l, c, t, _ in rows] == [
-        (f, l, c, s[0]) for f, l, c, s, _ in EXPECTED]
-    assert all(text.startswith(e[4]) for (*_, text), e in zip(rows, EXPECTED))
 
 
 @pytest.mark.skipif(sys.version_info < (3, 11), reason="tomllib is Python 3.11+")

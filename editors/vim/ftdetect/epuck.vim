@@ -1,0 +1,2 @@
+" e-puck rule files (epuckc)
+autocmd BufRead,BufNewFile *.epk setfiletype epuck
