@@ -116,6 +116,10 @@ def check_properties(text: str, path: Path = Path("generated.epk"), rnd=None):
     for line in formatted.split("\n"):
         if len(line) > WIDTH and "#" not in line:
             assert not re.search(r", |\S then |\S do ", line), line
+    # A file with CRLF line ends formats the same, with CRLF line ends.
+    if "\n" in text and "\r" not in text:
+        crlf = text.replace("\n", "\r\n")
+        assert format_text(crlf, path.name) == formatted.replace("\n", "\r\n")
     # Without comments, the layout of the input does not matter.
     tokens = tokens_of(text)
     canonical = format_text(" ".join(t.value for t in tokens))
