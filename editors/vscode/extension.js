@@ -5,16 +5,17 @@
 "use strict";
 
 const vscode = require("vscode");
-const { LanguageClient, TransportKind } = require("vscode-languageclient/node");
+const { LanguageClient } = require("vscode-languageclient/node");
 
 let client;
 
 function serverOptions() {
   const config = vscode.workspace.getConfiguration("epuckc");
+  // No `transport`: the server talks on standard input/output, and
+  // TransportKind.stdio would append `--stdio` to its arguments.
   return {
     command: config.get("path") || "epuckc",
     args: config.get("args") || ["lsp"],
-    transport: TransportKind.stdio,
   };
 }
 
@@ -34,6 +35,7 @@ async function start(context) {
   try {
     await client.start();
   } catch (error) {
+    client = undefined;
     const command = serverOptions().command;
     vscode.window.showErrorMessage(
       `epuckc: cannot start the language server with \`${command}\` (${error.message || error}). ` +
