@@ -245,13 +245,13 @@ def valid_programs(draw):
     return _layout(draw, [t.value for t in tokens_of(" ".join(parts))])
 
 
-@settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=200, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(programs(), st.randoms(use_true_random=False))
 def test_generated_programs(text, rnd):
     check_properties(text, rnd=rnd)
 
 
-@settings(max_examples=200, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=120, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(valid_programs(), st.randoms(use_true_random=False))
 def test_generated_programs_that_compile(text, rnd):
     assert compiled(text)[1] is not None, text
