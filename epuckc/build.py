@@ -16,6 +16,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Optional
 
+from .output import TEMP_PREFIX, OutputError, describe_os_error, prepare_directory, write_file
 from .resources import cache_dir, runtime_dir
 
 HOST_CFLAGS = ["-std=c99", "-Wall", "-Wextra", "-pedantic", "-O2"]
@@ -54,20 +55,8 @@ class Program:
 
 
 def write_atomic(path: Path, data, mode: int = 0o644):
-    """Write the whole file or nothing: a temporary file renamed into place."""
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
-    try:
-        with os.fdopen(fd, "wb") as f:
-            f.write(data.encode("utf-8") if isinstance(data, str) else data)
-        os.chmod(tmp, mode)
-        os.replace(tmp, path)
-    except BaseException:
-        try:
-            os.unlink(tmp)
-        except OSError:
-            pass
-        raise
+    """Write the whole file or nothing (see output.py, which every write uses)."""
+    write_file(path, data, mode)
 
 
 def c_compiler() -> list:
@@ -98,6 +87,7 @@ def host_build_key(program: Program) -> str:
     def add(label: str, data: bytes):
         h.update(label.encode() + b"\0" + len(data).to_bytes(8, "big") + data)
 
+    add("name", program.name.encode("utf-8"))
     add("program", program.c_text.encode("utf-8"))
     for rel in program.user_files:
         add(f"user:{rel}", (program.base_dir / rel).read_bytes())
@@ -131,27 +121,130 @@ def _run_compiler(command: list, what: str):
                          f"command: {shlex.join(command)}")
 
 
-def build_host(program: Program, out_dir: Optional[Path] = None) -> Path:
-    """The harness executable. Cached by content hash: a second build of the
-    same program is a file lookup. With out_dir, the C file and executable
-    are also copied there."""
-    key = host_build_key(program)
-    cached_dir = cache_dir() / "host" / key
-    exe = cached_dir / program.name
-    if not exe.is_file():
-        cached_dir.mkdir(parents=True, exist_ok=True)
-        with tempfile.TemporaryDirectory(dir=cached_dir) as tmp:
-            c_file = Path(tmp) / f"{program.name}.c"
-            c_file.write_text(program.c_text, encoding="utf-8")
-            tmp_exe = Path(tmp) / program.name
-            _run_compiler(host_compile_command(c_file, tmp_exe, program), program.name)
-            shutil.copy2(c_file, cached_dir / c_file.name)
-            os.replace(tmp_exe, exe)
-    if out_dir is not None:
-        write_atomic(out_dir / f"{program.name}.c", program.c_text)
-        write_atomic(out_dir / program.name, exe.read_bytes(), mode=0o755)
-        return out_dir / program.name
+STALE_AFTER_S = 24 * 3600      # a temporary build folder older than this is abandoned
+
+
+def _pid_alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except (PermissionError, OverflowError):
+        return True
+    except OSError:
+        return False
+    return True
+
+
+def sweep_stale(folder: Path) -> None:
+    """Remove the temporary folders and files that killed runs left in
+    `folder`: those whose process is gone, or older than a day."""
+    import time
+    try:
+        entries = list(os.scandir(folder))
+    except OSError:
+        return
+    now = time.time()
+    for entry in entries:
+        if not entry.name.startswith(TEMP_PREFIX):
+            continue
+        pid_text = entry.name[len(TEMP_PREFIX):].split("-", 1)[0]
+        try:
+            alive = _pid_alive(int(pid_text)) if pid_text.isdigit() else False
+            old = now - entry.stat(follow_symlinks=False).st_mtime > STALE_AFTER_S
+        except OSError:
+            continue
+        if alive and not old:
+            continue
+        try:
+            if entry.is_dir(follow_symlinks=False):
+                shutil.rmtree(entry.path, ignore_errors=True)
+            else:
+                os.unlink(entry.path)
+        except OSError:
+            pass
+
+
+def _compile_into(folder: Path, program: Program) -> Path:
+    """Write the C file into `folder` and compile the executable there."""
+    c_file = folder / f"{program.name}.c"
+    write_file(c_file, program.c_text)
+    exe = folder / program.name
+    _run_compiler(host_compile_command(c_file, exe, program), program.name)
     return exe
+
+
+def _cached_build(program: Program) -> Path:
+    """The executable in the cache, built there when missing. Raises
+    OSError/OutputError when the cache cannot be used."""
+    host = cache_dir() / "host"
+    final = host / host_build_key(program)
+    exe = final / program.name
+    if exe.is_file():
+        return exe
+    host.mkdir(parents=True, exist_ok=True)
+    sweep_stale(host)
+    # Built in a folder of its own, then renamed into place in one step: a
+    # killed build leaves only a temporary folder, swept by a later run.
+    tmp = Path(tempfile.mkdtemp(prefix=f"{TEMP_PREFIX}{os.getpid()}-", dir=host))
+    try:
+        _compile_into(tmp, program)
+        try:
+            os.rename(tmp, final)
+        except OSError:
+            if not exe.is_file():           # neither a parallel build's result
+                shutil.rmtree(final, ignore_errors=True)
+                os.rename(tmp, final)
+    finally:
+        if tmp.exists():
+            shutil.rmtree(tmp, ignore_errors=True)
+    return exe
+
+
+class host_executable:
+    """`with host_executable(program) as exe:` the harness executable, from
+    the cache; when the cache cannot be used (missing permissions, a
+    read-only or full disk, EPUCKC_CACHE_DIR somewhere impossible), built in
+    a temporary folder that is removed afterwards, with one line saying so."""
+
+    def __init__(self, program: Program):
+        self.program = program
+        self._tmp = None
+
+    def __enter__(self) -> Path:
+        try:
+            return _cached_build(self.program)
+        except (OSError, OutputError) as exc:
+            reason = str(exc) if isinstance(exc, OutputError) else \
+                describe_os_error(exc, exc.filename or cache_dir(), "use")
+        print(f"epuckc: note: building in a temporary folder, the cache is unusable ({reason}); "
+              "set EPUCKC_CACHE_DIR to a writable folder", file=sys.stderr)
+        system_tmp = tempfile.gettempdir()
+        sweep_stale(Path(system_tmp))
+        try:
+            self._tmp = Path(tempfile.mkdtemp(prefix=f"{TEMP_PREFIX}{os.getpid()}-"))
+        except OSError as exc:
+            raise BuildError(describe_os_error(exc, system_tmp,
+                                               "create a temporary folder in")) from None
+        try:
+            return _compile_into(self._tmp, self.program)
+        except OutputError as exc:
+            raise BuildError(str(exc)) from None
+
+    def __exit__(self, *exc_info):
+        if self._tmp is not None:
+            shutil.rmtree(self._tmp, ignore_errors=True)
+        return False
+
+
+def build_host(program: Program, out_dir: Path) -> Path:
+    """The harness executable and its C file, in `out_dir`."""
+    out_dir = prepare_directory(out_dir)
+    with host_executable(program) as exe:
+        data = exe.read_bytes()
+    write_file(out_dir / f"{program.name}.c", program.c_text)
+    write_file(out_dir / program.name, data, mode=0o755)
+    return out_dir / program.name
 
 
 # ---- dsPIC --------------------------------------------------------------------
@@ -170,6 +263,7 @@ def write_dspic_project(program: Program, out_dir: Path, template_render) -> Non
     """A self-contained project: the program, the runtime files the robot
     needs, the user's C, and a Makefile for XC16."""
     rt = runtime_dir()
+    out_dir = prepare_directory(out_dir)
     write_atomic(out_dir / f"{program.name}.c", program.c_text)
     for rel in ROBOT_FILES:
         write_atomic(out_dir / rel, (rt / rel).read_bytes())

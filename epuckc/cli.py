@@ -8,7 +8,8 @@ from pathlib import Path
 
 from . import __version__
 from .codes import CODES, explanation, normalise
-from .diagnostics import Report, render_report
+from .diagnostics import ERROR, Diagnostic, Report, render_report
+from .source import Span
 from .frontend import InputError, check_file
 
 EXIT_OK, EXIT_ERRORS, EXIT_USAGE, EXIT_INTERNAL = 0, 1, 2, 4   # 3: build.EXIT_NO_TOOLCHAIN
@@ -24,10 +25,29 @@ def _add_check_options(p: argparse.ArgumentParser):
                    help="how diagnostics are printed (default: human); json and sarif (SARIF "
                         "2.1.0, for code scanning in CI) go to standard output")
     p.add_argument("--werror", action="store_true", help="treat warnings as errors")
-    p.add_argument("--max-actions", type=int, metavar="N",
-                   help="capacity of the runtime's action array (default: the runtime's MAX_ACTIONS)")
-    p.add_argument("--max-events", type=int, metavar="N",
-                   help="capacity of the runtime's event array (default: the runtime's MAX_EVENTS)")
+    _add_capacity_options(p)
+
+
+def _add_capacity_options(p: argparse.ArgumentParser):
+    p.add_argument("--max-actions", type=_capacity, metavar="N",
+                   help="capacity of the runtime's action array, 1.."
+                        f"{MAX_CAPACITY} (default: the runtime's MAX_ACTIONS)")
+    p.add_argument("--max-events", type=_capacity, metavar="N",
+                   help="capacity of the runtime's event array, 1.."
+                        f"{MAX_CAPACITY} (default: the runtime's MAX_EVENTS)")
+
+
+def display_name(name: str) -> str:
+    """A file name as typed, printable: bytes that are not UTF-8 (a name
+    from another system) become U+FFFD instead of breaking the output."""
+    return name.encode("utf-8", "surrogateescape").decode("utf-8", "replace")
+
+
+def c_file_diagnostic(shown: str) -> Diagnostic:
+    return Diagnostic(
+        "E006", ERROR, "this is a C file, not a rule file", shown, Span(1, 1, 1, 1),
+        help=f"`epuckc build {shown}` and `epuckc run {shown}` take a C program that uses the "
+             "runtime as it is; `epuckc check` reads rule files (.epk)")
 
 
 def _print_report(report: Report, fmt: str):
@@ -43,15 +63,24 @@ def _failed(report: Report, werror: bool) -> bool:
 
 
 def cmd_check(args) -> int:
+    """Every file is checked; one that cannot be read is reported as a
+    diagnostic (E005, in every format) and the others are still checked."""
     report = Report()
+    unreadable = False
     for name in args.files:
+        shown = display_name(name)
+        if Path(name).suffix in (".c", ".h"):
+            report.diagnostics.append(c_file_diagnostic(shown))
+            continue
         try:
-            check_file(Path(name), report, shown_name=name,
+            check_file(Path(name), report, shown_name=shown,
                        max_actions=args.max_actions, max_events=args.max_events)
         except InputError as exc:
-            print(f"epuckc: error: {exc}", file=sys.stderr)
-            return EXIT_USAGE
+            unreadable = True
+            report.diagnostics.append(exc.diagnostic(shown))
     _print_report(report, args.format)
+    if unreadable:
+        return EXIT_USAGE
     return EXIT_ERRORS if _failed(report, args.werror) else EXIT_OK
 
 
@@ -83,7 +112,8 @@ def _load(args):
     from .driver import load_program
     report = Report()
     try:
-        program = load_program(Path(args.file), report, args.max_actions, args.max_events)
+        program = load_program(Path(args.file), report, args.max_actions, args.max_events,
+                               shown_name=display_name(args.file))
     except InputError as exc:
         _error(str(exc))
         return None, EXIT_USAGE
@@ -94,18 +124,19 @@ def _load(args):
 
 
 def cmd_compile(args) -> int:
-    from .build import write_atomic
+    from .output import OutputError, write_file
     if Path(args.file).suffix == ".c":
-        _error(f"{args.file} is already C; `epuckc build` and `epuckc run` take it as it is")
+        _error(f"{display_name(args.file)} is already C; `epuckc build` and `epuckc run` "
+               "take it as it is")
         return EXIT_USAGE
     program, status = _load(args)
     if program is None:
         return status
-    out = Path(args.output) if args.output else Path(args.file).with_suffix(".c")
+    out = args.output if args.output else Path(args.file).with_suffix(".c")
     try:
-        write_atomic(out, program.c_text)
-    except OSError as exc:
-        _error(f"cannot write {out}: {exc.strerror or exc}")
+        write_file(out, program.c_text)
+    except OutputError as exc:
+        _error(str(exc))
         return EXIT_USAGE
     return EXIT_OK
 
@@ -113,6 +144,11 @@ def cmd_compile(args) -> int:
 def cmd_build(args) -> int:
     from .build import BuildError
     from .driver import build
+    from .output import OutputError, describe_os_error, is_stdout
+    if args.output is not None and is_stdout(args.output):
+        _error("`build -o -`: build writes a folder (the executable and its C, or the dspic "
+               "project); `-o -` is for `epuckc compile`")
+        return EXIT_USAGE
     program, status = _load(args)
     if program is None:
         return status
@@ -121,8 +157,11 @@ def cmd_build(args) -> int:
     except BuildError as exc:
         _error(str(exc))
         return exc.status
+    except OutputError as exc:
+        _error(str(exc))
+        return EXIT_USAGE
     except OSError as exc:
-        _error(f"{exc.strerror or exc}: {exc.filename or ''}".rstrip(": "))
+        _error(describe_os_error(exc, exc.filename, "use"))
         return EXIT_USAGE
     print(message)
     return EXIT_OK
@@ -134,9 +173,11 @@ def cmd_run(args) -> int:
     program, status = _load(args)
     if program is None:
         return status
-    if args.scenario and not Path(args.scenario).is_file():
-        _error(f"the scenario file {args.scenario} does not exist")
-        return EXIT_USAGE
+    if args.scenario:
+        problem = _scenario_problem(args.scenario)
+        if problem:
+            _error(problem)
+            return EXIT_USAGE
     try:
         return run_host(program, scenario=args.scenario, time_limit_ms=args.time_limit,
                         trace=args.trace)
@@ -145,34 +186,78 @@ def cmd_run(args) -> int:
         return exc.status
 
 
-def _positive(value: str) -> int:
+def _scenario_problem(name: str):
+    """Why `--scenario NAME` cannot be read, or None."""
+    shown = display_name(name)
+    path = Path(name)
     try:
-        n = int(value)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{value!r} is not a whole number") from None
-    if n <= 0:
-        raise argparse.ArgumentTypeError("must be a positive number")
-    return n
+        if path.is_dir():
+            return (f"--scenario {shown} is a directory; give a scenario file (.scn) "
+                    "such as examples/obstacle.scn")
+        if not path.exists():
+            return f"--scenario {shown}: the file does not exist"
+        with open(path, "rb"):
+            pass
+    except OSError as exc:
+        return f"--scenario {shown}: {exc.strerror or exc}"
+    return None
+
+
+# Bounds of the numbers given on the command line: the runtime's ids are
+# 16-bit ints on the robot, and the harness counts at most MAX_TIME_LIMIT_MS
+# of virtual time (MAX_SCENARIO_MS in runtime_c/host/platform_host.c).
+MAX_CAPACITY = 32767
+MAX_TIME_LIMIT_MS = 1_000_000_000
+
+
+def _capacity(value: str) -> int:
+    text = value.strip()
+    if not (text.isascii() and text.isdigit()):
+        raise argparse.ArgumentTypeError(f"{value!r} is not a whole number")
+    if len(text) > 6 or not 1 <= int(text) <= MAX_CAPACITY:
+        raise argparse.ArgumentTypeError(
+            f"{_clip(value)} is out of range: give 1 to {MAX_CAPACITY} (the robot's ids are 16-bit ints)")
+    return int(text)
+
+
+def _clip(value: str, limit: int = 24) -> str:
+    return value if len(value) <= limit else value[:limit] + "..."
+
+
+_UNIT_MS = {"ms": 1, "s": 1000, "min": 60000}
 
 
 def _duration_ms(value: str) -> int:
-    """`60s`, `1500ms`, `2min` or a bare number of milliseconds."""
+    """`60s`, `1500ms`, `2min`, `0.5s`. A unit is required: a bare `5` is
+    5 ms in the language, but on the command line it was almost always
+    meant as seconds, so it is refused rather than guessed."""
     import re
+    from decimal import Decimal
     m = re.fullmatch(r"\s*([0-9]+(?:\.[0-9]+)?)\s*(ms|s|min)?\s*", value)
     if not m:
-        raise argparse.ArgumentTypeError(f"{value!r} is not a duration such as 60s or 500ms")
-    ms = float(m.group(1)) * {"ms": 1, None: 1, "s": 1000, "min": 60000}[m.group(2)]
+        raise argparse.ArgumentTypeError(f"{_clip(value)!r} is not a duration such as 60s or 500ms")
+    if m.group(2) is None:
+        raise argparse.ArgumentTypeError(
+            f"{_clip(value)} needs a unit: write {_clip(m.group(1))}s for seconds or "
+            f"{_clip(m.group(1))}ms for milliseconds")
+    if len(m.group(1)) > 40:
+        ms = Decimal(MAX_TIME_LIMIT_MS + 1)
+    else:
+        ms = Decimal(m.group(1)) * _UNIT_MS[m.group(2)]
     if ms < 1:
         raise argparse.ArgumentTypeError("the time limit must be at least 1 ms")
+    if ms > MAX_TIME_LIMIT_MS:
+        raise argparse.ArgumentTypeError(
+            f"{_clip(value)} is too long: the harness runs at most {MAX_TIME_LIMIT_MS // 1000} s "
+            "of virtual time")
+    if ms != ms.to_integral_value():
+        raise argparse.ArgumentTypeError(f"{_clip(value)} is not a whole number of milliseconds")
     return int(ms)
 
 
 def _add_program_options(p: argparse.ArgumentParser):
     p.add_argument("file", metavar="FILE", help="a rule file (.epk) or a C program using the runtime")
-    p.add_argument("--max-actions", type=_positive, metavar="N",
-                   help="capacity of the runtime's action array (default: the runtime's MAX_ACTIONS)")
-    p.add_argument("--max-events", type=_positive, metavar="N",
-                   help="capacity of the runtime's event array (default: the runtime's MAX_EVENTS)")
+    _add_capacity_options(p)
     p.add_argument("--werror", action="store_true", help="treat warnings as errors")
 
 
@@ -212,7 +297,8 @@ def build_parser() -> argparse.ArgumentParser:
                        description="Compile a rule file to one C file for the runtime. Nothing is "
                                    "written when the file has errors.")
     _add_program_options(p)
-    p.add_argument("-o", "--output", metavar="OUT.c", help="the C file (default: FILE with .c)")
+    p.add_argument("-o", "--output", metavar="OUT.c",
+                   help="the C file (default: FILE with .c); `-` is standard output")
     p.add_argument("--target", choices=("host", "dspic"), default="host",
                    help="the C is the same for both targets; accepted for symmetry with build")
     p.set_defaults(run=cmd_compile)
@@ -235,10 +321,31 @@ def build_parser() -> argparse.ArgumentParser:
     _add_program_options(p)
     p.add_argument("--scenario", metavar="FILE.scn", help="proximity readings over time")
     p.add_argument("--time-limit", type=_duration_ms, default=60000, metavar="DURATION",
-                   help="virtual time limit, e.g. 60s or 500ms (default 60s)")
-    p.add_argument("--trace", metavar="OUT.jsonl", help="also write the trace as JSON lines")
+                   help="virtual time limit with its unit, e.g. 60s, 500ms or 2min (default 60s)")
+    p.add_argument("--trace", metavar="OUT.jsonl",
+                   help="also write the trace as JSON lines; `-`: to standard output, "
+                        "instead of the readable trace")
     p.set_defaults(run=cmd_run)
     return parser
+
+
+def _terminate_cleanly():
+    """SIGTERM (a `kill`, a CI timeout) unwinds like Ctrl-C, so temporary
+    files and folders are removed on the way out."""
+    import signal
+
+    def handler(signum, frame):
+        raise SystemExit(128 + signum)
+    try:
+        return signal.signal(signal.SIGTERM, handler)
+    except ValueError:          # not the main thread (an embedding tool)
+        return None
+
+
+def _restore_sigterm(previous):
+    import signal
+    if previous is not None:
+        signal.signal(signal.SIGTERM, previous)
 
 
 def main(argv=None) -> int:
@@ -247,9 +354,7 @@ def main(argv=None) -> int:
     if getattr(args, "command", None) is None:
         parser.print_help(sys.stderr)
         return EXIT_USAGE
-    for option in ("max_actions", "max_events"):
-        if getattr(args, option, None) is not None and getattr(args, option) <= 0:
-            parser.error(f"--{option.replace('_', '-')} must be positive")
+    previous = _terminate_cleanly()
     try:
         return args.run(args)
     except KeyboardInterrupt:
@@ -260,3 +365,5 @@ def main(argv=None) -> int:
         _error(f"internal error ({type(exc).__name__}: {exc}); this is a bug in epuckc, "
                "please report it with the input (EPUCKC_DEBUG=1 shows the traceback)")
         return EXIT_INTERNAL
+    finally:
+        _restore_sigterm(previous)

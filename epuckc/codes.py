@@ -11,6 +11,10 @@ CODES = {
     "E002": "unexpected character",
     "E003": "unterminated string",
     "E004": "the file is not UTF-8 text",
+    "E005": "the file cannot be read",
+    "E006": "a C file given to `check`",
+    "E007": "number written with an exponent",
+    "E008": "name with letters that are not ASCII",
     # names
     "E010": "unknown event",
     "E011": "unknown action",
@@ -50,6 +54,7 @@ CODES = {
     "W005": "action never used",
     "W006": "program with no rules",
     "W007": "constant never used",
+    "W008": "bare duration that is very likely meant in seconds",
 }
 
 _EXPLANATIONS = Path(__file__).resolve().parent / "explanations"

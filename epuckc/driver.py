@@ -8,10 +8,10 @@ import sys
 from pathlib import Path
 from typing import Optional
 
-from .build import (EXIT_NO_TOOLCHAIN, BuildError, Program, build_host, find_xc16, run_make,
-                    write_dspic_project)
+from .build import (EXIT_NO_TOOLCHAIN, BuildError, Program, build_host, find_xc16,
+                    host_executable, run_make, write_dspic_project)
 from .diagnostics import Report
-from .frontend import InputError, check_file
+from .frontend import InputError, check_file, read_error
 
 
 def _program_name(path: Path) -> str:
@@ -19,17 +19,21 @@ def _program_name(path: Path) -> str:
 
 
 def load_program(path: Path, report: Report, max_actions: Optional[int] = None,
-                 max_events: Optional[int] = None) -> Optional[Program]:
+                 max_events: Optional[int] = None,
+                 shown_name: Optional[str] = None) -> Optional[Program]:
     """A rule file is checked and compiled; a .c file is taken as it is."""
     name = _program_name(path)
+    shown = shown_name if shown_name is not None else str(path)
     if path.suffix == ".c":
         try:
             text = path.read_text(encoding="utf-8")
-        except (OSError, UnicodeDecodeError) as exc:
-            raise InputError(f"cannot read {path}: {getattr(exc, 'strerror', None) or exc}") from None
+        except OSError as exc:
+            raise read_error(shown, exc) from None
+        except UnicodeDecodeError:
+            raise InputError(f"cannot read {shown}: it is not UTF-8 text") from None
         return Program(name, text, path.resolve().parent, [], max_actions, max_events,
                        generated=False)
-    result = check_file(path, report, shown_name=str(path),
+    result = check_file(path, report, shown_name=shown,
                         max_actions=max_actions, max_events=max_events)
     if result.checked is None:
         return None
@@ -65,17 +69,23 @@ def build(program: Program, target: str, out_dir: Optional[Path]) -> str:
 
 def run_host(program: Program, scenario: Optional[str], time_limit_ms: int,
              trace: Optional[str]) -> int:
-    exe = build_host(program)
     env = dict(os.environ)
     env["EPUCK_TIME_LIMIT_MS"] = str(time_limit_ms)
     env.pop("EPUCK_SCENARIO", None)
     env.pop("EPUCK_TRACE", None)
+    # The harness names the options typed here in its messages, not its
+    # environment variables.
+    env["EPUCK_FRONTEND"] = "epuckc"
     if scenario:
         env["EPUCK_SCENARIO"] = str(Path(scenario).resolve())
-    if trace:
+    if trace == "-":            # JSON lines on stdout, instead of the readable trace
+        env["EPUCK_TRACE"] = "/dev/stdout"
+        env["EPUCK_QUIET"] = "1"
+    elif trace:
         env["EPUCK_TRACE"] = str(Path(trace).resolve())
-    sys.stdout.flush()
-    try:
-        return subprocess.run([str(exe)], env=env).returncode
-    except OSError as exc:
-        raise BuildError(f"cannot run {exe}: {exc.strerror or exc}") from None
+    with host_executable(program) as exe:
+        sys.stdout.flush()
+        try:
+            return subprocess.run([str(exe)], env=env).returncode
+        except OSError as exc:
+            raise BuildError(f"cannot run {exe}: {exc.strerror or exc}") from None

@@ -9,10 +9,10 @@ from pathlib import Path
 from typing import Optional
 
 from .checker import CheckedProgram, check
-from .diagnostics import Collector, Report
+from .diagnostics import ERROR, Collector, Diagnostic, Report
 from .parser import parse
 from .resources import runtime_dir
-from .source import SourceFile
+from .source import SourceFile, Span
 
 
 @lru_cache(maxsize=1)
@@ -33,6 +33,27 @@ class FrontEndResult:
 class InputError(Exception):
     """The file cannot be read at all (missing, a directory, no permission)."""
 
+    def __init__(self, message: str, reason: str = "", help: Optional[str] = None):
+        super().__init__(message)
+        self.reason = reason or message
+        self.help = help
+
+    def diagnostic(self, shown_name: str) -> Diagnostic:
+        """The same problem as a diagnostic (E005), so that `check` reports
+        it in every format and goes on with the other files."""
+        return Diagnostic("E005", ERROR, f"cannot read this file: {self.reason}", shown_name,
+                          Span(1, 1, 1, 1), self.help)
+
+
+def read_error(name: str, exc: OSError) -> InputError:
+    import errno
+    reason = exc.strerror or str(exc)
+    help = {errno.ENOENT: "check the file's name and the folder you run epuckc in",
+            errno.EISDIR: "give a rule file (.epk), not a folder",
+            errno.EACCES: "you may not read it: check its permissions",
+            errno.ENAMETOOLONG: "the name is too long for the file system"}.get(exc.errno)
+    return InputError(f"cannot read {name}: {reason}", reason, help)
+
 
 def check_file(path: Path, report: Report, shown_name: Optional[str] = None,
                max_actions: Optional[int] = None, max_events: Optional[int] = None,
@@ -46,7 +67,7 @@ def check_file(path: Path, report: Report, shown_name: Optional[str] = None,
         try:
             source, problem = SourceFile.from_path(path, name)
         except OSError as exc:
-            raise InputError(f"cannot read {name}: {exc.strerror or exc}") from None
+            raise read_error(name, exc) from None
     report.sources[source.name] = source
     diags = Collector(source)
     if problem is not None:
