@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import difflib
 import math
+import os
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Optional
@@ -22,7 +23,10 @@ from .units import (ANGLE, ARTICLE, DISTANCE, DURATION, INT, INT16_MAX, INT16_MI
                     KIND_UNITS, SPEED, UNITS, Geometry, Quantity, curve_wheels,
                     describe_kind, quantity, round_nearest)
 
-DEFAULT_CAPACITY = 32      # frontend.py passes the runtime header's MAX_ACTIONS/MAX_EVENTS
+DEFAULT_CAPACITY = 32
+# A duration written without a unit is in ms; below this many it was very
+# likely meant in seconds (`timer(2)`), and W008 says so.
+BARE_DURATION_WARNING = 100      # frontend.py passes the runtime header's MAX_ACTIONS/MAX_EVENTS
 
 # Names an extern's C function cannot have: C99's keywords, `main`, and the
 # runtime's own functions and types (epuckrt.h). User names elsewhere never
@@ -127,8 +131,10 @@ class Checker:
         self.rule_names: dict = {}       # name -> Rule
         self.used_actions: set = set()
         self.called: set = set()         # standard actions called anywhere
-        self._resolving: list = []       # named actions being resolved (cycles)
-        self._const_stack: list = []     # constants being resolved (cycles)
+        self._cycle_calls: set = set()   # ids of calls that close a cycle of named actions
+        self._const_memo: dict = {}      # constant -> (Number, negated, problem)
+        self._const_reported: set = set()
+        self._const_diagnostics: set = set()
         self._resolved_actions: dict = {}
 
     # -- entry point --
@@ -139,6 +145,7 @@ class Checker:
         out = CheckedProgram(self.program.file, self.geo,
                              robot_given=bool(self.program.of_type(ast.RobotBlock)))
         out.externs = self.externs
+        self._resolve_named_actions()
         for name, node in self.actions.items():
             out.actions[name] = self._named_action(name)
             out.action_nodes[name] = node
@@ -148,8 +155,14 @@ class Checker:
             if event is not None:
                 out.rules.append(ResolvedRule(rule.name.name if rule.name else None,
                                               event, rule.repeat, body, rule))
-        self._never_fire(out)
-        self._unused()
+        # Warnings that conclude from an absence ("no action runs set_timer",
+        # "never used") are drawn only from a complete program: a statement
+        # or call dropped by an error may be the very one that was missing,
+        # and a warning caused by an error is noise (a cascade).
+        complete = not self.diags.has_errors
+        self._never_fire(out, complete)
+        if complete:
+            self._unused()
         self._capacity(out)
         return out
 
@@ -221,19 +234,31 @@ class Checker:
             names[p.name.name] = p.name
             params.append(Param(p.name.name, p.type.name))
         unterminated = any(d.code == "E003" and d.span == stmt.file_span for d in self.diags.items)
-        if self.base_dir is not None and not unterminated \
-                and not (self.base_dir / stmt.file).is_file():
-            looked = self.base_dir / stmt.file
-            self.diags.error("E040", stmt.file_span,
-                             f"the C file {_code(stmt.file)} does not exist",
-                             help=f"epuckc looked for `{looked}`: the path is relative to "
-                                  "the folder of the rule file")
+        if self.base_dir is not None and not unterminated:
+            self._extern_file(stmt)
         if claim(stmt.kind, stmt.name, f"{stmt.kind}"):
             if ok:
                 self.externs[stmt.name.name] = ExternInfo(stmt.kind, stmt.name.name,
                                                           tuple(params), stmt.file, stmt)
             else:       # reported above; its uses are not errors of their own
                 self.broken_externs[stmt.name.name] = stmt.kind
+
+    def _extern_file(self, stmt: ast.ExternDef):
+        looked = self.base_dir / stmt.file
+        try:
+            os.stat(looked)
+            problem = None if looked.is_file() else "is not a file"
+        except FileNotFoundError:
+            problem = "does not exist"
+        except OSError as exc:      # a name longer than NAME_MAX, a loop of links, ...
+            problem = f"cannot be used: {exc.strerror or exc}"
+        except ValueError:          # a NUL byte
+            problem = "cannot be used: it contains a NUL character"
+        if problem is not None:
+            self.diags.error("E040", stmt.file_span,
+                             f"the C file {_code(_clip(stmt.file, 60))} {problem}",
+                             help=f"epuckc looked for `{_clip(str(looked), 100)}`: the path is "
+                                  "relative to the folder of the rule file")
 
     # -- the robot block --
 
@@ -274,6 +299,8 @@ class Checker:
                 continue
             if kinds[name] == INT and not self._whole(setting.value, q.value):
                 continue
+            if not self._robot_range(name, setting, q):
+                continue
             given[name] = (setting, q)
         if "wheel_diameter" in given and "wheel_circumference" in given:
             self.diags.error("E037", given["wheel_circumference"][0].span,
@@ -299,6 +326,33 @@ class Checker:
                                  "that the e-puck library allows", help="use at most 1000 steps/s")
                 max_speed = 1000.0
         self.geo = Geometry(circumference, axle, steps_per_rev, max_speed)
+
+    def _robot_range(self, name: str, setting, q: Quantity) -> bool:
+        """The runtime keeps the wheel and the axle in micrometres and the
+        steps per turn in 32-bit longs (set_robot_geometry): each setting
+        must fit, which also keeps every derived quantity finite."""
+        if name in ("wheel_diameter", "wheel_circumference", "axle"):
+            um = q.value * 1000 * (math.pi if name == "wheel_diameter" else 1)
+            if 1 <= round_nearest(um) <= INT32_MAX:
+                return True
+            low = 0.001 / (math.pi if name == "wheel_diameter" else 1)
+            high = math.floor(INT32_MAX / 1000 / (math.pi if name == "wheel_diameter" else 1))
+            what = {"wheel_diameter": "the wheel's circumference", "axle": "the axle",
+                    "wheel_circumference": "the wheel's circumference"}[name]
+            self.diags.error("E037", setting.value.span,
+                             f"`{name}` of `{_clip(_shown(setting.value))}` is out of range: "
+                             f"give {low:.4g} mm to {high} mm",
+                             help=f"the runtime keeps {what} in micrometres in a 32-bit long; "
+                                  f"for the e-puck, write `{name}: {_ROBOT_EXAMPLE[name]}`")
+            return False
+        if name == "steps_per_rev" and q.value > INT32_MAX:
+            self.diags.error("E037", setting.value.span,
+                             f"`steps_per_rev` of `{_clip(_shown(setting.value))}` is out of range: "
+                             f"give 1 to {INT32_MAX}",
+                             help="the runtime counts steps per turn in a 32-bit long; for the "
+                                  "e-puck, write `steps_per_rev: 1000`")
+            return False
+        return True
 
     # -- values --
 
@@ -329,6 +383,11 @@ class Checker:
                                  f"but `{_shown(value)}` is {describe_kind(unit_kind).split(' (')[0]}",
                                  help=self._kind_help(kind, param))
                 return None
+        if kind == DURATION and value.unit is None and 0 < value.value < BARE_DURATION_WARNING:
+            n = value.text.lstrip("-")
+            self.diags.warning("W008", value.span,
+                               f"`{n}` without a unit is {n} ms: did you mean {n} s?",
+                               help=f"write `{n} s`, or `{n} ms` if milliseconds are meant")
         return quantity(value.value, value.unit, kind)
 
     @staticmethod
@@ -337,43 +396,104 @@ class Checker:
             return f"write `{param}` as a plain number, without a unit"
         return f"write it with a unit of {describe_kind(kind).split(' (')[0]}, e.g. `{_example(kind)}`"
 
+    def _const_chain(self, name: str):
+        """Follow constant `name` through the constants it is defined by, to
+        the number at the end: (Number or None, negated, problem), where
+        problem is None, ("unknown", ConstRef) or ("cycle", ConstRef).
+
+        A loop, not recursion, so a chain of thousands of constants is
+        fine; memoised, so each constant is followed once per file."""
+        memo = self._const_memo
+        path = []                   # (name, the ConstRef that led on from it)
+        negated = False
+        current = name
+        on_path: dict = {}
+        result = None
+        while True:
+            if current in memo:
+                number, neg, problem = memo[current]
+                result = (number, negated != neg, problem)
+                break
+            const = self.consts[current]
+            self.const_used.add(current)
+            value = const.value
+            if isinstance(value, ast.Number):
+                result = (value, negated, None)
+                path.append((current, None))
+                break
+            on_path[current] = len(path)
+            path.append((current, value))
+            negated = negated != value.negative
+            following = value.name.name
+            if following not in self.consts:
+                result = (None, negated, ("unknown", value))
+                break
+            if following in on_path:
+                result = (None, negated, ("cycle", value))
+                break
+            current = following
+        # Fill the memo from the end of the path back: each constant's own
+        # sign is the total sign up to it, undone.
+        number, total, problem = result
+        sign_before = False
+        signs = []
+        for _, ref in path:
+            signs.append(sign_before)
+            if ref is not None:
+                sign_before = sign_before != ref.negative
+        for (const_name, _), before in zip(path, signs):
+            if const_name not in memo:
+                memo[const_name] = (number, total != before, problem)
+        return memo[name] if name in memo else result
+
     def _const_value(self, ref: ast.ConstRef, kind: str, param: str) -> Optional[Quantity]:
         name = ref.name.name
-        const = self.consts.get(name)
-        if const is None:
+        if name not in self.consts:
             self.diags.error("E013", ref.name.span, f"unknown constant {_code(name)}",
                              help=did_you_mean(name, self.consts) or
                              f"define it first: `const {name} = VALUE`")
             return None
-        self.const_used.add(name)
-        if name in self._const_stack:
-            self.diags.error("E023", ref.span, f"constant {_code(name)} is defined in terms of itself",
-                             help="give one of the constants a number")
+        number, negated, problem = self._const_chain(name)
+        if problem is not None:
+            what, at = problem
+            if what == "unknown":
+                missing = at.name.name
+                diag_args = ("E013", at.name.span, f"unknown constant {_code(missing)}")
+                help = did_you_mean(missing, self.consts) or f"define it first: `const {missing} = VALUE`"
+            else:
+                diag_args = ("E023", at.span,
+                             f"constant {_code(at.name.name)} is defined in terms of itself")
+                help = "give one of the constants a number"
+            if diag_args not in self._const_reported:
+                self._const_reported.add(diag_args)
+                self.diags.error(*diag_args, help=help)
             return None
-        self._const_stack.append(name)
+        # Check the number where it is used: a constant's kind is that of
+        # its unit, or whatever its use wants when it has none.
+        inner = Collector(self.diags.source)
+        saved, self.diags = self.diags, inner
         try:
-            # Check the definition where it is used: a constant's kind is
-            # that of its unit, or whatever its use wants when it has none.
-            inner = Collector(self.diags.source)
-            saved, self.diags = self.diags, inner
-            try:
-                q = self._value(const.value, kind, param)
-            finally:
-                self.diags = saved
+            q = self._value(number, kind, param)
         finally:
-            self._const_stack.pop()
+            self.diags = saved
         if q is None:
             first = inner.items[0] if inner.items else None
             if first is not None and first.code == "E019":
+                const = self.consts[name]
                 self.diags.error("E019", ref.span,
                                  f"{_code(param)} expects {describe_kind(kind)}, but constant "
                                  f"{_code(name)} is `{_shown(const.value)}`",
                                  help=self._kind_help(kind, param),
                                  notes=[Note(f"{_code(name)} is defined here", const.span)])
-            else:
-                self.diags.items.extend(d for d in inner.items if d not in self.diags.items)
+                return None
+        seen = self._const_diagnostics
+        for d in inner.items:       # each problem of a definition, said once
+            if d not in seen:
+                seen.add(d)
+                self.diags.items.append(d)
+        if q is None:
             return None
-        if ref.negative:
+        if negated != ref.negative:
             q = Quantity(q.kind, -q.value, q.in_steps)
         return q
 
@@ -514,16 +634,43 @@ class Checker:
 
     # -- actions --
 
+    def _named_calls(self, name: str) -> list:
+        """The calls of named actions in action `name`'s body."""
+        return [call for step in self.actions[name].body.steps for call in step.calls
+                if isinstance(call, ast.Call) and not call.args
+                and call.name.name in self.actions and call.name.name not in self.externs]
+
+    def _resolve_named_actions(self):
+        """Resolve every named action, the actions it runs first. A
+        depth-first walk with a stack of its own rather than recursion, so a
+        chain of thousands of actions is fine; a call back into an action
+        still being walked closes a cycle (E023 when its body is resolved)."""
+        state: dict = {}            # name -> "open" while walked, "done" after
+        order = []
+        for root in self.actions:
+            if root in state:
+                continue
+            state[root] = "open"
+            stack = [(root, iter(self._named_calls(root)))]
+            while stack:
+                name, calls = stack[-1]
+                for call in calls:
+                    callee = call.name.name
+                    if callee not in state:
+                        state[callee] = "open"
+                        stack.append((callee, iter(self._named_calls(callee))))
+                        break
+                    if state[callee] == "open":
+                        self._cycle_calls.add(id(call))
+                else:
+                    stack.pop()
+                    state[name] = "done"
+                    order.append(name)
+        for name in order:
+            self._resolved_actions[name] = self._body(self.actions[name].body)
+
     def _named_action(self, name: str) -> list:
-        if name in self._resolved_actions:
-            return self._resolved_actions[name]
-        self._resolved_actions[name] = []     # a cycle finds this empty body
-        node = self.actions[name]
-        self._resolving.append(name)
-        body = self._body(node.body)
-        self._resolving.pop()
-        self._resolved_actions[name] = body
-        return body
+        return self._resolved_actions.get(name, [])
 
     def _body(self, body: ast.ActionBody) -> list:
         steps = []
@@ -565,12 +712,11 @@ class Checker:
                                  help=f"write `{name}` alone; named actions have no parameters",
                                  notes=[Note(f"{_code(name)} is defined here", self.actions[name].span)])
                 return None
-            if name in self._resolving:
+            if id(call) in self._cycle_calls:
                 self.diags.error("E023", call.name.span,
                                  f"action {_code(name)} is defined in terms of itself",
                                  help="an action cannot run itself; use a `repeat` rule to do something again")
                 return None
-            self._named_action(name)
             return ResolvedCall("named", name, {}, {}, call)
         if self.broken_externs.get(name) == "action":
             return None               # its declaration is already reported
@@ -708,7 +854,7 @@ class Checker:
 
     # -- whole-program warnings --
 
-    def _never_fire(self, out: CheckedProgram):
+    def _never_fire(self, out: CheckedProgram, complete: bool):
         needs = {"timer": ("set_timer", "W001", "no action runs `set_timer`",
                            "add `set_timer` to an action, e.g. `on immediate do set_timer`"),
                  "sensor": ("start_sensor", "W002", "no action runs `start_sensor`",
@@ -719,15 +865,16 @@ class Checker:
                 continue
             if event.name in needs:
                 action, code, why, fix = needs[event.name]
-                if action not in self.called:
+                if action not in self.called and complete:
                     self.diags.warning(code, node.event.span, f"this rule can never fire: {why}",
                                        help=fix)
-            elif event.name == "stop_motor" and not (self.called & MOTION_ACTIONS) \
-                    and not any(e.kind == "action" for e in self.externs.values()):
-                self.diags.warning("W003", node.event.span,
-                                   "this rule can never fire: no action starts a motion",
-                                   help="`stop_motor` fires when a `start_straight` or `start_curve` "
-                                        "motion ends")
+            elif event.name == "stop_motor":
+                if complete and not (self.called & MOTION_ACTIONS) \
+                        and not any(e.kind == "action" for e in self.externs.values()):
+                    self.diags.warning("W003", node.event.span,
+                                       "this rule can never fire: no action starts a motion",
+                                       help="`stop_motor` fires when a `start_straight` or "
+                                            "`start_curve` motion ends")
             elif event.name == "immediate" and rule.repeat:
                 self.diags.warning("W004", node.span,
                                    "`immediate repeat` runs its action at every poll, about 1000 times a second",
@@ -747,7 +894,7 @@ class Checker:
             if name not in self.const_used:
                 self.diags.warning("W007", node.name.span, f"constant {_code(name)} is never used",
                                    help="use it or remove it")
-        if not self.program.of_type(ast.Rule) and not self.diags.has_errors:
+        if not self.program.of_type(ast.Rule):
             self.diags.warning("W006", Span(1, 1, 1, 1), "this program has no rules: it does nothing",
                                help="add a rule, e.g. `on immediate do start_straight(200, 10 cm)`")
 
@@ -768,6 +915,10 @@ class Checker:
 
 _ROBOT_EXAMPLE = {"wheel_diameter": "41 mm", "wheel_circumference": "128.8 mm",
                   "axle": "53 mm", "steps_per_rev": "1000", "max_speed": "1000 steps/s"}
+
+
+def _clip(text: str, limit: int = 24) -> str:
+    return text if len(text) <= limit else text[:limit] + "..."
 
 
 def _either(names) -> str:

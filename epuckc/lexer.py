@@ -56,7 +56,8 @@ MAX_LEXICAL_ERRORS = 20
 _TOKEN_RE = re.compile(r"""
     (?P<space>[ \t\r\n\f\v]+)
   | (?P<comment>\#[^\n]*)
-  | (?P<NAME>[A-Za-z_][A-Za-z0-9_]*)
+  | (?P<NAME>(?![0-9])\w+)
+  | (?P<exponent>[0-9]+(?:\.[0-9]+)?[eE][+-]?[0-9]+)
   | (?P<NUMBER>[0-9]+(?:\.[0-9]+)?)
   | (?P<STRING>"(?:[^"\\\n]|\\.)*")
   | (?P<open_string>"(?:[^"\\\n]|\\.)*)
@@ -64,7 +65,11 @@ _TOKEN_RE = re.compile(r"""
 """, re.VERBOSE)
 
 # A run of characters that start no token (every other character starts one).
-_BAD_RE = re.compile(r"""[^ \t\r\n\f\v#A-Za-z_0-9"(){},:=/\-><]+""")
+_BAD_RE = re.compile(r"""[^\w \t\r\n\f\v#"(){},:=/\-><]+""")
+
+# A NAME may hold any letters, so that `café` is one token and one error
+# (E008) rather than a bad character per accent.
+_ASCII_NAME_RE = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
 
 
 def iter_tokens(source: SourceFile, diags: Collector):
@@ -77,6 +82,7 @@ def iter_tokens(source: SourceFile, diags: Collector):
     line, line_start = 1, 0         # where `pos` is, kept up to date by hand
     keywords, punctuation = KEYWORDS, PUNCTUATION
     after_bad = False
+    not_ascii: set = set()
     while pos < n:
         m = match(text, pos)
         if m is None:
@@ -111,6 +117,12 @@ def iter_tokens(source: SourceFile, diags: Collector):
         value = m.group()
         if kind == "NAME":
             kind = keywords.get(value, "NAME")
+            if kind == "NAME" and not _ASCII_NAME_RE.match(value) and value not in not_ascii:
+                not_ascii.add(value)        # said once per name
+                _not_ascii(source, diags, pos, end, value)
+        elif kind == "exponent":
+            value = _exponent(source, diags, pos, end, value)
+            kind = "NUMBER"
         elif kind == "punct":
             kind = punctuation[value]
         elif kind == "open_string":
@@ -127,6 +139,38 @@ def iter_tokens(source: SourceFile, diags: Collector):
         pos = end
 
 
+def _not_ascii(source, diags, start, end, name):
+    import unicodedata
+    others = sorted({c for c in name if not (c.isascii() and (c.isalnum() or c == "_"))},
+                    key=name.index)
+    plain = unicodedata.normalize("NFKD", name).encode("ascii", "ignore").decode()
+    plain = re.sub(r"\W", "", plain)
+    if not plain or plain[0].isdigit():
+        plain = "n_" + plain
+    diags.error("E008", source.span(start, end),
+                f"names are ASCII: `{name}` has {', '.join(f'`{c}`' for c in others)}",
+                help=f"write it with ASCII letters, digits and `_`, e.g. `{plain}`")
+
+
+def _exponent(source, diags, start, end, text) -> str:
+    """Report a number written with an exponent (E007); return it written
+    out, so that the rest of the file is checked with the meant value."""
+    from decimal import Decimal, InvalidOperation
+    mantissa, _, power = text.lower().partition("e")
+    try:
+        exact = Decimal(text)
+        plain = format(exact, "f") if abs(int(power)) <= 12 else None
+    except (InvalidOperation, ValueError):
+        plain = None
+    if plain is not None and "." in plain:
+        plain = plain.rstrip("0").rstrip(".")
+    diags.error("E007", source.span(start, end),
+                f"numbers have no exponent: `{text}`",
+                help=f"write `{plain}`" if plain is not None else
+                "write the number out in full, or use a larger unit")
+    return plain if plain is not None else mantissa
+
+
 def iter_statements(tokens):
     """Cut the token stream before every keyword that starts a statement.
     `action` after `extern`, and the `on` of `rule NAME: on ...`, belong to
@@ -134,7 +178,9 @@ def iter_statements(tokens):
     current: list = []
     seen_on = False
     for tok in tokens:
-        starts = tok.type in STATEMENT_STARTS and current
+        starts = (tok.type in STATEMENT_STARTS
+                  or (tok.type == "NAME" and current and current[-1].line < tok.line
+                      and KEYWORDS.get(tok.value.lower()) in STATEMENT_STARTS)) and current
         if starts and tok.type == "_ACTION" and current[-1].type == "_EXTERN":
             starts = False
         if starts and tok.type == "_ON" and current[0].type == "_RULE" and not seen_on:

@@ -11,7 +11,7 @@ from functools import lru_cache
 from . import ast
 from . import lalr
 from .diagnostics import Collector
-from .lexer import iter_statements, iter_tokens
+from .lexer import KEYWORDS, STATEMENT_STARTS, iter_statements, iter_tokens
 from .resources import grammar_path
 from .source import SourceFile, Span
 
@@ -102,8 +102,21 @@ def _syntax_error(exc: lalr.ParseError, chunk: list, following, source: SourceFi
         prev = chunk[index - 1] if index > 0 else None
         found = _describe_found(tok)
         span = Span(tok.line, tok.column, tok.end_line, tok.end_column)
-    wanted, hint = _describe_expected(prev, set(exc.expected))
+    expected = set(exc.expected)
+    wanted, hint = _describe_expected(prev, expected)
     after = f" after `{prev.value}`" if prev is not None else ""
+    if tok.type == "_EQUAL" and "_COLON" in expected and prev is not None:
+        # `start_straight(speed = 300, ...)`: arguments are named with `:`
+        diags.error("E001", span, f"expected `:` after `{prev.value}`, found `=`",
+                    help=f"arguments are named with `:`: write `{prev.value}: ...`")
+        return
+    keyword = KEYWORDS.get(tok.value.lower()) if tok.type == "NAME" else None
+    if keyword is not None and (keyword in expected
+                                or (prev is None and keyword in STATEMENT_STARTS)):
+        diags.error("E001", span, f"expected {wanted}{after}, found `{tok.value}`",
+                    help=f"keywords are lower case: write `{tok.value.lower()}`, "
+                         f"not `{tok.value}`")
+        return
     diags.error("E001", span, f"expected {wanted}{after}, found {found}", help=hint)
 
 

@@ -31,6 +31,11 @@ class SourceFile:
 
     def __init__(self, name: str, text: str):
         self.name = name
+        # Every line end is `\n`: `\r\n` (Windows) and a lone `\r` (old Mac
+        # OS, some editors) too, so a comment ends at a lone `\r` instead of
+        # swallowing the rest of the file. Columns are unchanged.
+        if "\r" in text:
+            text = text.replace("\r\n", "\n").replace("\r", "\n")
         self.text = text
         self._line_starts = [0]
         newline = text.find("\n")

@@ -20,9 +20,10 @@ from .helpers import CASES, run_cli
 REPO = Path(__file__).resolve().parents[2]
 ANSI = re.compile(r"\033\[[0-9;]*m")
 
-TWO_PROBLEMS = """const unused = 3
-on immediate do start_straight(300, 10 cm)
+TWO_PROBLEMS = """const pause = 3
+on immediate do start_straight(300, 10 cm), set_timer
 on timr(2 s) do stop_motor
+on timer(pause) do exit_main
 """
 
 
@@ -43,7 +44,8 @@ def test_gcc_format(work, capsys):
     assert status == 1 and out == ""
     lines = err.splitlines()
     assert len(lines) == 2
-    assert lines[0] == "two.epk:1:7: warning: constant `unused` is never used [W007] (help: use it or remove it)"
+    assert lines[0] == ("two.epk:1:15: warning: `3` without a unit is 3 ms: did you mean 3 s? [W008] "
+                        "(help: write `3 s`, or `3 ms` if milliseconds are meant)")
     assert re.fullmatch(r"two\.epk:3:4: error: unknown event `timr` \[E010\].*", lines[1])
     for line in lines:      # what editors' problem matchers read
         assert re.match(r"^[^:]+:\d+:\d+: (error|warning): .* \[[EW]\d{3}\]", line)
@@ -53,7 +55,7 @@ def test_short_format(work, capsys):
     status, out, err = run_cli(["check", "--format", "short", "two.epk"], capsys)
     assert status == 1
     assert err.splitlines() == [
-        "two.epk:1:7: warning[W007]: constant `unused` is never used",
+        "two.epk:1:15: warning[W008]: `3` without a unit is 3 ms: did you mean 3 s?",
         "two.epk:3:4: error[E010]: unknown event `timr`",
     ]
 
@@ -62,7 +64,7 @@ def test_json_format(work, capsys):
     status, out, err = run_cli(["check", "--format", "json", "two.epk"], capsys)
     assert status == 1 and err == ""
     diags = json.loads(out)
-    assert [d["code"] for d in diags] == ["W007", "E010"]
+    assert [d["code"] for d in diags] == ["W008", "E010"]
     for d in diags:
         assert {"code", "severity", "message", "file", "line", "column", "end_line",
                 "end_column", "help"} <= set(d)
@@ -92,6 +94,31 @@ def test_missing_file_is_a_usage_error(work, capsys):
     status, out, err = run_cli(["check", "nowhere.epk"], capsys)
     assert status == 2
     assert "nowhere.epk" in err and "Traceback" not in err
+
+
+@pytest.mark.parametrize("fmt", ["human", "gcc", "short", "json"])
+def test_a_missing_file_is_a_diagnostic_and_the_rest_is_checked(work, capsys, fmt):
+    status, out, err = run_cli(["check", "--format", fmt, "two.epk", "missing.epk",
+                                "warn.epk"], capsys)
+    assert status == 2
+    text = out if fmt == "json" else err
+    assert "E005" in text and "missing.epk" in text
+    assert "E010" in text and "W007" in text          # the other files are checked
+    if fmt == "json":
+        diags = json.loads(out)
+        [missing] = [d for d in diags if d["file"] == "missing.epk"]
+        assert missing["code"] == "E005" and missing["severity"] == "error"
+        assert "No such file" in missing["message"]
+
+
+@pytest.mark.parametrize("fmt", ["human", "json"])
+def test_a_c_file_is_named_as_c(work, capsys, fmt):
+    (work / "fig2.c").write_text('#include "utility.h"\nint main(void) { return 0; }\n')
+    status, out, err = run_cli(["check", "--format", fmt, "fig2.c"], capsys)
+    assert status == 1
+    text = out if fmt == "json" else err
+    assert "E006" in text and "epuckc run fig2.c" in text
+    assert "E001" not in text and "E002" not in text
 
 
 def test_directory_is_a_usage_error(work, capsys):

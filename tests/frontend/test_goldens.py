@@ -54,7 +54,8 @@ def test_golden(case, capsys, monkeypatch, update_goldens):
     errors = sum(d["severity"] == "error" for d in diags)
     warnings = sum(d["severity"] == "warning" for d in diags)
     failed = errors > 0 or ("--werror" in args and warnings > 0)
-    assert status == (1 if failed else 0)
+    unreadable = any(d["code"] == "E005" for d in diags)
+    assert status == (2 if unreadable else 1 if failed else 0)
     assert "\033[" not in err          # captured output is not a terminal
     assert str(CASES) not in err + json_out
     if not diags:

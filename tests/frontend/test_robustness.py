@@ -103,9 +103,12 @@ def test_utf8_bom_is_accepted(tmp_path):
     assert codes(check_text(data=data, tmp_path=tmp_path)) == []
 
 
-def test_non_ascii_letters_are_reported_once_per_run():
-    report = check_text("on immediate do d\u00e9marrer\n")
-    assert "E002" in codes(report)
+def test_non_ascii_letters_are_reported_once_per_name():
+    report = check_text("action d\u00e9marr\u00e9 = stop_motor\n"
+                        "on immediate do d\u00e9marr\u00e9, d\u00e9marr\u00e9\n")
+    assert codes(report) == ["E008"]
+    [diag] = report.diagnostics
+    assert "names are ASCII" in diag.message and "`demarre`" in diag.help
 
 
 def test_huge_line_of_junk():
