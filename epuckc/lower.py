@@ -239,8 +239,20 @@ class _Lowerer:
         return out
 
     def named_steps(self, name: str) -> list:
-        if name not in self.flat:
-            self.flat[name] = self.flatten(self.program.actions[name], f"a_{name}")
+        # The actions it runs are flattened first, deepest first, with a
+        # stack of our own: flatten then finds them done and never recurses
+        # (a chain of thousands of named actions is as deep as Python's stack).
+        stack = [(name, False)]
+        while stack:
+            current, callees_done = stack.pop()
+            if current in self.flat:
+                continue
+            if callees_done:
+                self.flat[current] = self.flatten(self.program.actions[current], f"a_{current}")
+                continue
+            stack.append((current, True))
+            stack.extend((c.name, False) for step in self.program.actions[current]
+                         for c in step if c.kind == "named" and c.name not in self.flat)
         return self.flat[name]
 
     def step_action(self, prims: list, fname: str, comment: str) -> tuple[str, str]:
