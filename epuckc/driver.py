@@ -77,12 +77,12 @@ def run_host(program: Program, scenario: Optional[str], time_limit_ms: int,
     # environment variables.
     env["EPUCK_FRONTEND"] = "epuckc"
     if scenario:
-        env["EPUCK_SCENARIO"] = str(Path(scenario).resolve())
+        env["EPUCK_SCENARIO"] = scenario     # as typed: the messages show it
     if trace == "-":            # JSON lines on stdout, instead of the readable trace
         env["EPUCK_TRACE"] = "/dev/stdout"
         env["EPUCK_QUIET"] = "1"
     elif trace:
-        env["EPUCK_TRACE"] = str(Path(trace).resolve())
+        env["EPUCK_TRACE"] = trace
     with host_executable(program) as exe:
         sys.stdout.flush()
         try:

@@ -10,6 +10,7 @@
  *   EPUCK_TRACE          JSON-lines trace output path; none: no JSON trace
  *   EPUCK_TIME_LIMIT_MS  virtual time limit, default 60000
  *   EPUCK_QUIET          set and not "0": no readable trace on stdout
+ *   EPUCK_FRONTEND       "epuckc": messages name epuckc's options (--trace)
  * Exit statuses: 2 bad setting or scenario, 3 time limit reached.
  * docs/runtime.md describes the formats.
  */
@@ -156,6 +157,25 @@ void rt_name_event(int event_id, const char *name)
 
 /* ---- settings errors ------------------------------------------------------ */
 
+/* Run by `epuckc run` (EPUCK_FRONTEND=epuckc), messages name the options the
+ * user typed rather than the environment variables they became. */
+static const char *setting_name(const char *variable)
+{
+    static const char *const options[][2] = {
+        {"EPUCK_TIME_LIMIT_MS", "--time-limit"},
+        {"EPUCK_TRACE", "--trace"},
+        {"EPUCK_SCENARIO", "--scenario"},
+    };
+    const char *frontend = getenv("EPUCK_FRONTEND");
+    size_t i;
+    if (frontend == NULL || strcmp(frontend, "epuckc") != 0)
+        return variable;
+    for (i = 0; i < sizeof options / sizeof options[0]; i++)
+        if (strcmp(options[i][0], variable) == 0)
+            return options[i][1];
+    return variable;
+}
+
 static void fail(const char *fmt, ...)
 {
     va_list ap;
@@ -168,7 +188,9 @@ static void fail(const char *fmt, ...)
 }
 
 /* ---- scenario ---------------------------------------------------------------
- * One line per change: "<time> ms|s irN=V ...", values hold until changed. */
+ * One line per change: "<time> [ms|s|min] irN=V ...", values hold until
+ * changed.  Lines end with LF, CRLF or a lone CR; a UTF-8 byte order mark
+ * is skipped; a NUL or another control character means the file is not text. */
 
 typedef struct {
     long t_ms;
@@ -177,7 +199,7 @@ typedef struct {
 } scenario_line;
 
 static scenario_line *scenario;
-static size_t scenario_size, scenario_next;
+static size_t scenario_size, scenario_capacity, scenario_next;
 
 /* Parses a time token (and maybe the unit token after it) into ms.  Returns
  * the number of tokens used (1 or 2), or 0 with *err set. */
@@ -206,22 +228,31 @@ static int parse_time(char **tok, int ntok, long *ms, const char **err)
         }
     }
     if (digits == 0) {
-        *err = "expected a time (\"<number> ms\" or \"<number> s\")";
+        *err = "expected a time (\"<number> ms\", \"<number> s\" or \"<number> min\")";
         return 0;
     }
     unit = s;
-    if (*unit == '\0' && ntok > 1 && (strcmp(tok[1], "ms") == 0 || strcmp(tok[1], "s") == 0)) {
+    if (*unit == '\0' && ntok > 1 && (strcmp(tok[1], "ms") == 0 || strcmp(tok[1], "s") == 0
+                                      || strcmp(tok[1], "min") == 0)) {
         unit = tok[1];
         used = 2;
+    }
+    while (frac_digits < 3 && (strcmp(unit, "s") == 0 || strcmp(unit, "min") == 0)) {
+        frac *= 10;
+        frac_digits++;
     }
     if (strcmp(unit, "s") == 0) {
         if (whole > MAX_SCENARIO_MS / 1000) {
             *err = "time too large";
             return 0;
         }
-        while (frac_digits++ < 3)
-            frac *= 10;
         *ms = whole * 1000 + frac;
+    } else if (strcmp(unit, "min") == 0) {
+        if (whole > MAX_SCENARIO_MS / 60000) {
+            *err = "time too large";
+            return 0;
+        }
+        *ms = whole * 60000 + frac * 60;
     } else if (strcmp(unit, "ms") == 0 || *unit == '\0') {
         if (frac_digits > 0 || s[-1] == '.') {
             *err = "milliseconds must be a whole number";
@@ -229,7 +260,7 @@ static int parse_time(char **tok, int ntok, long *ms, const char **err)
         }
         *ms = whole;
     } else {
-        *err = "unknown time unit (use ms or s)";
+        *err = "unknown time unit (use ms, s or min)";
         return 0;
     }
     if (*ms > MAX_SCENARIO_MS) {
@@ -261,60 +292,119 @@ static int parse_assignment(const char *s, int *n, int *v)
     return 1;
 }
 
-static void load_scenario(const char *path)
+/* The whole file, NUL-terminated; *size excludes the terminator. */
+static char *read_file(const char *path, size_t *size)
 {
-    FILE *f = fopen(path, "r");
-    char line[1024];
-    long lineno = 0, last_t = 0;
+    FILE *f = fopen(path, "rb");
+    size_t capacity = 4096, used = 0, got;
+    char *data;
 
     if (f == NULL)
-        fail("%s: cannot open scenario: %s", path, strerror(errno));
-    while (fgets(line, sizeof line, f) != NULL) {
-        char *tok[64];
-        int ntok = 0, i, used, n, v;
-        char *p, *hash;
-        const char *err = NULL;
-        scenario_line sl;
-
-        lineno++;
-        if (strchr(line, '\n') == NULL && !feof(f))
-            fail("%s:%ld: line too long", path, lineno);
-        hash = strchr(line, '#');
-        if (hash != NULL)
-            *hash = '\0';
-        for (p = strtok(line, " \t\r\n"); p != NULL; p = strtok(NULL, " \t\r\n")) {
-            if (ntok == 64)
-                fail("%s:%ld: too many items on one line", path, lineno);
-            tok[ntok++] = p;
-        }
-        if (ntok == 0)
-            continue;
-        memset(&sl, 0, sizeof sl);
-        used = parse_time(tok, ntok, &sl.t_ms, &err);
-        if (used == 0)
-            fail("%s:%ld: %s: '%s'", path, lineno, err, tok[0]);
-        if (sl.t_ms < last_t)
-            fail("%s:%ld: time %ld ms is before the previous line's %ld ms",
-                 path, lineno, sl.t_ms, last_t);
-        last_t = sl.t_ms;
-        for (i = used; i < ntok; i++) {
-            if (!parse_assignment(tok[i], &n, &v))
-                fail("%s:%ld: expected irN=V with N 0..7 and V 0..4095, got '%s'",
-                     path, lineno, tok[i]);
-            sl.set[n] = 1;
-            sl.value[n] = v;
-        }
-        {
-            scenario_line *grown = realloc(scenario, (scenario_size + 1) * sizeof *grown);
+        fail("%s: cannot open the scenario: %s", path, strerror(errno));
+    data = malloc(capacity);
+    if (data == NULL)
+        fail("%s: out of memory", path);
+    while ((got = fread(data + used, 1, capacity - used - 1, f)) > 0) {
+        used += got;
+        if (capacity - used - 1 == 0) {
+            char *grown;
+            if (capacity > ((size_t)-1) / 2)
+                fail("%s: too large", path);
+            grown = realloc(data, capacity * 2);
             if (grown == NULL)
-                fail("%s:%ld: out of memory", path, lineno);
-            scenario = grown;
-            scenario[scenario_size++] = sl;
+                fail("%s: out of memory", path);
+            data = grown;
+            capacity *= 2;
         }
     }
     if (ferror(f))
-        fail("%s: read error", path);
+        fail("%s: cannot read the scenario: %s", path, strerror(errno));
     fclose(f);
+    data[used] = '\0';
+    *size = used;
+    return data;
+}
+
+static void add_scenario_line(const char *path, long lineno, const scenario_line *sl)
+{
+    if (scenario_size == scenario_capacity) {      /* doubling: linear in the lines */
+        size_t capacity = scenario_capacity ? scenario_capacity * 2 : 64;
+        scenario_line *grown = realloc(scenario, capacity * sizeof *grown);
+        if (grown == NULL)
+            fail("%s:%ld: out of memory", path, lineno);
+        scenario = grown;
+        scenario_capacity = capacity;
+    }
+    scenario[scenario_size++] = *sl;
+}
+
+static void parse_scenario_line(const char *path, long lineno, char *line, long *last_t)
+{
+    char *tok[64];
+    int ntok = 0, i, used, n, v;
+    char *p, *hash;
+    const char *err = NULL;
+    scenario_line sl;
+
+    hash = strchr(line, '#');
+    if (hash != NULL)
+        *hash = '\0';
+    for (p = strtok(line, " \t\f\v"); p != NULL; p = strtok(NULL, " \t\f\v")) {
+        if (ntok == 64)
+            fail("%s:%ld: too many items on one line", path, lineno);
+        tok[ntok++] = p;
+    }
+    if (ntok == 0)
+        return;
+    memset(&sl, 0, sizeof sl);
+    used = parse_time(tok, ntok, &sl.t_ms, &err);
+    if (used == 0)
+        fail("%s:%ld: %s: '%s'", path, lineno, err, tok[0]);
+    if (sl.t_ms < *last_t)
+        fail("%s:%ld: time %ld ms is before the previous line's %ld ms",
+             path, lineno, sl.t_ms, *last_t);
+    *last_t = sl.t_ms;
+    for (i = used; i < ntok; i++) {
+        if (i == used && used == 1 && isalpha((unsigned char)tok[i][0])
+                && strchr(tok[i], '=') == NULL)
+            fail("%s:%ld: unknown time unit '%s' (use ms, s or min)", path, lineno, tok[i]);
+        if (!parse_assignment(tok[i], &n, &v))
+            fail("%s:%ld: expected irN=V with N 0..7 and V 0..4095, got '%s'",
+                 path, lineno, tok[i]);
+        sl.set[n] = 1;
+        sl.value[n] = v;
+    }
+    add_scenario_line(path, lineno, &sl);
+}
+
+static void load_scenario(const char *path)
+{
+    size_t size, i, start;
+    char *data = read_file(path, &size);
+    long lineno = 1, last_t = 0;
+
+    start = 0;
+    if (size >= 3 && memcmp(data, "\xEF\xBB\xBF", 3) == 0)
+        start = 3;          /* a UTF-8 byte order mark, as some editors write */
+    for (i = start; i <= size; i++) {
+        unsigned char c = (unsigned char)data[i];
+        if (i == size || c == '\n' || c == '\r') {
+            int crlf = c == '\r' && i + 1 < size && data[i + 1] == '\n';
+            data[i] = '\0';
+            parse_scenario_line(path, lineno, data + start, &last_t);
+            lineno++;
+            if (crlf)
+                i++;
+            start = i + 1;
+        } else if (c == '\0') {
+            fail("%s:%ld: a NUL byte: this is not a text file (a scenario has lines "
+                 "such as \"1200 ms ir0=850\")", path, lineno);
+        } else if (c < 0x20 && c != '\t' && c != '\f' && c != '\v') {
+            fail("%s:%ld: control character 0x%02x: this is not a text file (a scenario "
+                 "has lines such as \"1200 ms ir0=850\")", path, lineno, c);
+        }
+    }
+    free(data);
 }
 
 /* Apply the scenario lines whose time has come. */
@@ -445,8 +535,8 @@ void rt_platform_init(void)
         errno = 0;
         v = strtol(limit, &end, 10);
         if (errno != 0 || *end != '\0' || v <= 0 || v > MAX_SCENARIO_MS || !isdigit((unsigned char)*limit))
-            fail("EPUCK_TIME_LIMIT_MS: expected a whole number of milliseconds "
-                 "from 1 to %ld, got '%s'", MAX_SCENARIO_MS, limit);
+            fail("%s: expected a whole number of milliseconds from 1 to %ld, got '%s'",
+                 setting_name("EPUCK_TIME_LIMIT_MS"), MAX_SCENARIO_MS, limit);
         limit_ms = v;
     }
     if (scn != NULL && *scn != '\0')
@@ -454,7 +544,7 @@ void rt_platform_init(void)
     if (trace != NULL && *trace != '\0') {
         trace_file = fopen(trace, "w");
         if (trace_file == NULL)
-            fail("EPUCK_TRACE: cannot write '%s': %s", trace, strerror(errno));
+            fail("%s: cannot write '%s': %s", setting_name("EPUCK_TRACE"), trace, strerror(errno));
     }
     scenario_apply(0);
 }

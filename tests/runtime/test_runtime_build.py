@@ -220,3 +220,69 @@ def test_bench_runtime_size_runs():
     assert res.returncode == 0, res.stdout + res.stderr
     assert "epuckrt.o" in res.stdout and "rules10.elf" in res.stdout
     assert res.stdout.count("(TOTALS)") == 2
+
+
+# ---- scenario files as users write them ---------------------------------------
+
+def _scenario_bytes(tmp_path, data: bytes):
+    path = tmp_path / "s.scn"
+    path.write_bytes(data)
+    return path
+
+
+@pytest.mark.parametrize("data", [
+    b"\xef\xbb\xbf0 ir0=0\n100 ms ir0=900\n200 ms ir0=0\n300 ms ir0=900\n",   # a BOM
+    b"0 ir0=0\r100 ms ir0=900\r200 ms ir0=0\r300 ms ir0=900\r",              # old Mac
+    b"0 ir0=0\r\n100 ms ir0=900\r\n200 ms ir0=0\r\n300 ms ir0=900",           # Windows, no last end
+    b"# caf\xc3\xa9\n0 ir0=0\n100 ms ir0=900\n0.2 s ir0=0\n0.005 min ir0=900\n",  # UTF-8, min
+])
+def test_scenario_line_ends_bom_and_minutes_are_accepted(tmp_path, data):
+    exe = build(tmp_path, PROGRAMS / "sensor_edge.c")
+    r = run(exe, tmp_path, scenario=_scenario_bytes(tmp_path, data))
+    assert r.returncode == 0, r.stderr
+    assert r.times("event", "sensor") == [1, 100, 200, 300]
+
+
+def test_scenario_in_minutes(tmp_path):
+    exe = build(tmp_path, PROGRAMS / "straight.c")
+    r = run(exe, tmp_path, scenario=_scenario_bytes(tmp_path, b"5 min ir0=1\n1.5min ir0=2\n"),
+            time_limit=10)
+    assert r.returncode == 2 and ":2: time 90000 ms is before the previous line's 300000 ms" \
+        in r.stderr
+
+
+@pytest.mark.parametrize("data, line, what", [
+    (b"0 ir0=0\n100 ms \x00\x00ir0=1\n", 2, "a NUL byte: this is not a text file"),
+    (b"\x7fELF\x02\x01\x01\x00\x00", 1, "this is not a text file"),
+    (b"0 ir0=0\n\x1b[31m5 ms\n", 2, "control character 0x1b"),
+    (b"5 h ir0=1\n", 1, "unknown time unit 'h' (use ms, s or min)"),
+    (b"5h ir0=1\n", 1, "unknown time unit (use ms, s or min)"),
+])
+def test_scenario_binary_or_unknown_units_are_clear_errors(tmp_path, data, line, what):
+    exe = build(tmp_path, PROGRAMS / "straight.c")
+    path = _scenario_bytes(tmp_path, data)
+    r = run(exe, tmp_path, scenario=path)
+    assert r.returncode == 2
+    assert f"{path}:{line}: " in r.stderr and what in r.stderr, r.stderr
+
+
+def test_scenario_of_80000_lines_loads_under_asan(tmp_path):
+    """80,000 lines load cleanly under ASan/UBSan, and the last one holds.
+    (The array grows geometrically; bench/scenario_load.py measures the
+    loading time against the one-line-at-a-time version: 243 s before.)"""
+    exe = build(tmp_path, PROGRAMS / "sensor_edge.c", sanitize=True)
+    lines = "".join(f"{t} ms ir0={900 if 100 <= t < 200 or t >= 300 else 0} ir7={t % 4096}\n"
+                    for t in range(80000))
+    r = run(exe, tmp_path, scenario=lines, env={"EPUCK_QUIET": "1"})
+    assert r.returncode == 0, r.stderr
+    assert r.times("event", "sensor") == [1, 100, 200, 300]
+
+
+def test_harness_names_the_options_typed_when_run_by_epuckc(tmp_path):
+    exe = build(tmp_path, PROGRAMS / "straight.c")
+    env = {"EPUCK_FRONTEND": "epuckc", "EPUCK_TRACE": str(tmp_path / "no" / "t.jsonl")}
+    r = run(exe, tmp_path, env=env)
+    assert r.returncode == 2 and r.stderr.startswith("epuck host: --trace: cannot write")
+    r = run(exe, tmp_path, time_limit="x", env={"EPUCK_FRONTEND": "epuckc"})
+    assert r.returncode == 2 and "--time-limit:" in r.stderr
+    assert "EPUCK_" not in r.stderr
