@@ -151,17 +151,11 @@ def load_tables(grammar: str, start: str) -> Tables:
     except (OSError, EOFError, ValueError, TypeError):
         pass
     data = build_tables(grammar, start)
-    tmp = path.with_name(f"{path.name}.{os.getpid()}.tmp")
-    try:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        with open(tmp, "wb") as f:
-            marshal.dump((key,) + data, f)
-        os.replace(tmp, path)       # atomic: a parallel run sees all or nothing
-    except (OSError, ValueError):
-        try:                        # read-only home: build each time
-            tmp.unlink()
-        except OSError:
-            pass
+    from .output import OutputError, write_file
+    try:                            # atomic: a parallel run sees all or nothing
+        write_file(path, marshal.dumps((key,) + data))
+    except (OutputError, ValueError):
+        pass                        # an unusable cache: build the tables each time
     return Tables(data)
 
 

@@ -221,14 +221,41 @@ class _Lowerer:
     def flatten(self, steps: list, owner: str) -> list:
         """Steps of primitives. A named action used alone as a step splices
         in its own steps; inside a comma list its first step runs in its
-        place and its later steps follow the list."""
+        place and its later steps follow the list.
+
+        Named actions inside are flattened on a stack of our own rather
+        than by recursion (a chain of thousands of named actions is deeper
+        than Python's stack), in the same order recursion would take."""
+        stack = [(self._flatten_steps(steps, owner), None)]
+        result = None
+        while True:
+            walk, name = stack[-1]
+            try:
+                needed = walk.send(result)
+            except StopIteration as done:
+                stack.pop()
+                if name is not None:
+                    self.flat[name] = done.value
+                if not stack:
+                    return done.value
+                result = done.value
+                continue
+            stack.append((self._flatten_steps(self.program.actions[needed], f"a_{needed}"),
+                          needed))
+            result = None
+
+    def _flatten_steps(self, steps: list, owner: str):
+        """flatten's body: yields the name of a named action it needs that
+        is not flattened yet, and is sent its steps."""
         out = []
         for step in steps:
             current: list = []
             later: list = []
             for call in step:
                 if call.kind == "named":
-                    inner = self.named_steps(call.name)
+                    inner = self.flat.get(call.name)
+                    if inner is None:
+                        inner = yield call.name
                     if inner:
                         current.extend(inner[0])
                         later.extend(inner[1:])
@@ -239,20 +266,8 @@ class _Lowerer:
         return out
 
     def named_steps(self, name: str) -> list:
-        # The actions it runs are flattened first, deepest first, with a
-        # stack of our own: flatten then finds them done and never recurses
-        # (a chain of thousands of named actions is as deep as Python's stack).
-        stack = [(name, False)]
-        while stack:
-            current, callees_done = stack.pop()
-            if current in self.flat:
-                continue
-            if callees_done:
-                self.flat[current] = self.flatten(self.program.actions[current], f"a_{current}")
-                continue
-            stack.append((current, True))
-            stack.extend((c.name, False) for step in self.program.actions[current]
-                         for c in step if c.kind == "named" and c.name not in self.flat)
+        if name not in self.flat:
+            self.flat[name] = self.flatten(self.program.actions[name], f"a_{name}")
         return self.flat[name]
 
     def step_action(self, prims: list, fname: str, comment: str) -> tuple[str, str]:

@@ -145,7 +145,10 @@ def _replace_atomically(path: Path, target: Path, data: bytes, mode: int) -> Non
     except OSError as exc:
         raise OutputError(describe_os_error(exc, folder, "create the folder")) from None
     try:
-        fd, tmp = tempfile.mkstemp(prefix=f"{TEMP_PREFIX}{target.name[:64]}.", dir=folder)
+        # The pid in the name tells a sweep (build.sweep_stale) whether the
+        # writer is still alive.
+        fd, tmp = tempfile.mkstemp(prefix=f"{TEMP_PREFIX}{os.getpid()}-{target.name[:64]}.",
+                                   dir=folder)
     except OSError as exc:
         raise OutputError(describe_os_error(exc, path)) from None
     try:
