@@ -531,6 +531,9 @@ def format_text(text: str, filename: str = "<stdin>") -> str:
     if text.startswith("\ufeff"):
         text = text[1:]
     newline = "\r\n" if "\r\n" in text[: text.find("\n") + 1] else "\n"
+    # Lines end as SourceFile reads them (a lone CR too), so that the
+    # tokens' offsets are offsets into this text.
+    text = text.replace("\r\n", "\n").replace("\r", "\n")
     tokens, chunks, statements = _parse(text, filename)
     comments = _collect_comments(text, tokens)
     lines: list = []
@@ -597,6 +600,7 @@ def run(names: list, check: bool = False, diff: bool = False, colour: bool = Fal
     import difflib
 
     from .diagnostics import Report, render_report
+    from .output import OutputError
     status = 0
     report = Report()
     for name in _targets(names):
@@ -632,9 +636,8 @@ def run(names: list, check: bool = False, diff: bool = False, colour: bool = Fal
         elif not diff:
             try:
                 _write_in_place(Path(name), formatted)
-            except OSError as exc:
-                print(f"epuckc: error: cannot write {name}: {exc.strerror or exc}",
-                      file=sys.stderr)
+            except OutputError as exc:
+                print(f"epuckc: error: {exc}", file=sys.stderr)
                 status = max(status, 2)
     if report.diagnostics:
         sys.stderr.write(render_report(report, "human", colour=colour))
@@ -642,11 +645,8 @@ def run(names: list, check: bool = False, diff: bool = False, colour: bool = Fal
 
 
 def _write_in_place(path: Path, text: str):
-    """Replace the file (through a symbolic link: its target) with `text`,
-    atomically, keeping its permissions. The source's BOM is not kept."""
-    import os
-
-    from .build import write_atomic
-    real = Path(os.path.realpath(path))
-    mode = real.stat().st_mode & 0o7777
-    write_atomic(real, text.encode("utf-8"), mode=mode)
+    """Replace the file with `text` by output.py's rules: atomically,
+    through a symbolic link to its target, keeping its permissions. The
+    source's BOM is not kept."""
+    from .output import write_file
+    write_file(path, text)

@@ -30,8 +30,9 @@ STDOUT = "-"
 TEMP_PREFIX = ".epuckc-tmp-"     # temporary files and folders; stale ones are swept
 
 
-class OutputError(Exception):
-    """A file could not be written; the message names it and says why."""
+class OutputError(OSError):
+    """A file could not be written; the message names it and says why. An
+    OSError, so that code catching those still catches it."""
 
 
 def is_stdout(path) -> bool:

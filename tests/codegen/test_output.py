@@ -262,3 +262,18 @@ def test_trace_dash_writes_json_lines_to_standard_output(prog, tmp_path):
     records = [json.loads(line) for line in result.stdout.splitlines()]
     assert records[0]["kind"] == "event" and records[-1]["kind"] == "exit"
     assert not (tmp_path / "-").exists()
+
+
+def test_fmt_on_a_full_disk_names_the_file_and_keeps_it(tmp_path, monkeypatch, capsys):
+    from epuckc import fmt
+    path = tmp_path / "messy.epk"
+    path.write_text("on immediate do   stop_motor\n")
+
+    def no_space(fd, data):
+        raise OSError(errno.ENOSPC, os.strerror(errno.ENOSPC))
+    monkeypatch.setattr(output.os, "write", no_space)
+    assert fmt.run([str(path)]) == 2
+    err = capsys.readouterr().err
+    assert f"cannot write {path}: No space left on device" in err and "internal" not in err
+    assert path.read_text() == "on immediate do   stop_motor\n"
+    assert [p.name for p in tmp_path.iterdir()] == ["messy.epk"]
