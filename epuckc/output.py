@@ -12,7 +12,8 @@
   device node with a regular file would break the machine. So is anything
   under /dev and /proc (`/dev/stdout` redirected to a file is the shell's
   open file, not a path to replace).
-- A replaced regular file keeps its permission bits.
+- A replaced regular file keeps its permission bits (plus the execute bits
+  when an executable is written).
 - Every failure is an OutputError whose message names the path and says
   what to do (a full disk, a read-only folder, a directory in the way).
 """
@@ -110,8 +111,8 @@ def write_file(path: Union[str, Path], data: Union[str, bytes], mode: int = 0o64
         target = _target(path)
     except OSError as exc:
         raise OutputError(describe_os_error(exc, path)) from None
-    if st is not None:
-        mode = stat.S_IMODE(st.st_mode)
+    if st is not None:      # its permissions stay; an executable stays executable
+        mode = stat.S_IMODE(st.st_mode) | (mode & 0o111)
     _replace_atomically(path, target, data, mode)
 
 

@@ -277,3 +277,11 @@ def test_fmt_on_a_full_disk_names_the_file_and_keeps_it(tmp_path, monkeypatch, c
     assert f"cannot write {path}: No space left on device" in err and "internal" not in err
     assert path.read_text() == "on immediate do   stop_motor\n"
     assert [p.name for p in tmp_path.iterdir()] == ["messy.epk"]
+
+
+def test_an_executable_over_a_plain_file_is_executable(tmp_path):
+    path = tmp_path / "prog"
+    path.write_text("old")
+    path.chmod(0o600)
+    write_file(path, b"\x7fELF...", mode=0o755)
+    assert stat.S_IMODE(path.stat().st_mode) == 0o711
