@@ -23,10 +23,10 @@ from .units import (ANGLE, ARTICLE, DISTANCE, DURATION, INT, INT16_MAX, INT16_MI
                     KIND_UNITS, SPEED, UNITS, Geometry, Quantity, curve_wheels,
                     describe_kind, quantity, round_nearest)
 
-DEFAULT_CAPACITY = 32
+DEFAULT_CAPACITY = 32      # frontend.py passes the runtime header's MAX_ACTIONS/MAX_EVENTS
 # A duration written without a unit is in ms; below this many it was very
 # likely meant in seconds (`timer(2)`), and W008 says so.
-BARE_DURATION_WARNING = 100      # frontend.py passes the runtime header's MAX_ACTIONS/MAX_EVENTS
+BARE_DURATION_WARNING = 100
 
 # Names an extern's C function cannot have: C99's keywords, `main`, and the
 # runtime's own functions and types (epuckrt.h). User names elsewhere never

@@ -178,9 +178,7 @@ def iter_statements(tokens):
     current: list = []
     seen_on = False
     for tok in tokens:
-        starts = (tok.type in STATEMENT_STARTS
-                  or (tok.type == "NAME" and current and current[-1].line < tok.line
-                      and KEYWORDS.get(tok.value.lower()) in STATEMENT_STARTS)) and current
+        starts = tok.type in STATEMENT_STARTS and current
         if starts and tok.type == "_ACTION" and current[-1].type == "_EXTERN":
             starts = False
         if starts and tok.type == "_ON" and current[0].type == "_RULE" and not seen_on:

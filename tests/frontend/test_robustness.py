@@ -248,3 +248,10 @@ def test_mutated_examples_never_crash(text):
 @given(st.text(max_size=200))
 def test_any_text_never_crashes(text):
     check_text(text)
+
+
+def test_capitalised_keywords_are_names_where_a_name_fits():
+    """`Robot` is a name (keywords are lower case): an action may be called
+    that, also first on a line inside a statement."""
+    report = check_text("action Robot = stop_motor\non immediate do\n    Robot\n")
+    assert codes(report) == []
