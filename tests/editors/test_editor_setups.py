@@ -18,8 +18,10 @@ REPO = Path(__file__).resolve().parents[2]
 README = (REPO / "editors" / "README.md").read_text(encoding="utf-8")
 PACKAGE = json.loads((REPO / "editors" / "vscode" / "package.json").read_text(encoding="utf-8"))
 
-PROGRAM = "const unused = 1\non immediate do strat_straight(300, 10 cm)\n"
-EXPECTED = [("prog.epk", 1, 7, "warning", "constant `unused` is never used"),
+# A warning that an error elsewhere does not silence (W008; W007 would be,
+# as a possible cascade), and an error.
+PROGRAM = "on timer(2) do set_timer\non immediate do strat_straight(300, 10 cm)\n"
+EXPECTED = [("prog.epk", 1, 10, "warning", "`2` without a unit is 2 ms: did you mean 2 s?"),
             ("prog.epk", 2, 17, "error", "unknown action `strat_straight`")]
 
 

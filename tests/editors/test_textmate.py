@@ -101,9 +101,17 @@ def _parses(path: Path):
     return None if diags.has_errors else (source, program)
 
 
+def _lone_cr(path: Path) -> bool:
+    """Lines that end with a lone CR: epuckc reads them as lines, but the
+    tokenising script here splits on LF and Vim needs 'fileformats' with
+    mac, so such files are left out of the editors' corpus."""
+    return b"\r" in path.read_bytes().replace(b"\r\n", b"")
+
+
 CORPUS = [p for p in sorted((REPO / "examples").glob("*.epk"))
           + sorted((REPO / "tests" / "golden").glob("*.epk"))
-          + sorted((REPO / "tests" / "frontend" / "cases").glob("*.epk")) if _parses(p)]
+          + sorted((REPO / "tests" / "frontend" / "cases").glob("*.epk"))
+          if not _lone_cr(p) and _parses(p)]
 
 
 @pytest.fixture(scope="module")

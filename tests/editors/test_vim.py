@@ -138,7 +138,7 @@ def test_vim_groups_over_the_corpus(groups):
 
 def test_the_ftplugin_and_the_compiler(tmp_path, monkeypatch, capsys):
     monkeypatch.chdir(tmp_path)
-    (tmp_path / "prog.epk").write_text("const unused = 1\non immediate do strat_straight(1, 1 cm)\n")
+    (tmp_path / "prog.epk").write_text("on timer(2) do set_timer\non immediate do strat_straight(1, 1 cm)\n")
     status, _, err = run_cli(["check", "--format", "gcc", "prog.epk"], capsys)
     assert status == 1
     (tmp_path / "out.txt").write_text(err)
@@ -152,7 +152,7 @@ def test_the_ftplugin_and_the_compiler(tmp_path, monkeypatch, capsys):
     report = (tmp_path / "report.txt").read_text().splitlines()
     assert report[:4] == ["epuck", "# %s", "epuckc fmt -", "epuckc check --format gcc %"]
     rows = [r.split("|", 4) for r in report[4:]]
-    assert [r[:4] for r in rows] == [["prog.epk", "1", "7", "w"], ["prog.epk", "2", "17", "e"]]
+    assert [r[:4] for r in rows] == [["prog.epk", "1", "10", "w"], ["prog.epk", "2", "17", "e"]]
     assert rows[1][4].startswith("unknown action `strat_straight` [E011]")
 
 

@@ -61,7 +61,8 @@ def test_every_golden_case_gives_valid_sarif_that_matches_the_json(case, capsys,
             assert result["message"]["text"].endswith(f"\nhelp: {diag['help']}")
         [location] = result["locations"]
         physical = location["physicalLocation"]
-        assert physical["artifactLocation"] == {"uri": case.name, "uriBaseId": "%SRCROOT%"}
+        # the case's own file, or another named by its `# args:` (E005, E006)
+        assert physical["artifactLocation"] == {"uri": diag["file"], "uriBaseId": "%SRCROOT%"}
         assert physical["region"] == {
             "startLine": diag["line"], "startColumn": diag["column"],
             "endLine": diag["end_line"], "endColumn": diag["end_column"]}
