@@ -10,6 +10,7 @@
  *   EPUCK_TRACE          JSON-lines trace output path; none: no JSON trace
  *   EPUCK_TIME_LIMIT_MS  virtual time limit, default 60000
  *   EPUCK_QUIET          set and not "0": no readable trace on stdout
+ *   EPUCK_POSE_MS        also a "pose" record every so many ms (JSON only)
  * Exit statuses: 2 bad setting or scenario, 3 time limit reached.
  * docs/runtime.md describes the formats.
  */
@@ -34,6 +35,7 @@ static long limit_ms = DEFAULT_TIME_LIMIT_MS;
 static FILE *trace_file;
 static int quiet;
 static long events_fired, actions_run, steps_run;
+static long pose_every_ms;          /* 0: no pose records */
 
 /* ---- names ------------------------------------------------------------------ */
 
@@ -431,24 +433,31 @@ void rt_trace_exit(void)
 
 /* ---- platform ------------------------------------------------------------------- */
 
+static long ms_setting(const char *variable, const char *value)
+{
+    char *end;
+    long v;
+    errno = 0;
+    v = strtol(value, &end, 10);
+    if (errno != 0 || *end != '\0' || v <= 0 || v > MAX_SCENARIO_MS || !isdigit((unsigned char)*value))
+        fail("%s: expected a whole number of milliseconds from 1 to %ld, got '%s'",
+             variable, MAX_SCENARIO_MS, value);
+    return v;
+}
+
 void rt_platform_init(void)
 {
     const char *limit = getenv("EPUCK_TIME_LIMIT_MS");
+    const char *pose = getenv("EPUCK_POSE_MS");
     const char *scn = getenv("EPUCK_SCENARIO");
     const char *trace = getenv("EPUCK_TRACE");
     const char *q = getenv("EPUCK_QUIET");
 
     quiet = q != NULL && *q != '\0' && strcmp(q, "0") != 0;
-    if (limit != NULL && *limit != '\0') {
-        char *end;
-        long v;
-        errno = 0;
-        v = strtol(limit, &end, 10);
-        if (errno != 0 || *end != '\0' || v <= 0 || v > MAX_SCENARIO_MS || !isdigit((unsigned char)*limit))
-            fail("EPUCK_TIME_LIMIT_MS: expected a whole number of milliseconds "
-                 "from 1 to %ld, got '%s'", MAX_SCENARIO_MS, limit);
-        limit_ms = v;
-    }
+    if (limit != NULL && *limit != '\0')
+        limit_ms = ms_setting("EPUCK_TIME_LIMIT_MS", limit);
+    if (pose != NULL && *pose != '\0')
+        pose_every_ms = ms_setting("EPUCK_POSE_MS", pose);
     if (scn != NULL && *scn != '\0')
         load_scenario(scn);
     if (trace != NULL && *trace != '\0') {
@@ -457,6 +466,8 @@ void rt_platform_init(void)
             fail("EPUCK_TRACE: cannot write '%s': %s", trace, strerror(errno));
     }
     scenario_apply(0);
+    if (pose_every_ms > 0)
+        record("pose", "pose", -1, -1, 0);
 }
 
 /* One poll cycle = 1 ms of virtual time. */
@@ -478,4 +489,6 @@ void rt_platform_idle(void)
     now_ms++;
     scenario_apply(now_ms); /* ... the readings of the new ms hold ... */
     stub_agendas_1ms();     /* ... and the clock agenda ticks */
+    if (pose_every_ms > 0 && now_ms % pose_every_ms == 0)
+        record("pose", "pose", -1, -1, 0);
 }
