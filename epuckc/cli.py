@@ -137,12 +137,32 @@ def cmd_run(args) -> int:
     if args.scenario and not Path(args.scenario).is_file():
         _error(f"the scenario file {args.scenario} does not exist")
         return EXIT_USAGE
+    from . import world_cli
+    if world_cli.wants_extension(args):
+        return world_cli.run(args, program, _robot_program_loader(args), run_host)
     try:
         return run_host(program, scenario=args.scenario, time_limit_ms=args.time_limit,
                         trace=args.trace)
     except BuildError as exc:
         _error(str(exc))
         return exc.status
+
+
+def _robot_program_loader(args):
+    """For a world's robots with their own `program`: load it as FILE is."""
+    def load(path: Path):
+        from .build import BuildError
+        from .driver import load_program
+        report = Report()
+        try:
+            program = load_program(path, report, args.max_actions, args.max_events)
+        except InputError as exc:
+            raise BuildError(str(exc), status=EXIT_USAGE) from None
+        _print_report(report, "human")
+        if program is None or _failed(report, getattr(args, "werror", False)):
+            raise BuildError(f"{path} has errors (above); the world was not run", status=EXIT_ERRORS)
+        return program
+    return load
 
 
 def _positive(value: str) -> int:
@@ -237,7 +257,10 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--time-limit", type=_duration_ms, default=60000, metavar="DURATION",
                    help="virtual time limit, e.g. 60s or 500ms (default 60s)")
     p.add_argument("--trace", metavar="OUT.jsonl", help="also write the trace as JSON lines")
+    from . import world_cli
+    world_cli.add_run_options(p, _duration_ms)
     p.set_defaults(run=cmd_run)
+    world_cli.add_plot_parser(sub, world_cli.cmd_plot)
     return parser
 
 
