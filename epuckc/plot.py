@@ -124,6 +124,21 @@ def _bounds(world: Optional[dict], runs: list, radius: float):
     return x0, y0, x1, y1
 
 
+LABEL_H = 9.0
+
+
+def _label_box(label: str, x: float, y: float, placed: list):
+    """Where the label of a marker at (x, y) goes: right of it, above, below
+    or further down; None when every place covers a placed label."""
+    w = 5.0 * len(label)
+    for dy in (-LABEL_H - 2, 2.0, -2 * LABEL_H - 4, LABEL_H + 4):
+        box = (_r(x + 5), _r(y + dy), w, LABEL_H)
+        if not any(box[0] < bx + bw and bx < box[0] + w and box[1] < by + bh and by < box[1] + LABEL_H
+                   for bx, by, bw, bh in placed):
+            return box
+    return None
+
+
 def _r(v: float) -> float:
     return round(v, 1)
 
@@ -213,14 +228,12 @@ def plot_trace(text: str, title: str = "", source: str = "trace") -> str:
             marker["data-label"] = f.label
             marker.set_desc(title=f"{run.name + ': ' if run.name else ''}{f.t_ms} ms {f.title}")
             rg.add(marker)
-            # a label per firing, unless the same label is already written close by
-            # (other labels at the same spot: stacked below each other)
-            near = [(lbl, lx, ly) for lbl, lx, ly in placed_labels
-                    if abs(lx - fx) < 40 and abs(ly - fy) < 14]
-            if not any(lbl == f.label for lbl, _, _ in near):
-                placed_labels.append((f.label, fx, fy))
-                t = dwg.text(f.label, insert=(_r(fx + 5), _r(fy - 5 + 10 * len(near))),
-                             class_="firing-label",
+            # its label, unless that would cover another label (the marker's
+            # tooltip still names it); the same label at the same spot once
+            box = _label_box(f.label, fx, fy, placed_labels)
+            if box is not None:
+                placed_labels.append(box)
+                t = dwg.text(f.label, insert=(box[0], _r(box[1] + LABEL_H)), class_="firing-label",
                              font_family="sans-serif", font_size=9, fill="#333")
                 t["data-t-ms"] = str(f.t_ms)
                 rg.add(t)
