@@ -31,7 +31,7 @@ LENGTH_UNITS = {"mm": 1.0, "cm": 10.0, "m": 1000.0}
 MAX_ROBOTS = 1000
 MAX_LENGTH_MM = 100_000.0       # 100 m
 NAME_RE = re.compile(r"[A-Za-z_][A-Za-z0-9_-]*\Z")
-KEYWORDS = {"at", "size", "x", "angle", "height", "radius", "heading", "program"}
+KEYWORDS = {"at", "size", "x", "angle", "height", "radius", "heading", "program", "none"}
 
 
 class WorldError(Exception):
@@ -186,7 +186,8 @@ class _Line:
         unit = tok.unit
         if unit is None:
             nxt = self.peek()
-            if nxt is not None and nxt.number is None and nxt.text in units:
+            if (nxt is not None and nxt.number is None
+                    and (nxt.text in units or nxt.text.lower() not in KEYWORDS)):
                 unit = nxt.text
                 self.i += 1
         if unit is None:
