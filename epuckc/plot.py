@@ -131,10 +131,13 @@ def _label_box(label: str, x: float, y: float, placed: list):
     """Where the label of a marker at (x, y) goes: right of it, above, below
     or further down; None when every place covers a placed label."""
     w = 5.0 * len(label)
+    if any(text == label and abs(bx - x - 5) < 40 and abs(by - y) < 2 * LABEL_H + 6
+           for bx, by, _, _, text in placed):
+        return None
     for dy in (-LABEL_H - 2, 2.0, -2 * LABEL_H - 4, LABEL_H + 4):
-        box = (_r(x + 5), _r(y + dy), w, LABEL_H)
+        box = (_r(x + 5), _r(y + dy), w, LABEL_H, label)
         if not any(box[0] < bx + bw and bx < box[0] + w and box[1] < by + bh and by < box[1] + LABEL_H
-                   for bx, by, bw, bh in placed):
+                   for bx, by, bw, bh, _ in placed):
             return box
     return None
 
