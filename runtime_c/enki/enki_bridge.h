@@ -14,9 +14,7 @@
 #ifndef ENKI_BRIDGE_H
 #define ENKI_BRIDGE_H
 
-#include <ucontext.h>
-
-#define ENKI_BRIDGE_VERSION 1
+#define ENKI_BRIDGE_VERSION 2
 #define ENKI_MAX_SETTINGS 8
 
 typedef struct enki_robot_io {
@@ -40,7 +38,10 @@ typedef struct enki_robot_io {
     int finished;                   /* main returned or exit() was called */
     int status;                     /* its value */
 
-    ucontext_t world_ctx, robot_ctx;
+    /* the runner's coroutine switch: back to the world until it has stepped
+     * (never returns once `finished` is set) */
+    void (*yield)(struct enki_robot_io *robot);
+    void *runner;                   /* the runner's own data */
 } enki_robot_io;
 
 #endif

@@ -57,7 +57,7 @@ int enki_robot_attach(enki_robot_io *robot)
 static void yield_to_world(void)
 {
     int n;
-    swapcontext(&io->robot_ctx, &io->world_ctx);
+    io->yield(io);
     for (n = 0; n < 8; n++)
         stub_set_prox(n, io->prox[n]);
 }
@@ -112,6 +112,6 @@ void __wrap_exit(int status)
 {
     io->status = status;
     io->finished = 1;
-    swapcontext(&io->robot_ctx, &io->world_ctx);
+    io->yield(io);
     abort();    /* a finished robot is never resumed */
 }
