@@ -38,7 +38,9 @@
 #include <cstdlib>
 #include <cstdint>
 #include <cstring>
+#include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <enki/PhysicalEngine.h>
@@ -140,7 +142,7 @@ struct Robot {
     Body *body = nullptr;
     void *handle = nullptr;
     int (*main)(int, char **) = nullptr;
-    std::vector<char> stack;
+    std::unique_ptr<char[]> stack;          // not zeroed: the kernel commits it as used
 #if FAST_SWITCH
     void *world_sp = nullptr, *robot_sp = nullptr;
 #else
@@ -190,12 +192,12 @@ void start_robot()
 
 void prepare_robot(Robot &r)
 {
-    r.stack.resize(STACK_SIZE);
+    r.stack.reset(new char[STACK_SIZE]);
 #if FAST_SWITCH
     // the stack as epuck_switch_stack leaves it: six saved registers, then
     // the address it returns to (start_robot), then a dummy return address
     // for start_robot, with the stack 16-byte aligned at its call
-    uintptr_t top = (reinterpret_cast<uintptr_t>(r.stack.data()) + r.stack.size()) & ~uintptr_t(15);
+    uintptr_t top = (reinterpret_cast<uintptr_t>(r.stack.get()) + STACK_SIZE) & ~uintptr_t(15);
     void **sp = reinterpret_cast<void **>(top);
     *--sp = nullptr;
     *--sp = reinterpret_cast<void *>(&start_robot);
@@ -204,8 +206,8 @@ void prepare_robot(Robot &r)
     r.robot_sp = sp;
 #else
     getcontext(&r.robot_ctx);
-    r.robot_ctx.uc_stack.ss_sp = r.stack.data();
-    r.robot_ctx.uc_stack.ss_size = r.stack.size();
+    r.robot_ctx.uc_stack.ss_sp = r.stack.get();
+    r.robot_ctx.uc_stack.ss_size = STACK_SIZE;
     r.robot_ctx.uc_link = nullptr;
     makecontext(&r.robot_ctx, start_robot, 0);
 #endif
@@ -302,7 +304,7 @@ int main(int argc, char **argv)
             obstacles.push_back(o);
         } else if (std::sscanf(line, "robot %255s %lf %lf %lf", name, &r.x, &r.y, &r.angle) == 4) {
             r.name = name;
-            robots.push_back(r);
+            robots.push_back(std::move(r));
         } else if (std::strncmp(line, "lib ", 4) == 0 && !robots.empty())
             robots.back().lib = rest(line, "lib");
         else if (std::strncmp(line, "setting ", 8) == 0 && !robots.empty()) {

@@ -2,7 +2,8 @@
  * platform_host.c - the runtime's platform layer on a PC (the "stub
  * harness"): virtual time (1 ms per poll cycle), the virtual robot of
  * epuck_stub.c, a scenario of proximity readings, a time limit, and the
- * trace (JSON lines to a file, readable lines to stdout).
+ * trace (JSON lines to a file, readable lines to stdout).  Each robot of an
+ * Enki world uses it too, unchanged (runtime_c/enki/robot_glue.c).
  *
  * Settings come from the environment (the paper's main() has no arguments),
  * read by rt_platform_init, i.e. when mainloop first runs:

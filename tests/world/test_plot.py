@@ -129,3 +129,15 @@ def test_bad_traces_are_reported(tmp_path, text, words):
     result = epuckc("plot", bad, "-o", tmp_path / "out.svg")
     assert result.returncode == 2 and words.split(":")[-1].strip() in result.stderr
     assert not (tmp_path / "out.svg").exists()
+
+
+def test_a_bad_pose_interval_setting_is_reported(tmp_path):
+    import subprocess
+    built = epuckc("build", EXAMPLES / "square.epk", "-o", tmp_path / "b")
+    assert built.returncode == 0, built.stderr
+    for value in ("abc", "0", "-5", "10x"):
+        result = subprocess.run([str(tmp_path / "b" / "square")], capture_output=True, text=True,
+                                env={"EPUCK_POSE_MS": value})
+        assert result.returncode == 2
+        assert result.stderr == ("epuck host: EPUCK_POSE_MS: expected a whole number of "
+                                 f"milliseconds from 1 to 1000000000, got '{value}'\n")
