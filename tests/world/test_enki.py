@@ -27,37 +27,41 @@ def contacts(records):
 
 # ---- the same program on the stub and in Enki ----------------------------------
 
-AGREEMENT_MM = 5.0
-AGREEMENT_DEG = 2.0
+NOISY_MM, NOISY_DEG = 5.0, 2.0         # Enki's default 5 % wheel noise, runs up to 25 s
+EXACT_MM, EXACT_DEG = 0.5, 0.2          # noise 0 %
+ALL_EXAMPLES = sorted(p.stem for p in EXAMPLES.glob("*.epk"))
 
 
-@pytest.mark.parametrize("example", ["paper_fig2", "square", "obstacle_avoidance",
-                                     "timed_patrol", "extern_spin"])
-def test_on_open_ground_enki_ends_where_the_stub_does(tmp_path, example):
-    """Same program, same steps: on open ground (no walls, nothing to see)
-    Enki's body ends within AGREEMENT_MM and AGREEMENT_DEG of the stub's
-    odometry, with Enki's 5 % wheel noise on (seed 1)."""
-    open_ground = world(tmp_path, "arena none\n")
-    stub, _, _ = run(EXAMPLES / f"{example}.epk", tmp_path, name="stub")
-    enki, _, _ = run(EXAMPLES / f"{example}.epk", tmp_path, "--world", open_ground, name="enki")
+def compare_with_stub(tmp_path, example, world_text, mm, deg):
+    open_ground = world(tmp_path, world_text)
+    stub, _, _ = run(EXAMPLES / f"{example}.epk", tmp_path, name="stub", expect=None)
+    enki, _, _ = run(EXAMPLES / f"{example}.epk", tmp_path, "--world", open_ground, name="enki",
+                     expect=None)
     s, e = final_pose(stub), final_pose(enki)
     assert (e["kind"], e["t_ms"]) == (s["kind"], s["t_ms"])
     assert (e["left_steps"], e["right_steps"]) == (s["left_steps"], s["right_steps"])
-    assert math.hypot(e["x_mm"] - s["x_mm"], e["y_mm"] - s["y_mm"]) <= AGREEMENT_MM
+    assert math.hypot(e["x_mm"] - s["x_mm"], e["y_mm"] - s["y_mm"]) <= mm
     dh = (e["heading_deg"] - s["heading_deg"] + 180) % 360 - 180
-    assert abs(dh) <= AGREEMENT_DEG
+    assert abs(dh) <= deg
+
     # the same rules fired at the same times (nothing near: no sensor event)
     def fired(records):
         return [(r["t_ms"], r["name"]) for r in records if r["kind"] in ("event", "action")]
     assert fired(enki) == fired(stub)
 
 
-def test_without_noise_the_agreement_is_tighter(tmp_path):
-    open_ground = world(tmp_path, "arena none\nnoise 0 %\n")
-    stub, _, _ = run(EXAMPLES / "square.epk", tmp_path, name="stub")
-    enki, _, _ = run(EXAMPLES / "square.epk", tmp_path, "--world", open_ground, name="enki")
-    s, e = final_pose(stub), final_pose(enki)
-    assert math.hypot(e["x_mm"] - s["x_mm"], e["y_mm"] - s["y_mm"]) <= 1.0
+@pytest.mark.parametrize("example", ["paper_fig2", "square", "obstacle_avoidance",
+                                     "timed_patrol", "extern_spin"])
+def test_on_open_ground_enki_ends_where_the_stub_does(tmp_path, example):
+    """Same program, same steps: on open ground (no walls, nothing to see)
+    Enki's body ends within NOISY_MM and NOISY_DEG of the stub's odometry,
+    with Enki's 5 % wheel noise on (seed 1)."""
+    compare_with_stub(tmp_path, example, "arena none\n", NOISY_MM, NOISY_DEG)
+
+
+@pytest.mark.parametrize("example", ALL_EXAMPLES)
+def test_without_noise_every_example_ends_where_the_stub_does(tmp_path, example):
+    compare_with_stub(tmp_path, example, "arena none\nnoise 0 %\n", EXACT_MM, EXACT_DEG)
 
 
 # ---- determinism -----------------------------------------------------------------
@@ -233,3 +237,40 @@ def test_readme_picture_is_up_to_date(tmp_path):
     assert result.returncode == 0, result.stderr
     assert out.read_bytes() == (REPO / "docs" / "images" / "wander.svg").read_bytes(), \
         "run python3 docs/make_pictures.py and commit docs/images/"
+
+
+def test_the_portable_coroutine_switch_gives_the_same_run(tmp_path):
+    """The runner switches robots with a few instructions on x86-64 and with
+    swapcontext elsewhere (-DEPUCK_WORLD_UCONTEXT): the same run either way."""
+    import shutil
+    import subprocess
+    from epuckc import enki
+    from epuckc.diagnostics import Report
+    from epuckc.driver import load_program
+    from epuckc.resources import runtime_dir
+    from epuckc.world import parse_world, runner_spec
+    fast = enki.build_runner()
+    portable = tmp_path / "portable"
+    rt = runtime_dir() / "enki"
+    subprocess.run(enki.cxx_compiler() + enki.RUNNER_FLAGS + ["-DEPUCK_WORLD_UCONTEXT", f"-I{rt}",
+                   str(rt / "world_runner.cpp"), "-o", str(portable), "-lenki", "-ldl"], check=True)
+    lib = enki.build_robot(load_program(EXAMPLES / "dispersion.epk", Report()))
+    w = parse_world(EXAMPLES / "dispersion.world")
+    outputs = []
+    for label, runner in (("fast", fast), ("ucontext", portable)):
+        d = tmp_path / label
+        d.mkdir()
+        robots = []
+        for i in range(len(w.robots)):
+            shutil.copyfile(lib, d / f"r{i}.so")
+            robots.append((d / f"r{i}.so", {"EPUCK_TIME_LIMIT_MS": "3000",
+                                            "EPUCK_TRACE": str(d / f"r{i}.jsonl"),
+                                            "EPUCK_POSE_MS": "50"}))
+        (d / "spec").write_text(runner_spec(w, robots))
+        result = subprocess.run([str(runner), str(d / "spec"), str(d / "results")],
+                                capture_output=True, text=True)
+        assert result.returncode == 0, result.stderr
+        traces = [(d / f"r{i}.jsonl").read_text() for i in range(len(w.robots))]
+        outputs.append((result.stdout, (d / "results").read_text(), traces))
+    assert outputs[0] == outputs[1]
+    assert outputs[0][1].count(" 3 ") == 10         # every robot ran to its time limit
