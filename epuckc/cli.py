@@ -178,12 +178,32 @@ def cmd_run(args) -> int:
         if problem:
             _error(problem)
             return EXIT_USAGE
+    from . import world_cli
+    if world_cli.wants_extension(args):
+        return world_cli.run(args, program, _robot_program_loader(args), run_host)
     try:
         return run_host(program, scenario=args.scenario, time_limit_ms=args.time_limit,
                         trace=args.trace)
     except BuildError as exc:
         _error(str(exc))
         return exc.status
+
+
+def _robot_program_loader(args):
+    """For a world's robots with their own `program`: load it as FILE is."""
+    def load(path: Path):
+        from .build import BuildError
+        from .driver import load_program
+        report = Report()
+        try:
+            program = load_program(path, report, args.max_actions, args.max_events)
+        except InputError as exc:
+            raise BuildError(str(exc), status=EXIT_USAGE) from None
+        _print_report(report, "human")
+        if program is None or _failed(report, getattr(args, "werror", False)):
+            raise BuildError(f"{path} has errors (above); the world was not run", status=EXIT_ERRORS)
+        return program
+    return load
 
 
 def _scenario_problem(name: str):
@@ -325,7 +345,10 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--trace", metavar="OUT.jsonl",
                    help="also write the trace as JSON lines; `-`: to standard output, "
                         "instead of the readable trace")
+    from . import world_cli
+    world_cli.add_run_options(p, _duration_ms)
     p.set_defaults(run=cmd_run)
+    world_cli.add_plot_parser(sub, world_cli.cmd_plot)
     return parser
 
 

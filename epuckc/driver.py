@@ -68,11 +68,13 @@ def build(program: Program, target: str, out_dir: Optional[Path]) -> str:
 
 
 def run_host(program: Program, scenario: Optional[str], time_limit_ms: int,
-             trace: Optional[str]) -> int:
+             trace: Optional[str], pose_ms: Optional[int] = None) -> int:
     env = dict(os.environ)
     env["EPUCK_TIME_LIMIT_MS"] = str(time_limit_ms)
-    env.pop("EPUCK_SCENARIO", None)
-    env.pop("EPUCK_TRACE", None)
+    for setting in ("EPUCK_SCENARIO", "EPUCK_TRACE", "EPUCK_POSE_MS"):
+        env.pop(setting, None)
+    if pose_ms:
+        env["EPUCK_POSE_MS"] = str(pose_ms)
     # The harness names the options typed here in its messages, not its
     # environment variables.
     env["EPUCK_FRONTEND"] = "epuckc"

@@ -32,3 +32,14 @@ def pytest_addoption(parser):
 @pytest.fixture
 def update_goldens(request) -> bool:
     return bool(request.config.getoption("--update-goldens"))
+
+
+def require_enki():
+    """Enki's headers and library and a C++ compiler (the world runner's
+    build); skips without them, fails in CI, like require_tool."""
+    from epuckc.enki import ENKI_MISSING, enki_available
+    if enki_available():
+        return
+    if os.environ.get("EPUCKC_REQUIRE_ALL_TOOLS"):
+        pytest.fail(ENKI_MISSING)
+    pytest.skip(ENKI_MISSING)

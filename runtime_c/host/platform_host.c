@@ -2,7 +2,8 @@
  * platform_host.c - the runtime's platform layer on a PC (the "stub
  * harness"): virtual time (1 ms per poll cycle), the virtual robot of
  * epuck_stub.c, a scenario of proximity readings, a time limit, and the
- * trace (JSON lines to a file, readable lines to stdout).
+ * trace (JSON lines to a file, readable lines to stdout).  Each robot of an
+ * Enki world uses it too, unchanged (runtime_c/enki/robot_glue.c).
  *
  * Settings come from the environment (the paper's main() has no arguments),
  * read by rt_platform_init, i.e. when mainloop first runs:
@@ -11,6 +12,7 @@
  *   EPUCK_TIME_LIMIT_MS  virtual time limit, default 60000
  *   EPUCK_QUIET          set and not "0": no readable trace on stdout
  *   EPUCK_FRONTEND       "epuckc": messages name epuckc's options (--trace)
+ *   EPUCK_POSE_MS        also a "pose" record every so many ms (JSON only)
  * Exit statuses: 2 bad setting or scenario, 3 time limit reached.
  * docs/runtime.md describes the formats.
  */
@@ -35,6 +37,7 @@ static long limit_ms = DEFAULT_TIME_LIMIT_MS;
 static FILE *trace_file;
 static int quiet;
 static long events_fired, actions_run, steps_run;
+static long pose_every_ms;          /* 0: no pose records */
 
 /* ---- names ------------------------------------------------------------------ */
 
@@ -165,6 +168,7 @@ static const char *setting_name(const char *variable)
         {"EPUCK_TIME_LIMIT_MS", "--time-limit"},
         {"EPUCK_TRACE", "--trace"},
         {"EPUCK_SCENARIO", "--scenario"},
+        {"EPUCK_POSE_MS", "--pose-interval"},
     };
     const char *frontend = getenv("EPUCK_FRONTEND");
     size_t i;
@@ -521,24 +525,31 @@ void rt_trace_exit(void)
 
 /* ---- platform ------------------------------------------------------------------- */
 
+static long ms_setting(const char *variable, const char *value)
+{
+    char *end;
+    long v;
+    errno = 0;
+    v = strtol(value, &end, 10);
+    if (errno != 0 || *end != '\0' || v <= 0 || v > MAX_SCENARIO_MS || !isdigit((unsigned char)*value))
+        fail("%s: expected a whole number of milliseconds from 1 to %ld, got '%s'",
+             setting_name(variable), MAX_SCENARIO_MS, value);
+    return v;
+}
+
 void rt_platform_init(void)
 {
     const char *limit = getenv("EPUCK_TIME_LIMIT_MS");
+    const char *pose = getenv("EPUCK_POSE_MS");
     const char *scn = getenv("EPUCK_SCENARIO");
     const char *trace = getenv("EPUCK_TRACE");
     const char *q = getenv("EPUCK_QUIET");
 
     quiet = q != NULL && *q != '\0' && strcmp(q, "0") != 0;
-    if (limit != NULL && *limit != '\0') {
-        char *end;
-        long v;
-        errno = 0;
-        v = strtol(limit, &end, 10);
-        if (errno != 0 || *end != '\0' || v <= 0 || v > MAX_SCENARIO_MS || !isdigit((unsigned char)*limit))
-            fail("%s: expected a whole number of milliseconds from 1 to %ld, got '%s'",
-                 setting_name("EPUCK_TIME_LIMIT_MS"), MAX_SCENARIO_MS, limit);
-        limit_ms = v;
-    }
+    if (limit != NULL && *limit != '\0')
+        limit_ms = ms_setting("EPUCK_TIME_LIMIT_MS", limit);
+    if (pose != NULL && *pose != '\0')
+        pose_every_ms = ms_setting("EPUCK_POSE_MS", pose);
     if (scn != NULL && *scn != '\0')
         load_scenario(scn);
     if (trace != NULL && *trace != '\0') {
@@ -547,6 +558,8 @@ void rt_platform_init(void)
             fail("%s: cannot write '%s': %s", setting_name("EPUCK_TRACE"), trace, strerror(errno));
     }
     scenario_apply(0);
+    if (pose_every_ms > 0)
+        record("pose", "pose", -1, -1, 0);
 }
 
 /* One poll cycle = 1 ms of virtual time. */
@@ -568,4 +581,6 @@ void rt_platform_idle(void)
     now_ms++;
     scenario_apply(now_ms); /* ... the readings of the new ms hold ... */
     stub_agendas_1ms();     /* ... and the clock agenda ticks */
+    if (pose_every_ms > 0 && now_ms % pose_every_ms == 0)
+        record("pose", "pose", -1, -1, 0);
 }

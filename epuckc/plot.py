@@ -1,0 +1,308 @@
+"""Pictures of a run: a trace (JSON lines) drawn as SVG with svgwrite.
+
+Above, the map (world frame, millimetres, +y up): the arena's walls, boxes
+and cylinders (from the trace's `world` record, when the run had a world),
+each robot's path through its poses (the `pose` records and the pose of
+every other record), a marker where a rule fired, labelled with the rule's
+`file:line`, and the robot at its final pose. Below, a timeline: one row per
+rule, a tick at each firing, time in seconds.
+
+The drawing is made of named pieces that tests and tools can find again:
+`g#world` (`rect.arena`, `rect.box`, `circle.cylinder`), `g.robot-run`
+(`data-robot`) with `polyline.path`, `circle.firing` (`data-t-ms`,
+`data-label`; `text.firing-label`), `g.final-pose`; `g#timeline` with
+`g.timeline-row` (`data-label`) holding `line.tick` (`data-t-ms`).
+"""
+from __future__ import annotations
+
+import json
+import math
+import re
+from dataclasses import dataclass, field
+from typing import Optional
+
+import svgwrite
+
+MAP_WIDTH_PX = 640.0
+MAP_MAX_HEIGHT_PX = 520.0
+MARGIN_PX = 24.0
+ROW_PX = 18.0
+LABEL_COLUMN_PX = 200.0
+ROW_LABEL_CHARS = 40
+COLOURS = ["#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#e377c2",
+           "#17becf", "#7f7f7f", "#bcbd22"]
+DEFAULT_ROBOT_RADIUS_MM = 37.0
+_FILE_LINE = re.compile(r"^(\S+:\d+)(?:\s|$)")
+
+
+class PlotError(Exception):
+    pass
+
+
+@dataclass
+class Firing:
+    t_ms: int
+    label: str          # file:line, or the event's name
+    title: str          # the whole record name
+    x: float
+    y: float
+
+
+@dataclass
+class RobotRun:
+    name: str
+    poses: list = field(default_factory=list)       # (t_ms, x, y, heading)
+    firings: list = field(default_factory=list)
+
+
+def rule_label(name: str) -> str:
+    """`prog.epk:12` for a rule's event (its trace name starts with it);
+    the name itself otherwise (hand-written C)."""
+    m = _FILE_LINE.match(name)
+    return m.group(1) if m else name
+
+
+def parse_trace(text: str, source: str = "trace"):
+    """The world record (or None) and the robots' runs, in first-seen order."""
+    world = None
+    runs = {}
+    end_ms = 0
+    for lineno, line in enumerate(text.splitlines(), 1):
+        if not line.strip():
+            continue
+        try:
+            rec = json.loads(line)
+        except json.JSONDecodeError as exc:
+            raise PlotError(f"{source}:{lineno}: not a JSON trace record ({exc.msg})") from None
+        if not isinstance(rec, dict) or "kind" not in rec:
+            raise PlotError(f"{source}:{lineno}: not a trace record (no \"kind\")")
+        if rec["kind"] == "world":
+            world = rec
+            continue
+        if "x_mm" not in rec:
+            continue        # contacts: counts, no pose
+        try:
+            t, x, y, h = int(rec["t_ms"]), float(rec["x_mm"]), float(rec["y_mm"]), \
+                float(rec["heading_deg"])
+        except (KeyError, TypeError, ValueError):
+            raise PlotError(f"{source}:{lineno}: a record without t_ms, x_mm, y_mm and "
+                            f"heading_deg") from None
+        name = str(rec.get("robot", ""))
+        run = runs.setdefault(name, RobotRun(name))
+        run.poses.append((t, x, y, h))
+        end_ms = max(end_ms, t)
+        if rec["kind"] == "event":
+            ev = str(rec.get("name", ""))
+            run.firings.append(Firing(t, rule_label(ev), ev, x, y))
+    if not runs:
+        raise PlotError(f"{source}: the trace has no record with a pose")
+    return world, list(runs.values()), end_ms
+
+
+def _bounds(world: Optional[dict], runs: list, radius: float):
+    if world is not None and world.get("arena"):
+        return 0.0, 0.0, float(world["arena"]["width_mm"]), float(world["arena"]["height_mm"])
+    xs = [p[1] for r in runs for p in r.poses]
+    ys = [p[2] for r in runs for p in r.poses]
+    if world is not None:
+        for b in world.get("boxes", []):
+            half = math.hypot(b["length_mm"], b["width_mm"]) / 2
+            xs += [b["x_mm"] - half, b["x_mm"] + half]
+            ys += [b["y_mm"] - half, b["y_mm"] + half]
+        for c in world.get("cylinders", []):
+            xs += [c["x_mm"] - c["radius_mm"], c["x_mm"] + c["radius_mm"]]
+            ys += [c["y_mm"] - c["radius_mm"], c["y_mm"] + c["radius_mm"]]
+    pad = radius + 20.0
+    x0, x1, y0, y1 = min(xs) - pad, max(xs) + pad, min(ys) - pad, max(ys) + pad
+    # at least 200 mm each way, so a short run is not blown up
+    if x1 - x0 < 200:
+        c = (x0 + x1) / 2
+        x0, x1 = c - 100, c + 100
+    if y1 - y0 < 200:
+        c = (y0 + y1) / 2
+        y0, y1 = c - 100, c + 100
+    return x0, y0, x1, y1
+
+
+LABEL_H = 9.0
+
+
+def _label_box(label: str, x: float, y: float, placed: list):
+    """Where the label of a marker at (x, y) goes: right of it, above, below
+    or further down; None when every place covers a placed label."""
+    w = 5.0 * len(label)
+    if any(text == label and abs(bx - x - 5) < 40 and abs(by - y) < 2 * LABEL_H + 6
+           for bx, by, _, _, text in placed):
+        return None
+    for dy in (-LABEL_H - 2, 2.0, -2 * LABEL_H - 4, LABEL_H + 4):
+        box = (_r(x + 5), _r(y + dy), w, LABEL_H, label)
+        if not any(box[0] < bx + bw and bx < box[0] + w and box[1] < by + bh and by < box[1] + LABEL_H
+                   for bx, by, bw, bh, _ in placed):
+            return box
+    return None
+
+
+def _r(v: float) -> float:
+    return round(v, 1)
+
+
+def _nice_step(span_s: float) -> float:
+    for step in (0.1, 0.2, 0.5, 1, 2, 5, 10, 15, 30, 60, 120, 300, 600, 1800, 3600):
+        if span_s / step <= 12:
+            return step
+    return 3600 * math.ceil(span_s / 3600 / 12)
+
+
+def plot_trace(text: str, title: str = "", source: str = "trace") -> str:
+    """The SVG picture of a trace, as text (deterministic)."""
+    world, runs, end_ms = parse_trace(text, source)
+    radius = float((world or {}).get("robot_radius_mm", DEFAULT_ROBOT_RADIUS_MM))
+    x0, y0, x1, y1 = _bounds(world, runs, radius)
+    scale = min(MAP_WIDTH_PX / (x1 - x0), MAP_MAX_HEIGHT_PX / (y1 - y0))
+    map_w, map_h = (x1 - x0) * scale, (y1 - y0) * scale
+    top = MARGIN_PX + (22.0 if title else 0.0)
+
+    def px(x: float, y: float):
+        return _r(MARGIN_PX + (x - x0) * scale), _r(top + (y1 - y) * scale)
+
+    rows = []
+    row_titles = {}
+    for run in runs:
+        for f in run.firings:
+            if f.label not in rows:
+                rows.append(f.label)
+                row_titles[f.label] = f.title
+    timeline_top = top + map_h + 36.0
+    timeline_h = max(len(rows), 1) * ROW_PX
+    width = max(MARGIN_PX * 2 + map_w, MARGIN_PX * 2 + LABEL_COLUMN_PX + 360.0)
+    height = timeline_top + timeline_h + 40.0
+    dwg = svgwrite.Drawing(size=(f"{_r(width)}", f"{_r(height)}"), debug=False)
+    dwg.viewbox(0, 0, _r(width), _r(height))
+    dwg.add(dwg.rect(insert=(0, 0), size=(_r(width), _r(height)), fill="white", class_="background"))
+    if title:
+        dwg.add(dwg.text(title, insert=(MARGIN_PX, MARGIN_PX + 6), class_="title",
+                         font_family="sans-serif", font_size=15))
+
+    # -- the world
+    g = dwg.g(id="world")
+    if world is not None and world.get("arena"):
+        a = world["arena"]
+        (ax, ay), (bx, by) = px(0, a["height_mm"]), px(a["width_mm"], 0)
+        g.add(dwg.rect(insert=(ax, ay), size=(_r(bx - ax), _r(by - ay)), class_="arena",
+                       fill="#fafafa", stroke="#444", stroke_width=4))
+    else:
+        g.add(dwg.rect(insert=(MARGIN_PX, top), size=(_r(map_w), _r(map_h)), class_="ground",
+                       fill="#fafafa", stroke="#ccc", stroke_width=1, stroke_dasharray="4,4"))
+    for b in (world or {}).get("boxes", []):
+        cx, cy = px(b["x_mm"], b["y_mm"])
+        w, h = b["length_mm"] * scale, b["width_mm"] * scale
+        rect = dwg.rect(insert=(_r(cx - w / 2), _r(cy - h / 2)), size=(_r(w), _r(h)), class_="box",
+                        fill="#b0a08a", stroke="#6b5b45")
+        if b.get("angle_deg"):
+            rect.rotate(-b["angle_deg"], center=(cx, cy))     # +y is up in the world
+        g.add(rect)
+    for c in (world or {}).get("cylinders", []):
+        g.add(dwg.circle(center=px(c["x_mm"], c["y_mm"]), r=_r(c["radius_mm"] * scale),
+                         class_="cylinder", fill="#b0a08a", stroke="#6b5b45"))
+    dwg.add(g)
+
+    # -- each robot's path, firings and final pose
+    placed_labels = []
+    for i, run in enumerate(runs):
+        colour = COLOURS[i % len(COLOURS)]
+        rg = dwg.g(class_="robot-run")
+        rg["data-robot"] = run.name or "robot"
+        points = []
+        for _, x, y, _ in run.poses:
+            p = px(x, y)
+            if not points or points[-1] != p:
+                points.append(p)
+        if len(points) == 1:
+            points.append(points[0])
+        rg.add(dwg.polyline(points, class_="path", fill="none", stroke=colour, stroke_width=1.5,
+                            stroke_linejoin="round"))
+        sx, sy = px(run.poses[0][1], run.poses[0][2])
+        rg.add(dwg.circle(center=(sx, sy), r=3, class_="start", fill="white", stroke=colour))
+        for f in run.firings:
+            fx, fy = px(f.x, f.y)
+            marker = dwg.circle(center=(fx, fy), r=3.5, class_="firing", fill=colour,
+                                stroke="white", stroke_width=0.8)
+            marker["data-t-ms"] = str(f.t_ms)
+            marker["data-label"] = f.label
+            marker.set_desc(title=f"{run.name + ': ' if run.name else ''}{f.t_ms} ms {f.title}")
+            rg.add(marker)
+            # its label, unless that would cover another label (the marker's
+            # tooltip still names it); the same label at the same spot once
+            box = _label_box(f.label, fx, fy, placed_labels)
+            if box is not None:
+                placed_labels.append(box)
+                t = dwg.text(f.label, insert=(box[0], _r(box[1] + LABEL_H)), class_="firing-label",
+                             font_family="sans-serif", font_size=9, fill="#333")
+                t["data-t-ms"] = str(f.t_ms)
+                rg.add(t)
+        _, fx, fy, fh = run.poses[-1]
+        cx, cy = px(fx, fy)
+        fin = dwg.g(class_="final-pose")
+        fin["data-x-mm"] = str(fx)
+        fin["data-y-mm"] = str(fy)
+        fin["data-heading-deg"] = str(fh)
+        rr = radius * scale
+        fin.add(dwg.circle(center=(cx, cy), r=_r(max(rr, 3.0)), fill=colour, fill_opacity=0.35,
+                           stroke=colour, stroke_width=1.5))
+        hx = cx + max(rr, 3.0) * math.cos(math.radians(fh))
+        hy = cy - max(rr, 3.0) * math.sin(math.radians(fh))
+        fin.add(dwg.line(start=(cx, cy), end=(_r(hx), _r(hy)), stroke="#000", stroke_width=1.5,
+                         class_="heading"))
+        if run.name:
+            fin.add(dwg.text(run.name, insert=(_r(cx + rr + 2), _r(cy + 4)), font_family="sans-serif",
+                             font_size=10, class_="robot-name"))
+        rg.add(fin)
+        dwg.add(rg)
+
+    # -- timeline
+    tl = dwg.g(id="timeline")
+    t_left = MARGIN_PX + LABEL_COLUMN_PX
+    t_right = width - MARGIN_PX
+    span_ms = max(end_ms, 1)
+
+    def tx(t_ms: int) -> float:
+        return _r(t_left + (t_right - t_left) * t_ms / span_ms)
+
+    tl.add(dwg.text("rules fired over time", insert=(MARGIN_PX, _r(timeline_top - 12)),
+                    font_family="sans-serif", font_size=11, class_="timeline-title"))
+    for row, label in enumerate(rows):
+        y = timeline_top + row * ROW_PX
+        rowg = dwg.g(class_="timeline-row")
+        rowg["data-label"] = label
+        text = row_titles[label]
+        if len(text) > ROW_LABEL_CHARS:
+            text = text[:ROW_LABEL_CHARS - 1] + "\u2026"
+        row_label = dwg.text(text, insert=(MARGIN_PX, _r(y + 12)), font_family="sans-serif",
+                             font_size=9, class_="row-label")
+        row_label.set_desc(title=row_titles[label])
+        rowg.add(row_label)
+        rowg.add(dwg.line(start=(t_left, _r(y + ROW_PX / 2)), end=(t_right, _r(y + ROW_PX / 2)),
+                          stroke="#ddd", stroke_width=1))
+        for i, run in enumerate(runs):
+            for f in run.firings:
+                if f.label == label:
+                    tick = dwg.line(start=(tx(f.t_ms), _r(y + 3)), end=(tx(f.t_ms), _r(y + ROW_PX - 3)),
+                                    stroke=COLOURS[i % len(COLOURS)], stroke_width=1.5, class_="tick")
+                    tick["data-t-ms"] = str(f.t_ms)
+                    if run.name:
+                        tick["data-robot"] = run.name
+                    rowg.add(tick)
+        tl.add(rowg)
+    axis_y = _r(timeline_top + timeline_h + 4)
+    tl.add(dwg.line(start=(t_left, axis_y), end=(t_right, axis_y), stroke="#444", class_="axis"))
+    step = _nice_step(span_ms / 1000.0)
+    k = 0
+    while k * step * 1000 <= span_ms + 1e-6:
+        t = k * step * 1000
+        x = tx(t)
+        tl.add(dwg.line(start=(x, axis_y), end=(x, _r(axis_y + 4)), stroke="#444"))
+        tl.add(dwg.text(f"{k * step:g} s", insert=(_r(x - 8), _r(axis_y + 16)),
+                        font_family="sans-serif", font_size=9, class_="axis-label"))
+        k += 1
+    dwg.add(tl)
+    return dwg.tostring() + "\n"

@@ -1,0 +1,47 @@
+/*
+ * enki_bridge.h - what a robot (its program, the runtime, platform_host.c
+ * and the e-puck library over Enki, all in one shared object) and the Enki
+ * world runner (world_runner.cpp) exchange.  One struct per robot, owned by
+ * the runner; the robot's glue (robot_glue.c) gets a pointer to it.
+ *
+ * Time: the world steps every `step_ms` ms of virtual time.  Between two
+ * world steps each robot runs `step_ms` poll cycles of its own (1 ms each,
+ * as on the stub harness), counting its wheel steps; then it hands control
+ * back to the runner (a coroutine switch), which turns those steps into
+ * Enki wheel speeds, steps the world and hands back the new pose and
+ * proximity readings.
+ */
+#ifndef ENKI_BRIDGE_H
+#define ENKI_BRIDGE_H
+
+#define ENKI_BRIDGE_VERSION 2
+#define ENKI_MAX_SETTINGS 8
+
+typedef struct enki_robot_io {
+    int version;                    /* ENKI_BRIDGE_VERSION */
+    int step_ms;                    /* ms of virtual time per world step */
+    /* settings the robot's getenv() sees instead of the process
+     * environment (EPUCK_TRACE, EPUCK_TIME_LIMIT_MS, ...); NULL-terminated
+     * name/value pairs.  Any other EPUCK_* name reads as unset. */
+    const char *settings[2 * ENKI_MAX_SETTINGS + 2];
+
+    /* world -> robot, at each world step */
+    double x_mm, y_mm;              /* Enki's pose of the body (world frame) */
+    double heading_rad;             /* counter-clockwise from +x */
+    int prox[8];                    /* IR readings, library units 0..4095 */
+
+    /* robot -> world */
+    long window_left, window_right; /* wheel steps in the world step just ended */
+    long pending_left, pending_right; /* steps Enki has not integrated yet */
+    double mm_per_step, axle_mm;    /* the program's geometry */
+    int ms_in_window;
+    int finished;                   /* main returned or exit() was called */
+    int status;                     /* its value */
+
+    /* the runner's coroutine switch: back to the world until it has stepped
+     * (never returns once `finished` is set) */
+    void (*yield)(struct enki_robot_io *robot);
+    void *runner;                   /* the runner's own data */
+} enki_robot_io;
+
+#endif

@@ -1,0 +1,436 @@
+/*
+ * world_runner.cpp - runs e-puck programs in an Enki world, in lockstep.
+ *
+ *   epuck-world SPEC RESULTS
+ *
+ * SPEC is the world as epuckc/world.py resolved it (all lengths in cm,
+ * angles in radians, one item per line):
+ *
+ *   arena square W H | arena none        walls of a W x H cm arena, corner (0,0)
+ *   seed N                               Enki's random generator (noise)
+ *   noise F                              wheel speed noise, +-F (0.05 = 5 %)
+ *   step_ms N                            ms of virtual time per world step
+ *   box X Y L1 L2 ANGLE HEIGHT           a static box centred at (X, Y)
+ *   cylinder X Y R HEIGHT                a static cylinder
+ *   robot NAME X Y ANGLE                 an e-puck; the lines below belong to it
+ *   lib PATH                             its program + runtime, a shared object
+ *   setting NAME VALUE                   what its getenv(NAME) returns
+ *
+ * Each robot's shared object is loaded from its own file (so its globals
+ * are its own) and its main() runs as a coroutine: it runs step_ms poll
+ * cycles, then yields (robot_glue.c), and the world steps once.  Robots are
+ * resumed in the order of the SPEC; nothing depends on wall-clock time, so
+ * a run is reproducible byte for byte.
+ *
+ * Readable output: one robot writes to stdout as on the stub harness;
+ * several robots' lines are collected per robot and printed after each
+ * world step, prefixed with "NAME: ".
+ * RESULTS gets one line per robot:
+ *   NAME STATUS WALL_CONTACTS OBJECT_CONTACTS ROBOT_CONTACTS FIRST_CONTACT_MS
+ * (contacts are counted in physics steps with a collision; first -1: none).
+ * Exit status 0, or 4 with a message on stderr when the SPEC or a robot's
+ * shared object cannot be used.
+ */
+#include <dlfcn.h>
+#include <ucontext.h>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstdint>
+#include <cstring>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <enki/PhysicalEngine.h>
+#include <enki/robots/e-puck/EPuck.h>
+
+#include "enki_bridge.h"
+
+namespace {
+
+const int EXIT_RUNNER = 4;
+const size_t STACK_SIZE = 1 << 20;
+
+/* Coroutines.  On x86-64 a switch saves the callee-saved registers and
+ * swaps stacks (a few ns); elsewhere ucontext's swapcontext, which also
+ * saves the signal mask with a system call (about ten times slower;
+ * -DEPUCK_WORLD_UCONTEXT chooses it on x86-64 too). */
+#if defined(__x86_64__) && defined(__linux__) && !defined(EPUCK_WORLD_UCONTEXT)
+#define FAST_SWITCH 1
+extern "C" void epuck_switch_stack(void **save_sp, void *new_sp);
+asm(R"(
+    .text
+    .globl epuck_switch_stack
+    .type epuck_switch_stack, @function
+epuck_switch_stack:
+    pushq %rbp
+    pushq %rbx
+    pushq %r12
+    pushq %r13
+    pushq %r14
+    pushq %r15
+    movq %rsp, (%rdi)
+    movq %rsi, %rsp
+    popq %r15
+    popq %r14
+    popq %r13
+    popq %r12
+    popq %rbx
+    popq %rbp
+    ret
+    .size epuck_switch_stack, .-epuck_switch_stack
+    .section .note.GNU-stack,"",@progbits
+    .text
+)");
+#else
+#define FAST_SWITCH 0
+#endif
+
+[[noreturn]] void die(const std::string &message)
+{
+    std::fprintf(stderr, "epuck-world: %s\n", message.c_str());
+    std::exit(EXIT_RUNNER);
+}
+
+// Enki's e-puck with the program's wheel geometry and collision counters.
+struct Body : public Enki::EPuck {
+    long wall_contacts = 0, object_contacts = 0, robot_contacts = 0;
+    long first_contact_ms = -1;
+    long now_ms = 0;
+
+    // Enki's EPuck(CAPABILITY_BASIC_SENSORS) also adds the scanner turret
+    // (its test is `capabilities & CAPABILITY_SCANNER_TURRET`, and that
+    // constant is 0x3), which costs most of a step and is never read here:
+    // only the eight IR sensors are added.
+    Body() : Enki::EPuck(CAPABILITY_NONE)
+    {
+        addLocalInteraction(&infraredSensor0);
+        addLocalInteraction(&infraredSensor1);
+        addLocalInteraction(&infraredSensor2);
+        addLocalInteraction(&infraredSensor3);
+        addLocalInteraction(&infraredSensor4);
+        addLocalInteraction(&infraredSensor5);
+        addLocalInteraction(&infraredSensor6);
+        addLocalInteraction(&infraredSensor7);
+    }
+    void setGeometry(double axle_cm, double max_speed_cm_s, double noise)
+    {
+        distBetweenWheels = axle_cm;
+        maxSpeed = max_speed_cm_s;
+        noiseAmount = noise;
+    }
+    void collisionEvent(Enki::PhysicalObject *o) override
+    {
+        if (o == nullptr)
+            wall_contacts++;
+        else if (dynamic_cast<Body *>(o) != nullptr)
+            robot_contacts++;
+        else
+            object_contacts++;
+        if (first_contact_ms < 0)
+            first_contact_ms = now_ms;
+    }
+};
+
+struct Robot {
+    std::string name, lib;
+    double x = 0, y = 0, angle = 0;
+    std::vector<std::string> settings;      // name, value, ...
+    enki_robot_io io;
+    Body *body = nullptr;
+    void *handle = nullptr;
+    int (*main)(int, char **) = nullptr;
+    std::unique_ptr<char[]> stack;          // not zeroed: the kernel commits it as used
+#if FAST_SWITCH
+    void *world_sp = nullptr, *robot_sp = nullptr;
+#else
+    ucontext_t world_ctx, robot_ctx;
+#endif
+    FILE *out = nullptr;                    // several robots: collected output
+    char *out_buf = nullptr;
+    size_t out_size = 0, out_done = 0;
+};
+
+std::vector<Robot> robots;
+Enki::World *world;
+Robot *current;
+
+// robot -> world
+void yield_robot(enki_robot_io *io)
+{
+    Robot *r = static_cast<Robot *>(io->runner);
+#if FAST_SWITCH
+    epuck_switch_stack(&r->robot_sp, r->world_sp);
+#else
+    swapcontext(&r->robot_ctx, &r->world_ctx);
+#endif
+}
+
+// world -> robot
+void resume_robot(Robot &r)
+{
+#if FAST_SWITCH
+    epuck_switch_stack(&r.world_sp, r.robot_sp);
+#else
+    swapcontext(&r.world_ctx, &r.robot_ctx);
+#endif
+}
+
+void start_robot()
+{
+    static char arg0[] = "robot";
+    static char *argv[] = { arg0, nullptr };
+    Robot *r = current;
+    int status = r->main(1, argv);
+    r->io.status = status;
+    r->io.finished = 1;
+    yield_robot(&r->io);
+    std::abort();
+}
+
+void prepare_robot(Robot &r)
+{
+    r.stack.reset(new char[STACK_SIZE]);
+#if FAST_SWITCH
+    // the stack as epuck_switch_stack leaves it: six saved registers, then
+    // the address it returns to (start_robot), then a dummy return address
+    // for start_robot, with the stack 16-byte aligned at its call
+    uintptr_t top = (reinterpret_cast<uintptr_t>(r.stack.get()) + STACK_SIZE) & ~uintptr_t(15);
+    void **sp = reinterpret_cast<void **>(top);
+    *--sp = nullptr;
+    *--sp = reinterpret_cast<void *>(&start_robot);
+    for (int i = 0; i < 6; i++)
+        *--sp = nullptr;
+    r.robot_sp = sp;
+#else
+    getcontext(&r.robot_ctx);
+    r.robot_ctx.uc_stack.ss_sp = r.stack.get();
+    r.robot_ctx.uc_stack.ss_size = STACK_SIZE;
+    r.robot_ctx.uc_link = nullptr;
+    makecontext(&r.robot_ctx, start_robot, 0);
+#endif
+}
+
+std::string rest(const char *line, const char *word)
+{
+    std::string s(line + std::strlen(word));
+    while (!s.empty() && (s.back() == '\n' || s.back() == '\r'))
+        s.pop_back();
+    if (!s.empty() && s[0] == ' ')
+        s.erase(0, 1);
+    return s;
+}
+
+double read_prox(Enki::IRSensor &s)
+{
+    double v = std::floor(s.getValue() + 0.5);
+    return v < 0 ? 0 : v > 4095 ? 4095 : v;
+}
+
+void sense(Robot &r)
+{
+    Enki::IRSensor *ir[8] = {
+        &r.body->infraredSensor0, &r.body->infraredSensor1, &r.body->infraredSensor2,
+        &r.body->infraredSensor3, &r.body->infraredSensor4, &r.body->infraredSensor5,
+        &r.body->infraredSensor6, &r.body->infraredSensor7,
+    };
+    for (int n = 0; n < 8; n++)
+        r.io.prox[n] = (int)read_prox(*ir[n]);
+    r.io.x_mm = r.body->pos.x * 10.0;
+    r.io.y_mm = r.body->pos.y * 10.0;
+    r.io.heading_rad = r.body->angle;
+}
+
+void flush_output(Robot &r, bool all)
+{
+    if (r.out == nullptr)
+        return;
+    std::fflush(r.out);
+    size_t end = r.out_size;
+    if (!all)
+        while (end > r.out_done && r.out_buf[end - 1] != '\n')
+            end--;
+    size_t i = r.out_done;
+    while (i < end) {
+        size_t j = i;
+        while (j < end && r.out_buf[j] != '\n')
+            j++;
+        std::printf("%s: %.*s\n", r.name.c_str(), (int)(j - i), r.out_buf + i);
+        i = j + 1;
+    }
+    r.out_done = end < r.out_size ? end : r.out_size;
+}
+
+}  // namespace
+
+int main(int argc, char **argv)
+{
+    if (argc != 3)
+        die("usage: epuck-world SPEC RESULTS");
+    FILE *spec = std::fopen(argv[1], "r");
+    if (spec == nullptr)
+        die(std::string("cannot read ") + argv[1]);
+
+    bool walls = false;
+    double width = 0, height = 0, noise = 0.05;
+    unsigned long seed = 1;
+    int step_ms = 10;
+    struct Obstacle { bool box; double x, y, a, b, angle, h; };
+    std::vector<Obstacle> obstacles;
+    robots.reserve(1024);
+
+    char line[8192];
+    int lineno = 0;
+    while (std::fgets(line, sizeof line, spec) != nullptr) {
+        lineno++;
+        char name[256];
+        Obstacle o{};
+        Robot r;
+        if (std::sscanf(line, "arena square %lf %lf", &width, &height) == 2)
+            walls = true;
+        else if (std::strncmp(line, "arena none", 10) == 0)
+            walls = false;
+        else if (std::sscanf(line, "seed %lu", &seed) == 1
+                 || std::sscanf(line, "noise %lf", &noise) == 1
+                 || std::sscanf(line, "step_ms %d", &step_ms) == 1)
+            ;
+        else if (std::sscanf(line, "box %lf %lf %lf %lf %lf %lf", &o.x, &o.y, &o.a, &o.b, &o.angle, &o.h) == 6) {
+            o.box = true;
+            obstacles.push_back(o);
+        } else if (std::sscanf(line, "cylinder %lf %lf %lf %lf", &o.x, &o.y, &o.a, &o.h) == 4) {
+            o.box = false;
+            obstacles.push_back(o);
+        } else if (std::sscanf(line, "robot %255s %lf %lf %lf", name, &r.x, &r.y, &r.angle) == 4) {
+            r.name = name;
+            robots.push_back(std::move(r));
+        } else if (std::strncmp(line, "lib ", 4) == 0 && !robots.empty())
+            robots.back().lib = rest(line, "lib");
+        else if (std::strncmp(line, "setting ", 8) == 0 && !robots.empty()) {
+            std::string s = rest(line, "setting");
+            size_t sp = s.find(' ');
+            if (sp == std::string::npos)
+                die(std::string(argv[1]) + ":" + std::to_string(lineno) + ": setting without a value");
+            robots.back().settings.push_back(s.substr(0, sp));
+            robots.back().settings.push_back(s.substr(sp + 1));
+        } else if (line[0] != '#' && line[0] != '\n')
+            die(std::string(argv[1]) + ":" + std::to_string(lineno) + ": cannot read this line");
+    }
+    std::fclose(spec);
+    if (robots.empty())
+        die("the world has no robot");
+    if (step_ms < 1)
+        die("step_ms must be at least 1");
+
+    // Enki draws its noise from one generator (Enki::random); C's rand() is
+    // seeded too in case a part of Enki uses it.
+    std::srand((unsigned)seed);
+    world = walls ? new Enki::World(width, height) : new Enki::World();
+    world->setRandomSeed(seed);
+    for (const Obstacle &o : obstacles) {
+        Enki::PhysicalObject *p = new Enki::PhysicalObject;
+        if (o.box)
+            p->setRectangular(o.a, o.b, o.h, -1);
+        else
+            p->setCylindric(o.a, o.h, -1);
+        p->pos = Enki::Point(o.x, o.y);
+        p->angle = o.angle;
+        world->addObject(p);
+    }
+
+    const bool several = robots.size() > 1;
+    for (Robot &r : robots) {
+        std::memset(&r.io, 0, sizeof r.io);
+        r.io.version = ENKI_BRIDGE_VERSION;
+        r.io.yield = yield_robot;
+        r.io.runner = &r;
+        r.io.step_ms = step_ms;
+        if (r.settings.size() / 2 > ENKI_MAX_SETTINGS)
+            die("too many settings for robot " + r.name);
+        for (size_t i = 0; i < r.settings.size(); i++)
+            r.io.settings[i] = r.settings[i].c_str();
+        r.handle = dlopen(r.lib.c_str(), RTLD_NOW | RTLD_LOCAL);
+        if (r.handle == nullptr)
+            die("cannot load robot " + r.name + ": " + dlerror());
+        auto attach = (int (*)(enki_robot_io *))dlsym(r.handle, "enki_robot_attach");
+        r.main = (int (*)(int, char **))dlsym(r.handle, "main");
+        if (attach == nullptr || r.main == nullptr)
+            die("robot " + r.name + ": " + r.lib + " is not a robot for this runner");
+        // the default geometry until the program sets its own (epuckrt.h)
+        r.io.mm_per_step = 128.805 / 1000.0;
+        r.io.axle_mm = 53.0;
+        r.body = new Body;
+        r.body->pos = Enki::Point(r.x, r.y);
+        r.body->angle = r.angle;
+        r.body->setGeometry(r.io.axle_mm / 10.0, 1000.0, noise);
+        world->addObject(r.body);
+        if (several) {
+            r.out = open_memstream(&r.out_buf, &r.out_size);
+            if (r.out == nullptr)
+                die("out of memory");
+        }
+    }
+    // readings for the first poll: the world as placed, nothing moving
+    const double dt = step_ms / 1000.0;
+    world->step(dt);
+    for (Robot &r : robots) {
+        sense(r);
+        auto attach = (int (*)(enki_robot_io *))dlsym(r.handle, "enki_robot_attach");
+        if (attach(&r.io) != 0)
+            die("robot " + r.name + ": " + r.lib + " was built for another runner");
+        prepare_robot(r);
+    }
+
+    FILE *real_stdout = stdout;
+    long now_ms = 0;
+    for (;;) {
+        bool running = false;
+        for (Robot &r : robots) {
+            if (r.io.finished)
+                continue;
+            current = &r;
+            if (r.out != nullptr)
+                stdout = r.out;
+            resume_robot(r);
+            stdout = real_stdout;
+            running = running || !r.io.finished;
+        }
+        now_ms += step_ms;
+        // the steps each robot made in this world step become its wheel
+        // speeds; Enki moves the body by them in its next step
+        for (Robot &r : robots) {
+            double cm_per_step = r.io.mm_per_step / 10.0;
+            r.body->setGeometry(r.io.axle_mm / 10.0, 1000.0, noise);
+            r.body->leftSpeed = r.io.window_left * cm_per_step / dt;
+            r.body->rightSpeed = r.io.window_right * cm_per_step / dt;
+            r.body->now_ms = now_ms;
+        }
+        world->step(dt);
+        for (Robot &r : robots) {
+            r.io.pending_left = r.io.window_left;
+            r.io.pending_right = r.io.window_right;
+            r.io.window_left = r.io.window_right = 0;
+            r.io.ms_in_window = 0;
+            sense(r);
+            flush_output(r, false);
+        }
+        if (!running)
+            break;
+    }
+    std::fflush(stdout);
+
+    FILE *results = std::fopen(argv[2], "w");
+    if (results == nullptr)
+        die(std::string("cannot write ") + argv[2]);
+    for (Robot &r : robots) {
+        flush_output(r, true);
+        std::fprintf(results, "%s %d %ld %ld %ld %ld\n", r.name.c_str(), r.io.status,
+                     r.body->wall_contacts, r.body->object_contacts, r.body->robot_contacts,
+                     r.body->first_contact_ms);
+    }
+    std::fclose(results);
+    std::fflush(stdout);
+    // the robots' trace files are flushed at each record; exit() closes them
+    return 0;
+}

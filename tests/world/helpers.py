@@ -1,0 +1,47 @@
+"""Running epuckc with worlds and pictures, for the tests of issue 10."""
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parents[2]
+EXAMPLES = REPO / "examples"
+SVG = "{http://www.w3.org/2000/svg}"
+
+
+def epuckc(*args, cwd=None, env=None):
+    """Run the CLI as a user does, in a subprocess."""
+    full_env = dict(os.environ)
+    full_env["PYTHONPATH"] = str(REPO) + os.pathsep + full_env.get("PYTHONPATH", "")
+    full_env.update(env or {})
+    return subprocess.run([sys.executable, "-m", "epuckc", *map(str, args)], cwd=cwd,
+                          env=full_env, capture_output=True, text=True)
+
+
+def run(program, tmp_path, *extra, expect=0, name="trace"):
+    """`epuckc run` with a trace; returns (records, stdout, the trace's text).
+    `expect`: the exit status (None: any)."""
+    trace = tmp_path / f"{name}.jsonl"
+    result = epuckc("run", program, "--trace", trace, *extra)
+    if expect is not None:
+        assert result.returncode == expect, result.stdout + result.stderr
+    text = trace.read_text()
+    return [json.loads(line) for line in text.splitlines()], result.stdout, text
+
+
+def svg(path):
+    return ET.parse(path).getroot()
+
+
+def by_class(root, cls):
+    return [e for e in root.iter() if cls in e.get("class", "").split()]
+
+
+def final_pose(records, robot=None):
+    """The last record with a pose (of one robot)."""
+    posed = [r for r in records if "x_mm" in r and (robot is None or r.get("robot") == robot)]
+    return posed[-1]
