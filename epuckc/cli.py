@@ -371,6 +371,20 @@ def _restore_sigterm(previous):
         signal.signal(signal.SIGTERM, previous)
 
 
+EXIT_BROKEN_PIPE = 128 + 13     # what a shell reports for a process killed by SIGPIPE
+
+
+def _silence_stdout():
+    """Point stdout at /dev/null, so that flushing it at exit cannot raise
+    BrokenPipeError again."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        os.close(devnull)
+    except (OSError, ValueError):
+        pass
+
+
 def main(argv=None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
@@ -382,6 +396,11 @@ def main(argv=None) -> int:
         return args.run(args)
     except KeyboardInterrupt:
         return 130
+    except BrokenPipeError:
+        # The reader went away (`epuckc compile f.epk -o - | head`): stop
+        # quietly, as a Unix filter does, with SIGPIPE's status.
+        _silence_stdout()
+        return EXIT_BROKEN_PIPE
     except Exception as exc:  # a bug in epuckc: say so plainly, no traceback
         if os.environ.get("EPUCKC_DEBUG"):
             raise

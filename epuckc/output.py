@@ -93,6 +93,8 @@ def write_file(path: Union[str, Path], data: Union[str, bytes], mode: int = 0o64
             else:
                 sys.stdout.write(data.decode("utf-8"))
                 sys.stdout.flush()
+        except BrokenPipeError:
+            raise               # the reader went away: cli.main stops quietly
         except OSError as exc:
             raise OutputError(describe_os_error(exc, "standard output")) from None
         return

@@ -254,3 +254,19 @@ def _env():
     env["PYTHONPATH"] = str(REPO) + os.pathsep + env.get("PYTHONPATH", "")
     env.pop("NO_COLOR", None)
     return env
+
+
+def test_a_reader_that_goes_away_stops_epuckc_quietly(tmp_path):
+    """`epuckc compile big.epk -o - | head`: when the pipe closes, epuckc
+    stops like a Unix filter (SIGPIPE's status 141), with no internal error."""
+    big = tmp_path / "big.epk"
+    big.write_text("".join(f"on timer({i + 1} s) do start_straight(300, {i % 90 + 1} cm)\n"
+                           for i in range(3000)) + "on immediate do set_timer\n")
+    read_end, write_end = os.pipe()
+    os.close(read_end)          # the reader has already gone
+    result = subprocess.run([sys.executable, "-m", "epuckc", "compile", str(big), "-o", "-",
+                             "--max-actions", "4000", "--max-events", "4000"],
+                            stdout=write_end, stderr=subprocess.PIPE, text=True, timeout=120)
+    os.close(write_end)
+    assert result.returncode == 141, result.stderr
+    assert result.stderr == ""
