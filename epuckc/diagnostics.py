@@ -8,7 +8,6 @@ JSON for tools, and SARIF 2.1.0 for code scanning (sarif.py).
 """
 from __future__ import annotations
 
-import json
 from dataclasses import dataclass, field
 from typing import Iterable, Optional
 
@@ -184,6 +183,7 @@ def render_report(report: Report, fmt: str, colour: bool = False) -> str:
         return render_sarif(report)
     diags = report.sorted()
     if fmt == "json":
+        import json         # only here: `check` starts faster without it
         return json.dumps([to_json_object(d) for d in diags], indent=2) + "\n"
     if fmt == "gcc":
         return "".join(render_gcc(d) + "\n" for d in diags)

@@ -11,16 +11,16 @@ from its first to its last token, dropped tokens included. Instead of
 building a tree and transforming it afterwards, each reduction calls the
 transformer's method for the rule at once: callback(meta, children).
 
-The cache key hashes the grammar text and the Lark, Python and format
+The cache file is keyed on the grammar text and the Lark, Python and format
 versions, so an edited grammar is honoured on the next run. When no cache
 folder is writable the tables are built in memory each time.
 """
 from __future__ import annotations
 
-import hashlib
 import marshal
 import os
 import sys
+import zlib
 from operator import itemgetter
 
 from .resources import cache_dir
@@ -141,9 +141,12 @@ def load_tables(grammar: str, start: str) -> Tables:
     """The tables for `grammar`, from the cache when it holds them."""
     if os.environ.get("EPUCKC_NO_CACHE"):
         return Tables(build_tables(grammar, start))
-    key = hashlib.sha256("\0".join((grammar, start, str(FORMAT), _lark_version(),
-                                    sys.version)).encode("utf-8")).hexdigest()[:24]
-    path = cache_dir() / f"tables-{key}.marshal"
+    # The file is named by a checksum of everything the tables depend on and
+    # holds that text itself, compared whole on loading: no hash collision
+    # can hand back another grammar's tables (and hashlib, which takes ~3 ms
+    # to import, is not needed).
+    key = "\0".join((grammar, start, str(FORMAT), _lark_version(), sys.version))
+    path = cache_dir() / f"tables-{zlib.crc32(key.encode('utf-8')):08x}.marshal"
     try:
         with open(path, "rb") as f:
             data = marshal.load(f)
