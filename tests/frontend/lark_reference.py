@@ -29,8 +29,10 @@ class TokenList(Lexer):
         return iter(data)
 
 
-def lark_tokens(chunk) -> list:
-    return [Token(t.type, t.value, t.start_pos, t.line, t.column, t.end_line, t.end_column,
+def lark_tokens(chunk, token_class=Token) -> list:
+    """Lark's tokens (a standalone module has its own Token class, which its
+    tree builder needs to see to give spans)."""
+    return [token_class(t.type, t.value, t.start_pos, t.line, t.column, t.end_line, t.end_column,
                   t.end_pos) for t in chunk]
 
 
@@ -42,16 +44,35 @@ def lark_parser(cache=None) -> Lark:
                 cache=cache)
 
 
-class ToAst(Transformer):
-    """A Lark tree -> epuckc's AST, through the parser's own callbacks."""
+class _StateTokens:
+    """The same, for a standalone parser's frontend, which calls its lexer
+    with a lexer state whose `text` is what was given to parse()."""
 
-    def __default__(self, data, children, meta):
-        span = Span(1, 1, 1, 1) if meta.empty else Span(meta.line, meta.column, meta.end_line,
-                                                        meta.end_column)
-        return _CALLBACKS[str(data)](span, children)
+    def lex(self, lexer_state, parser_state):
+        return iter(lexer_state.text)
 
 
-TO_AST = ToAst()
+def standalone_parser(module):
+    """The parser of a module made by `python -m lark.tools.standalone`,
+    fed epuckc's tokens."""
+    parser = module.Lark_StandAlone()
+    parser.parser.lexer = _StateTokens()
+    return parser
+
+
+def _default(self, data, children, meta):
+    span = Span(1, 1, 1, 1) if meta.empty else Span(meta.line, meta.column, meta.end_line,
+                                                    meta.end_column)
+    return _CALLBACKS[str(data)](span, children)
+
+
+def to_ast_transformer(transformer_class=Transformer):
+    """A Lark tree -> epuckc's AST, through the parser's own callbacks (a
+    standalone module has its own Transformer and Tree classes)."""
+    return type("ToAst", (transformer_class,), {"__default__": _default})()
+
+
+TO_AST = to_ast_transformer()
 
 
 def parse_with_lark(parser, chunk):
