@@ -2,7 +2,7 @@
 
 The nodes behave like frozen dataclasses (fields by position or by name,
 equality and hashing by type and fields, a `Name(field=...)` repr, and
-assigning to a field raises dataclasses.FrozenInstanceError), but they are
+assigning to a field raises FrozenInstanceError, see records.py), but they are
 plain classes with `__slots__`: a 1,000-rule file makes some 20,000 nodes,
 and a frozen dataclass costs four times as much to build, and its module
 ten milliseconds to import. `_fields` lists a node's fields in order.
@@ -13,9 +13,9 @@ in `__init__`.
 """
 from __future__ import annotations
 
-from dataclasses import FrozenInstanceError
 from typing import Optional, Union
 
+from .records import FrozenInstanceError
 from .source import Span
 
 _set = object.__setattr__

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 import os
-from dataclasses import dataclass, field
+from .records import field, record
 from pathlib import Path
 from typing import Optional
 
@@ -43,7 +43,7 @@ RESERVED_C_PREFIXES = ("action_", "event_", "param_", "e_", "rt_", "stub_", "EPU
 
 # ---- the checked program ------------------------------------------------------
 
-@dataclass
+@record
 class ResolvedCall:
     """A call whose arguments are checked and converted.
 
@@ -59,7 +59,7 @@ class ResolvedCall:
     node: object
 
 
-@dataclass
+@record
 class ResolvedEvent:
     kind: str               # "standard" | "extern"
     name: str
@@ -68,7 +68,7 @@ class ResolvedEvent:
     node: object = None
 
 
-@dataclass
+@record
 class ResolvedRule:
     name: Optional[str]
     event: ResolvedEvent
@@ -77,7 +77,7 @@ class ResolvedRule:
     node: ast.Rule
 
 
-@dataclass
+@record
 class ExternInfo:
     kind: str               # "action" | "event"
     name: str
@@ -86,7 +86,7 @@ class ExternInfo:
     node: ast.ExternDef
 
 
-@dataclass
+@record
 class CheckedProgram:
     file: str
     geometry: Geometry

@@ -8,7 +8,7 @@ JSON for tools, and SARIF 2.1.0 for code scanning (sarif.py).
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from .records import field, record
 from typing import Iterable, Optional
 
 from .source import SourceFile, Span
@@ -17,13 +17,13 @@ ERROR = "error"
 WARNING = "warning"
 
 
-@dataclass(frozen=True)
+@record(frozen=True)
 class Note:
     message: str
     span: Optional[Span] = None     # shown as file:line:col when given
 
 
-@dataclass(frozen=True)
+@record(frozen=True)
 class Diagnostic:
     code: str
     severity: str
@@ -37,7 +37,7 @@ class Diagnostic:
         return (self.file, self.span.line, self.span.column, self.code)
 
 
-@dataclass
+@record
 class Report:
     """The diagnostics of one run, and the sources they point into."""
     diagnostics: list = field(default_factory=list)

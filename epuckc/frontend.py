@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import gc
 import re
-from dataclasses import dataclass
+from .records import record
 from functools import lru_cache
 from pathlib import Path
 from typing import Optional
@@ -24,7 +24,7 @@ def runtime_capacity() -> tuple[int, int]:
     return int(found["MAX_ACTIONS"]), int(found["MAX_EVENTS"])
 
 
-@dataclass
+@record
 class FrontEndResult:
     source: Optional[SourceFile]
     checked: Optional[CheckedProgram]      # None when there are errors

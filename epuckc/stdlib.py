@@ -10,7 +10,7 @@ list of its own.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+from .records import record
 from typing import Optional
 
 from .units import ANGLE, DISTANCE, DURATION, NATURAL_UNIT, SPEED
@@ -19,7 +19,7 @@ SENSOR_COUNT = 8
 THRESHOLD_MAX = 4095
 
 
-@dataclass(frozen=True)
+@record(frozen=True)
 class Param:
     """A parameter: its name, its kind (units.py), and for the standard
     ones a short description and the range the checker enforces, in words
@@ -30,7 +30,7 @@ class Param:
     range: str = ""
 
 
-@dataclass(frozen=True)
+@record(frozen=True)
 class ActionSpec:
     name: str
     params: tuple
@@ -43,7 +43,7 @@ class ActionSpec:
         return signature(self.name, self.params)
 
 
-@dataclass(frozen=True)
+@record(frozen=True)
 class EventSpec:
     name: str
     params: Optional[tuple]   # None: takes conditions (`sensor(ir0 > 300)`)
