@@ -208,9 +208,13 @@ def expected(tables: Tables, stack: list) -> set:
     return {t for t in row if t.isupper() and _accepts(tables, stack, t)}
 
 
+PICK, ONE, NONE, GROW, GENERAL = range(5)
+
+
 def _plan(rules, callbacks) -> list:
     """How to make each rule's value from the stack, decided once per table
-    and set of callbacks: (origin, size, callback or None, how, arg), where
+    and set of callbacks: (origin, size, callback or None for a spliced
+    `_rule`, how, arg, Nones after), where
     `how` says how the kept children are gathered:
       PICK    arg(values) with arg an itemgetter over offsets from the top
               of the stack, offset 0 being the None at its bottom (a
@@ -242,9 +246,6 @@ def _plan(rules, callbacks) -> list:
             how, arg = GENERAL, include
         plan.append((origin, size, func, how, arg, after))
     return plan
-
-
-PICK, ONE, NONE, GROW, GENERAL = range(5)
 
 
 def parse(tables: Tables, tokens, callbacks, meta=Meta) -> object:
