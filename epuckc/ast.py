@@ -15,7 +15,7 @@ from __future__ import annotations
 
 from typing import Optional, Union
 
-from .records import FrozenInstanceError
+from .records import _MISSING, FrozenInstanceError, _LazyDataclassFields
 from .source import Span
 
 _set = object.__setattr__
@@ -25,6 +25,10 @@ class Node:
     """The base of every node: its `_fields` are its `__slots__`."""
     __slots__ = ()
     _fields: tuple = ()
+    # Generic walkers (`dataclasses.fields(node)`, `hasattr(node,
+    # "__dataclass_fields__")`, `dataclasses.replace`) work as on the
+    # dataclasses these nodes were; made on first use (see records.py).
+    __dataclass_fields__ = _LazyDataclassFields()
 
     def __init__(self, *args, **kwargs):
         fields = self._fields
@@ -46,7 +50,8 @@ class Node:
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
         if cls.__slots__:           # not for a builder(), which adds no field
-            cls._fields = tuple(cls.__slots__)
+            cls._fields = cls.__match_args__ = tuple(cls.__slots__)
+            cls.__record_fields__ = tuple((f, _MISSING, _MISSING) for f in cls._fields)
 
     def __setattr__(self, name, value):
         raise FrozenInstanceError(f"cannot assign to field {name!r}")

@@ -224,11 +224,13 @@ def cmd_run(args) -> int:
         return world_cli.run(args, program, _robot_program_loader(args), run_host)
 
     def remember(exe):
+        if key is None:
+            return
         try:
             unchanged = path.read_bytes() == data
         except OSError:
             unchanged = False
-        if key is not None and unchanged:
+        if unchanged:
             runcache.record(key, exe, [program.base_dir / f for f in program.user_files],
                             render_report(report, "human"),
                             render_report(report, "human", colour=True), report.warning_count)

@@ -90,6 +90,11 @@ def test_ast_nodes_behave_as_frozen_dataclasses():
         ast.Ident("go")
     call = ast.Call(ident, None, span)
     assert pickle.loads(pickle.dumps(call)) == call and copy.copy(call) == call
+    # generic walkers written for the dataclasses still work
+    assert hasattr(call, "__dataclass_fields__") and dataclasses.is_dataclass(call)
+    assert [f.name for f in dataclasses.fields(call)] == ["name", "args", "span"]
+    assert dataclasses.replace(call, args=()) == ast.Call(ident, (), span)
+    assert dataclasses.asdict(ident) == {"name": "go", "span": span}
 
 
 def test_parsed_nodes_are_frozen_and_of_the_public_classes():
