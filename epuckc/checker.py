@@ -9,12 +9,12 @@ from __future__ import annotations
 
 import math
 import os
-from .records import field, record
 from pathlib import Path
 from typing import Optional
 
 from . import ast
 from .diagnostics import Collector, Note
+from .records import field, record
 from .source import Span
 from .stdlib import (ACTION_ALIASES, EVENT_ALIASES, EXTERN_TYPES, MOTION_ACTIONS,
                      SENSOR_NAMES, STANDARD_ACTIONS, STANDARD_EVENTS, THRESHOLD_MAX, Param)
@@ -900,7 +900,7 @@ class Checker:
 
     def _capacity(self, out: CheckedProgram):
         # A program registers at most one action and one event per rule
-        # (tests/frontend/test_robustness.py holds lowering to that), so a
+        # (tests/codegen/test_runcache.py holds lowering to that), so a
         # program that fits by that bound needs no exact count, and `check`
         # does not import lowering at all.
         if len(out.rules) <= min(self.max_actions, self.max_events):

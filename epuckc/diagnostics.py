@@ -8,9 +8,9 @@ JSON for tools, and SARIF 2.1.0 for code scanning (sarif.py).
 """
 from __future__ import annotations
 
-from .records import field, record
 from typing import Iterable, Optional
 
+from .records import field, record
 from .source import SourceFile, Span
 
 ERROR = "error"

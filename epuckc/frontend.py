@@ -3,7 +3,6 @@ from __future__ import annotations
 
 import gc
 import re
-from .records import record
 from functools import lru_cache
 from pathlib import Path
 from typing import Optional
@@ -11,6 +10,7 @@ from typing import Optional
 from .checker import CheckedProgram, check
 from .diagnostics import ERROR, Collector, Diagnostic, Report
 from .parser import parse
+from .records import record
 from .resources import runtime_dir
 from .source import SourceFile, Span
 

@@ -10,9 +10,9 @@ list of its own.
 """
 from __future__ import annotations
 
-from .records import record
 from typing import Optional
 
+from .records import record
 from .units import ANGLE, DISTANCE, DURATION, NATURAL_UNIT, SPEED
 
 SENSOR_COUNT = 8

@@ -8,6 +8,7 @@ second, degrees and milliseconds, rounding to the nearest.
 from __future__ import annotations
 
 import math
+
 from .records import record
 
 DISTANCE, SPEED, ANGLE, DURATION, INT = "distance", "speed", "angle", "duration", "int"
