@@ -11,8 +11,13 @@ reference in the same run (runs interleaved, medians):
 
     python3 bench/desk_bench.py [--runs 15] [--only check|run] [--before DIR]
 
---before DIR also times the epuckc of another checkout (e.g. a worktree of
-main) in the same interleaved runs, for before/after columns.
+--before DIR also times the epuckc of another checkout (e.g. `git archive
+main | tar -x -C DIR`) in the same interleaved runs, for before/after
+columns. Each figure is printed as the median wall-clock time and the
+median CPU time (user + system of the process and its children), each
+also as a multiple of its reference: on a shared machine the CPU time is
+the steadier of the two. epuckc runs with Python's bytecode cache on, as
+an installed epuckc does.
 
 Aseba: the Debian package `aseba` ships its compiler as a static library
 (no command-line compiler); bench/aseba_compile.cpp is a 100-line front end
