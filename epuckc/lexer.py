@@ -61,7 +61,7 @@ _TOKEN_RE = re.compile(r"""
     (?:
     (?P<space>\n[ \t\r\n\f\v]*|\Z)
   | (?P<comment>\#[^\n]*)
-  | (?P<NAME>(?![0-9])\w+)
+  | (?P<NAME>(?![0-9])\w+)                   # any letters: `café` is one token, one E008
   | (?P<exponent>[0-9]+(?:\.[0-9]+)?[eE][+-]?[0-9]+)
   | (?P<NUMBER>[0-9]+(?:\.[0-9]+)?)
   | (?P<STRING>"(?:[^"\\\n]|\\.)*")
@@ -72,10 +72,6 @@ _BLANKS_RE = re.compile(r"[ \t\r\f\v]*")
 
 # A run of characters that start no token (every other character starts one).
 _BAD_RE = re.compile(r"""[^\w \t\r\n\f\v#"(){},:=/\-><]+""")
-
-# A NAME may hold any letters, so that `café` is one token and one error
-# (E008) rather than a bad character per accent.
-_ASCII_NAME_RE = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
 
 
 def iter_tokens(source: SourceFile, diags: Collector):
@@ -116,11 +112,12 @@ def iter_tokens(source: SourceFile, diags: Collector):
         start = end - len(value)
         if kind == "NAME":
             kind = keywords.get(value, "NAME")
-            if kind == "NAME" and not _ASCII_NAME_RE.match(value) and value not in not_ascii:
+            # (an ASCII \w+ that starts with no digit is a valid name)
+            if kind == "NAME" and not value.isascii() and value not in not_ascii:
                 not_ascii.add(value)        # said once per name
-                _not_ascii(source, diags, pos, end, value)
+                _not_ascii(source, diags, start, end, value)
         elif kind == "exponent":
-            value = _exponent(source, diags, pos, end, value)
+            value = _exponent(source, diags, start, end, value)
             kind = "NUMBER"
         elif kind == "punct":
             kind = punctuation[value]
