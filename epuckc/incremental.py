@@ -140,6 +140,7 @@ class Entry:
     diags: list
     bad_runs: int           # runs of unexpected characters (E002)
     lines: int
+    once: bool = False      # has diagnostics said once per file (see _ONCE)
 
 
 def _shift_span(span: Span, by: int) -> Span:
@@ -176,7 +177,14 @@ def _parse_chunk(name: str, padded: str, following: Optional[str], ident: int) -
             statements.append(statement)
     diags = [_shift_diag(d, base) for d in lexical.items] + syntax.items
     bad_runs = sum(d.code == "E002" for d in lexical.items)
-    return Entry(ident, statements, diags, bad_runs, source.line_count)
+    once = any(d.code in _ONCE for d in lexical.items)
+    return Entry(ident, statements, diags, bad_runs, source.line_count, once)
+
+
+# What the lexer says once per file however often it occurs: a name that
+# is not ASCII (E008, lexer.iter_tokens). Each statement is lexed on its
+# own here, so the statements after the first drop theirs.
+_ONCE = frozenset({"E008"})
 
 
 class _Following:
@@ -198,27 +206,41 @@ class _Memo:
 
 class _Capture:
     """Run a step of the checker with fresh diagnostics and fresh sets of
-    facts, and remember both, so that the step can be replayed."""
+    facts, and remember both, so that the step can be replayed.
+
+    The checker's memories within one file (a constant's chain followed
+    once, a problem of a definition said once) start empty too, so that
+    the step does all its own lookups (and notes them, see _Watched) and
+    says all its own diagnostics; what is said twice is dropped when the
+    steps are put together (IncrementalChecker._replay), as the whole
+    file's check says it once."""
     FACTS = ("called", "used_actions", "const_used")
+    FRESH = ("_const_memo", "_const_reported", "_const_diagnostics")
 
     def __init__(self, checker: Checker):
         self.checker = checker
 
     def __enter__(self):
         c = self.checker
-        self.saved = (c.diags, {f: getattr(c, f) for f in self.FACTS})
+        fresh = [f for f in self.FRESH if hasattr(c, f)]
+        self.saved = (c.diags, {f: getattr(c, f) for f in self.FACTS},
+                      {f: getattr(c, f) for f in fresh})
         c.diags = Collector(c.diags.source)
         for f in self.FACTS:
             setattr(c, f, set())
+        for f in fresh:
+            setattr(c, f, type(getattr(c, f))())
         return self
 
     def __exit__(self, *exc):
         c = self.checker
         self.diags = c.diags.items
         self.facts = tuple((f, v) for f in self.FACTS if (v := getattr(c, f)))
-        c.diags, saved_facts = self.saved
+        c.diags, saved_facts, saved_fresh = self.saved
         for f in self.FACTS:
             setattr(c, f, saved_facts[f])
+        for f, value in saved_fresh.items():
+            setattr(c, f, value)
         return False
 
 
@@ -495,10 +517,18 @@ class Analyzer:
         program = ast.Program(self.name)
         diags = Collector(_Named(self.name))
         statements, items = program.statements, diags.items
+        said = set()
         for entry in entries:
             if entry.statements:
                 statements.extend(entry.statements)
-            if entry.diags:
+            if entry.once:
+                for d in entry.diags:
+                    if d.code in _ONCE:
+                        if (d.code, d.message) in said:
+                            continue
+                        said.add((d.code, d.message))
+                    items.append(d)
+            elif entry.diags:
                 items.extend(entry.diags)
         checker = IncrementalChecker(program, diags, self._memo, **self.options)
         checked = checker.check()
