@@ -403,7 +403,9 @@ class Checker:
             n = value.text.lstrip("-")
             self.diags.warning("W008", value.span,
                                f"`{n}` without a unit is {n} ms: did you mean {n} s?",
-                               help=f"write `{n} s`, or `{n} ms` if milliseconds are meant")
+                               help=Fix(Span(value.span.end_line, value.span.end_column,
+                                             value.span.end_line, value.span.end_column),
+                                        " s", f"write `{n} s`, or `{n} ms` if milliseconds are meant"))
         return quantity(value.value, value.unit, kind)
 
     @staticmethod

@@ -30,6 +30,8 @@ on stop_motor do cancel patrl
 rule patrol: on tmer(2 s) do exit_main
 robot { axle: 0 mm, wheel_diam: 41 mm }
 extern action blink(n: itn) from "blink.c"
+on timer(5) do exit_main
+on stop_motor Do exit_main
 """
 
 
@@ -49,7 +51,7 @@ def apply(text: str, fix) -> str:
 def test_help_is_the_fix_sentence():
     fixed = [d for d in diagnostics(MISTAKES) if d.fixes]
     assert {d.code for d in fixed} >= {"E001", "E010", "E011", "E012", "E013", "E014", "E016",
-                                       "E020", "E022", "E031", "E037", "E038"}
+                                       "E020", "E022", "E031", "E037", "E038", "W008"}
     for d in fixed:
         assert d.help.startswith(d.fixes[0].help)
 
