@@ -10,7 +10,7 @@ from functools import lru_cache
 
 from . import ast
 from . import lalr
-from .diagnostics import Collector
+from .diagnostics import Collector, Fix
 from .lexer import KEYWORDS, STATEMENT_STARTS, iter_statements, iter_tokens
 from .resources import grammar_path
 from .source import SourceFile, Span
@@ -108,16 +108,51 @@ def _syntax_error(exc: lalr.ParseError, chunk: list, following, source: SourceFi
     if tok.type == "_EQUAL" and "_COLON" in expected and prev is not None:
         # `start_straight(speed = 300, ...)`: arguments are named with `:`
         diags.error("E001", span, f"expected `:` after `{prev.value}`, found `=`",
-                    help=f"arguments are named with `:`: write `{prev.value}: ...`")
+                    help=_fix(tok, prev, expected,
+                              f"arguments are named with `:`: write `{prev.value}: ...`"))
         return
     keyword = KEYWORDS.get(tok.value.lower()) if tok.type == "NAME" else None
     if keyword is not None and (keyword in expected
                                 or (prev is None and keyword in STATEMENT_STARTS)):
         diags.error("E001", span, f"expected {wanted}{after}, found `{tok.value}`",
-                    help=f"keywords are lower case: write `{tok.value.lower()}`, "
-                         f"not `{tok.value}`")
+                    help=Fix(span, tok.value.lower(),
+                             f"keywords are lower case: write `{tok.value.lower()}`, "
+                             f"not `{tok.value}`"))
         return
-    diags.error("E001", span, f"expected {wanted}{after}, found {found}", help=hint)
+    diags.error("E001", span, f"expected {wanted}{after}, found {found}",
+                help=_fix(tok, prev, expected, hint))
+
+
+_CLOSERS = {"is a `)` missing?": ")", "is a `}` missing?": "}"}
+
+# One punctuation mark mistaken for the other: `speed = 300`, `const X: 5`.
+_SWAPS = {("_EQUAL", "_COLON"): ":", ("_COLON", "_EQUAL"): "="}
+
+
+def _fix(tok, prev, expected: set, hint: str):
+    """A machine-applicable fix for the likeliest mistake, with `hint` as
+    its sentence; or the hint alone."""
+    span = Span(tok.line, tok.column, tok.end_line, tok.end_column)
+    for (found, wanted), mark in _SWAPS.items():
+        if tok.type == found and wanted in expected:
+            # in the usual layout: `speed: 300`, `const X = 5`
+            text = mark
+            if prev is not None and prev.end_line == tok.line:
+                if mark == ":":
+                    span = Span(prev.end_line, prev.end_column, tok.end_line, tok.end_column)
+                elif prev.end_column == tok.column:
+                    text = " ="
+            return Fix(span, text, hint or f"write `{mark}` here, not `{tok.value}`")
+    if hint in _CLOSERS and prev is not None:
+        # `start_straight(300, 2 m do ...`: close it after the last token
+        return Fix(Span(prev.end_line, prev.end_column, prev.end_line, prev.end_column),
+                   _CLOSERS[hint], hint)
+    if tok.type == "$END":
+        return hint
+    if "_DO" in expected and tok.type in ("NAME", "_CANCEL"):
+        # `on immediate start_sensor`: the `do` is missing before the action
+        return Fix(Span(tok.line, tok.column, tok.line, tok.column), "do ", hint)
+    return hint
 
 
 # ---- tree -> AST --------------------------------------------------------------
@@ -312,11 +347,19 @@ def parse(source: SourceFile, diags: Collector) -> ast.Program:
     while chunk is not None:
         following_chunk = next(chunks, None)
         following = following_chunk[0] if following_chunk is not None else None
-        try:
-            statement = lalr.parse(tables, chunk, _CALLBACKS, meta=Span)
-        except lalr.ParseError as exc:
-            _syntax_error(exc, chunk, following, source, diags)
-        else:
+        statement = parse_statement(chunk, following, source, diags, tables)
+        if statement is not None:
             program.statements.append(statement)
         chunk = following_chunk
     return program
+
+
+def parse_statement(chunk: list, following, source: SourceFile, diags: Collector,
+                    tables=None):
+    """One statement's AST from its tokens, or None after reporting why not.
+    `following` is the next statement's first token (None at the end)."""
+    try:
+        return lalr.parse(tables or _tables(), chunk, _CALLBACKS, meta=Span)
+    except lalr.ParseError as exc:
+        _syntax_error(exc, chunk, following, source, diags)
+        return None
