@@ -48,10 +48,10 @@ generate() {
     echo '#include "utility.h"'
     for ((i = 0; i < n; i++)); do
         if ((i % 2 == 0)); then
-            echo "static param_start_straight p$i = {250, $((10 + i)), 0};"
+            echo "static param_straight_steps p$i = {250, $((78 + i))};"
             echo "static param_event_timer t$i = {$((100 * (i + 1)))L};"
         else
-            echo "static param_start_curve p$i = {50, 90, 300, 0, 0};"
+            echo "static param_curve_steps p$i = {118, 300, 580};"
             echo "static param_event_sensor t$i = {{$((500 + i)), -1, -1, -1, -1, -1, -1, 800}, 0};"
         fi
     done
@@ -60,11 +60,11 @@ generate() {
     echo '    int a, e;'
     for ((i = 0; i < n; i++)); do
         if ((i % 2 == 0)); then
-            echo "    a = register_action(start_straight, &p$i); name_action(a, \"rule $i: straight\");"
+            echo "    a = register_action(straight_steps, &p$i); name_action(a, \"rule $i: straight\");"
             echo "    e = register_event(timer, &t$i, a); name_event(e, \"rule $i: every\");"
             echo "    set_event_repeat(e, 1);"
         else
-            echo "    a = register_action(start_curve, &p$i); name_action(a, \"rule $i: curve\");"
+            echo "    a = register_action(curve_steps, &p$i); name_action(a, \"rule $i: curve\");"
             echo "    e = register_event(sensor, &t$i, a); name_event(e, \"rule $i: sensor\");"
         fi
     done

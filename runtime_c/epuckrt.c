@@ -299,7 +299,9 @@ static long geo_steps_per_rev = EPUCK_STEPS_PER_REV;
 
 void set_robot_geometry(long wheel_circumference_um, long axle_um, long steps_per_rev)
 {
-    if (wheel_circumference_um <= 0 || axle_um <= 0 || steps_per_rev <= 0)
+    if (wheel_circumference_um <= 0 || wheel_circumference_um > EPUCK_MAX_GEOMETRY_UM
+        || axle_um <= 0 || axle_um > EPUCK_MAX_GEOMETRY_UM
+        || steps_per_rev <= 0 || steps_per_rev > EPUCK_MAX_STEPS_PER_REV)
         return;
     geo_circumference_um = wheel_circumference_um;
     geo_axle_um = axle_um;
@@ -307,61 +309,100 @@ void set_robot_geometry(long wheel_circumference_um, long axle_um, long steps_pe
     rt_geometry(wheel_circumference_um, axle_um, steps_per_rev);
 }
 
-/* mm -> steps with the robot's geometry, mm >= 0. */
-static long mm_to_steps(long mm)
+#define LONG_MAX_STEPS 0x7FFFFFFFL
+
+/* a * b / d rounded half up, for a >= 0, b >= 0, d > 0, saturated to a
+ * long.  Computed as (a / d) * b + (a % d) * b / d so that no product passes
+ * 2^63 when b and d are within the geometry limits (b, d <= ~4 * 10^12 and
+ * (d - 1) * b < 2^63). */
+static long muldiv_round(long long a, long long b, long long d)
 {
-    long long n = (long long)mm * 1000LL * geo_steps_per_rev;
-    return (long)div_round(n, geo_circumference_um);
+    long long q = a / d, r = a % d;
+    long long whole, rest;
+
+    if (q != 0 && b > LONG_MAX_STEPS / q)
+        return LONG_MAX_STEPS;
+    whole = q * b;
+    rest = (r * b + d / 2) / d;
+    if (whole > LONG_MAX_STEPS - rest)
+        return LONG_MAX_STEPS;
+    return (long)(whole + rest);
+}
+
+/* |distance| mm -> steps with the robot's geometry. */
+static long mm_to_steps(int mm)
+{
+    long long um = 1000LL * (mm < 0 ? -(long long)mm : (long long)mm);
+    return muldiv_round(um, geo_steps_per_rev, geo_circumference_um);
+}
+
+/* Drive both wheels at |speed| for `steps` (>= 0), backwards when asked. */
+static void straight(int speed, long steps, int backwards)
+{
+    int s = clamp_speed(abs_l(speed));
+    motion_begin(backwards ? -s : s, backwards ? -s : s, steps, WATCH_BOTH);
 }
 
 void action_start_straight(void *param)
 {
     const param_start_straight *p = (const param_start_straight *)param;
-    long steps;
-    int backwards, speed;
 
     if (p == NULL)
         return;
-    if (p->steps != 0) {
-        steps = abs_l(p->steps);
-        backwards = (p->speed < 0) != (p->steps < 0);
-    } else {
-        steps = mm_to_steps(abs_l(p->distance));
-        backwards = (p->speed < 0) != (p->distance < 0);
-    }
-    speed = clamp_speed(abs_l(p->speed));
-    if (backwards)
-        speed = -speed;
-    motion_begin(speed, speed, steps, WATCH_BOTH);
+    straight(p->speed, mm_to_steps(p->distance), (p->speed < 0) != (p->distance < 0));
+}
+
+void action_straight_steps(void *param)
+{
+    const param_straight_steps *p = (const param_straight_steps *)param;
+
+    if (p == NULL)
+        return;
+    straight(p->speed, abs_l(p->steps), (p->speed < 0) != (p->steps < 0));
 }
 
 void action_start_curve(void *param)
 {
     const param_start_curve *p = (const param_start_curve *)param;
-    int outer, inner, left_turn;
+    int outer, inner;
+    long radius, degrees;
+    long long two_r, arc;       /* um; um * degrees * 355 */
     long outer_steps;
 
     if (p == NULL)
         return;
     outer = clamp_speed(p->speed);
-    left_turn = p->degrees >= 0;    /* left: the right wheel is outer */
-    if (p->outer_steps != 0) {
-        /* exact figures from the compiler */
-        outer_steps = abs_l(p->outer_steps);
-        inner = clamp_speed(p->inner_speed);
-    } else {
-        long long two_r = 2LL * 1000LL * abs_l(p->radius);   /* um */
-        long long num = (two_r + geo_axle_um) * abs_l(p->degrees)
-                        * geo_steps_per_rev * 355LL;        /* pi = 355/113 */
-        long long den = 360LL * geo_circumference_um * 113LL;
-        outer_steps = (long)div_round(num, den);
-        inner = clamp_speed((long)div_round((long long)outer * (two_r - geo_axle_um),
-                                            two_r + geo_axle_um));
-    }
-    if (left_turn)
+    /* within the robot's 16-bit int, so that a host with a wider int
+     * computes what the robot would, without overflow */
+    radius = abs_l(p->radius) > 32767L ? 32767L : abs_l(p->radius);
+    degrees = abs_l(p->degrees) > 32767L ? 32767L : abs_l(p->degrees);
+    two_r = 2LL * 1000LL * radius;
+    /* outer arc = (r + axle/2) * |degrees| * pi / 180, pi = 355/113;
+     * arc <= (6.6e7 + 1e8) * 32767 * 355 < 2^61 */
+    arc = (two_r + geo_axle_um) * degrees * 355LL;
+    outer_steps = muldiv_round(arc, geo_steps_per_rev, 360LL * 113LL * geo_circumference_um);
+    inner = clamp_speed((long)div_round((long long)outer * (two_r - geo_axle_um),
+                                        two_r + geo_axle_um));
+    if (p->degrees >= 0)        /* left: the right wheel is outer */
         motion_begin(inner, outer, outer_steps, WATCH_RIGHT);
     else
         motion_begin(outer, inner, outer_steps, WATCH_LEFT);
+}
+
+void action_curve_steps(void *param)
+{
+    const param_curve_steps *p = (const param_curve_steps *)param;
+    int left, right;
+    long al, ar;
+
+    if (p == NULL)
+        return;
+    left = clamp_speed(p->left_speed);
+    right = clamp_speed(p->right_speed);
+    al = abs_l(left);
+    ar = abs_l(right);
+    motion_begin(left, right, abs_l(p->steps),
+                 al > ar ? WATCH_LEFT : ar > al ? WATCH_RIGHT : WATCH_BOTH);
 }
 
 void action_stop_motor(void *param)
@@ -464,6 +505,13 @@ void action_run_sequence(void *param)
     seq = p;
     seq_next = 0;
     seq_action_id = current_action_id;
+    if (in_step > 0) {
+        /* run by a step of a sequence: it starts at the next poll (once the
+         * step's motion, if any, has ended), so a sequence that runs itself
+         * loops once per poll instead of recursing */
+        seq_waiting = 1;
+        return;
+    }
     sequence_run_steps();
 }
 
@@ -549,6 +597,8 @@ void event_sensor(void *param, void *status)
 
 void start_straight(void *param) { action_start_straight(param); }
 void start_curve(void *param) { action_start_curve(param); }
+void straight_steps(void *param) { action_straight_steps(param); }
+void curve_steps(void *param) { action_curve_steps(param); }
 void stop_motor(void *param) { action_stop_motor(param); }
 void set_timer(void *param) { action_set_timer(param); }
 void reset_timer(void *param) { action_reset_timer(param); }

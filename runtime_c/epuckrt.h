@@ -26,8 +26,7 @@
 #endif
 
 /* Default geometry used to convert the paper's millimetres and degrees into
- * motor steps when a struct gives no exact step count (extension fields
- * below).  Micrometres, so that integer arithmetic is exact enough. */
+ * motor steps.  Micrometres, so that integer arithmetic is exact enough. */
 #ifndef EPUCK_WHEEL_CIRCUMFERENCE_UM
 #define EPUCK_WHEEL_CIRCUMFERENCE_UM 128805L   /* pi * 41 mm */
 #endif
@@ -38,6 +37,10 @@
 #define EPUCK_STEPS_PER_REV 1000L
 #endif
 #define EPUCK_MAX_SPEED 1000                   /* steps/s, the library clamps */
+/* Largest geometry set_robot_geometry accepts (100 m wheels and axle, a
+ * million steps per turn): within these the conversions cannot overflow. */
+#define EPUCK_MAX_GEOMETRY_UM 100000000L
+#define EPUCK_MAX_STEPS_PER_REV 1000000L
 
 /* Function types.  The paper declares the registration arguments as void *;
  * ISO C cannot convert function pointers to void *, so they are typed. */
@@ -85,28 +88,26 @@ void mainloop(void);
 /* ---- Extensions to table 1 -------------------------------------------- */
 void set_event_repeat(int event_id, int repeat);   /* unknown ids ignored */
 /* The robot's geometry, replacing the EPUCK_* defaults above for the
- * conversion of millimetres and degrees and for the host's odometry;
- * non-positive values are ignored.  epuckc calls it for a `robot { }` block. */
+ * conversion of millimetres and degrees and for the host's odometry.
+ * Ignored unless every value is positive and at most EPUCK_MAX_GEOMETRY_UM
+ * (lengths) or EPUCK_MAX_STEPS_PER_REV.  epuckc calls it for a `robot { }`
+ * block. */
 void set_robot_geometry(long wheel_circumference_um, long axle_um, long steps_per_rev);
 /* Names shown in the host harness's trace; ignored on the robot. */
 void name_action(int action_id, const char *name);
 void name_event(int event_id, const char *name);
 
 /* ---- Paper table 2: standard actions and their parameters -------------- */
+/* The paper's structs, exactly (figure 2 writes `{250, 100}`). */
 typedef struct {
     int speed;      /* steps/s; negative drives backwards */
-    int distance;   /* mm (the paper's unit); negative drives backwards */
-    int steps;      /* extension: when nonzero, the exact distance in motor
-                       steps, used instead of `distance` */
+    int distance;   /* mm; negative drives backwards */
 } param_start_straight;
 
 typedef struct {
     int radius;     /* mm, from the robot's centre to the circle's centre, >= 0 */
     int degrees;    /* arc angle; positive turns left, negative right */
     int speed;      /* steps/s of the outer wheel; negative drives backwards */
-    int outer_steps;  /* extension: when nonzero, the exact outer-wheel step */
-    int inner_speed;  /* count and signed inner-wheel speed, used instead of
-                         converting radius/degrees with the default geometry */
 } param_start_curve;
 
 void action_start_straight(void *param);   /* param_start_straight * */
@@ -126,6 +127,28 @@ void reset_timer(void *param);
 void start_sensor(void *param);
 void stop_sensor(void *param);
 void exit_main(void *param);
+
+/* Extension: motions given in exact motor steps, as epuckc compiles them
+ * (no conversion of millimetres or degrees, so nothing depends on the
+ * geometry at run time).  The actions only read their struct, so it may be
+ * const. */
+typedef struct {
+    int speed;      /* steps/s; negative drives backwards */
+    int steps;      /* motor steps each wheel turns; negative drives backwards;
+                       0 is a motion of no steps */
+} param_straight_steps;
+
+typedef struct {
+    int left_speed;     /* steps/s of each wheel, signed */
+    int right_speed;
+    int steps;          /* steps the faster wheel turns (either wheel when
+                           both are as fast), >= 0 */
+} param_curve_steps;
+
+void action_straight_steps(void *param);   /* param_straight_steps * */
+void action_curve_steps(void *param);      /* param_curve_steps * */
+void straight_steps(void *param);
+void curve_steps(void *param);
 
 /* Extension: a sequence of steps ("A then B then C").  Each step starts when
  * the motion started by the step before it has finished, at once if that

@@ -21,7 +21,8 @@ void rt_platform_init(void);
 void rt_platform_idle(void);
 
 /* Trace hooks, called by the core.  step is -1 for an action run by an event;
- * for a step of a sequence it is the step index and steps the step count
+ * for a step of a sequence it is the step index (0-based; the trace shows
+ * it from 1) and steps the step count
  * (action_id is then the sequence action's id). */
 void rt_trace_event(int event_id);
 void rt_trace_action(int action_id, int step, int steps);

@@ -35,7 +35,7 @@
 static long now_ms;                 /* virtual time */
 static long limit_ms = DEFAULT_TIME_LIMIT_MS;
 static FILE *trace_file;
-static int quiet;
+static int quiet = -1;              /* -1: EPUCK_QUIET not read yet */
 static long events_fired, actions_run, steps_run;
 static long pose_every_ms;          /* 0: no pose records */
 
@@ -99,6 +99,8 @@ static const struct {
     { action_stop_sensor, "action_stop_sensor" },
     { action_exit_main, "action_exit_main" },
     { action_run_sequence, "action_run_sequence" },
+    { action_straight_steps, "action_straight_steps" },
+    { action_curve_steps, "action_curve_steps" },
     { start_straight, "start_straight" },
     { start_curve, "start_curve" },
     { stop_motor, "stop_motor" },
@@ -108,6 +110,8 @@ static const struct {
     { stop_sensor, "stop_sensor" },
     { exit_main, "exit_main" },
     { run_sequence, "run_sequence" },
+    { straight_steps, "straight_steps" },
+    { curve_steps, "curve_steps" },
 };
 
 static const struct {
@@ -459,9 +463,20 @@ static void record(const char *kind, const char *name, int id, int step, int ste
             id, stub_total_steps_left(), stub_total_steps_right(),
             tidy(x), tidy(y), tidy(h));
     if (step >= 0)
-        fprintf(trace_file, ", \"step\": %d, \"steps\": %d", step, steps);
+        fprintf(trace_file, ", \"step\": %d, \"steps\": %d", step + 1, steps);
     fputs("}\n", trace_file);
     fflush(trace_file);
+}
+
+/* EPUCK_QUIET is read at the first output, which may come before mainloop
+ * (a sequence run from main, say). */
+static int is_quiet(void)
+{
+    if (quiet < 0) {
+        const char *q = getenv("EPUCK_QUIET");
+        quiet = q != NULL && *q != '\0' && strcmp(q, "0") != 0;
+    }
+    return quiet;
 }
 
 static void print_pose(void)
@@ -473,7 +488,7 @@ static void print_pose(void)
 
 static void summary(const char *how)
 {
-    if (quiet)
+    if (is_quiet())
         return;
     printf("%s at %ld ms: ", how, now_ms);
     print_pose();
@@ -488,7 +503,7 @@ void rt_trace_event(int event_id)
     const char *name = get_name(&event_names, event_id, "event", buf, sizeof buf);
     events_fired++;
     record("event", name, event_id, -1, 0);
-    if (!quiet) {
+    if (!is_quiet()) {
         printf("[%6ld ms] event  #%d %-23s ", now_ms, event_id, name);
         print_pose();
         putchar('\n');
@@ -504,10 +519,10 @@ void rt_trace_action(int action_id, int step, int steps)
     else
         steps_run++;
     record("action", name, action_id, step, steps);
-    if (!quiet) {
+    if (!is_quiet()) {
         printf("[%6ld ms] action #%d %s", now_ms, action_id, name);
         if (step >= 0)
-            printf(" step %d of %d", step, steps);
+            printf(" step %d of %d", step + 1, steps);
         putchar('\n');
     }
 }
@@ -515,7 +530,7 @@ void rt_trace_action(int action_id, int step, int steps)
 void rt_trace_exit(void)
 {
     record("exit", "exit_main", -1, -1, 0);
-    if (!quiet) {
+    if (!is_quiet()) {
         printf("[%6ld ms] exit      ", now_ms);
         print_pose();
         putchar('\n');
@@ -543,9 +558,7 @@ void rt_platform_init(void)
     const char *pose = getenv("EPUCK_POSE_MS");
     const char *scn = getenv("EPUCK_SCENARIO");
     const char *trace = getenv("EPUCK_TRACE");
-    const char *q = getenv("EPUCK_QUIET");
 
-    quiet = q != NULL && *q != '\0' && strcmp(q, "0") != 0;
     if (limit != NULL && *limit != '\0')
         limit_ms = ms_setting("EPUCK_TIME_LIMIT_MS", limit);
     if (pose != NULL && *pose != '\0')
@@ -567,7 +580,7 @@ void rt_platform_idle(void)
 {
     if (now_ms >= limit_ms) {
         record("timeout", "timeout", -1, -1, 0);
-        if (!quiet) {
+        if (!is_quiet()) {
             printf("[%6ld ms] timeout   ", now_ms);
             print_pose();
             putchar('\n');

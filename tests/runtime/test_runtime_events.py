@@ -146,7 +146,7 @@ def test_sequence_runs_steps_after_motions(tmp_path):
     steps = [(x["t_ms"], x["step"], x["steps"]) for x in r.trace if "step" in x]
     # straight 200 steps at 1000/s: 1..201; set_timer at once; spin 90 deg
     # (323 steps at 500/s: 646 ms) until 847; then 100 steps back
-    assert steps == [(1, 0, 4), (201, 1, 4), (201, 2, 4), (847, 3, 4)]
+    assert steps == [(1, 1, 4), (201, 2, 4), (201, 3, 4), (847, 4, 4)]
     assert all(x["name"] == "square" and x["id"] == 0 for x in r.trace if "step" in x)
     # one stop, after the last step's motion
     assert r.times("event", "event_stop_motor") == [947]
@@ -161,10 +161,28 @@ def test_sequence_abandoned_by_outside_motion_and_exit_step(tmp_path):
     r = build_and_run(tmp_path, "sequence_abandon.c")
     assert r.returncode == 0, r.stderr
     first = [x["step"] for x in r.trace if x.get("id") == 0 and "step" in x]
-    assert first == [0]         # step 1 never runs: abandoned at 300
-    assert r.times("action", "start_straight") == [300]
+    assert first == [1]         # step 2 never runs: abandoned at 300
+    assert r.times("action", "straight_steps") == [300]
     # the outside motion (20 steps) ends at 320: the second sequence runs
-    # its first step, then at 370 exit_main as its second; step 2 never runs
+    # its first step, then at 370 exit_main as its second; step 3 never runs
     second = [(x["t_ms"], x["step"]) for x in r.trace if x.get("id") == 2 and "step" in x]
-    assert second == [(320, 0), (370, 1)]
+    assert second == [(320, 1), (370, 2)]
     assert r.times("exit") == [370]
+
+
+def test_sequence_that_runs_itself_loops_once_per_poll(tmp_path):
+    r = build_and_run(tmp_path, "sequence_self.c")
+    assert r.returncode == 0, r.stderr
+    ticks = [x["t_ms"] for x in r.trace if x.get("step") == 1]
+    # once before mainloop (0 ms, before the JSON trace is opened: stdout
+    # only), then once per poll, until the 20th
+    assert ticks == list(range(1, 20))
+    assert r.times("exit") == [19]
+    assert r.stdout.startswith("[     0 ms] action #-1 action#-1 step 1 of 2\n")
+    assert "step 0" not in r.stdout
+
+
+def test_quiet_holds_before_mainloop(tmp_path):
+    r = build_and_run(tmp_path, "sequence_self.c", env={"EPUCK_QUIET": "1"})
+    assert r.returncode == 0, r.stderr
+    assert r.stdout == ""

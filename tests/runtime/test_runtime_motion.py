@@ -32,14 +32,14 @@ def test_straight_directions(tmp_path, speed, dist, expect_x):
 
 
 def test_speed_is_clamped(tmp_path):
-    r = build_and_run(tmp_path, "straight.c", defines=["SPEED=5000", "DIST=0", "STEPS=1000"])
+    r = build_and_run(tmp_path, "straight.c", defines=["SPEED=5000", "STEPS=1000"])
     e = end(r)
     assert e["left_steps"] == 1000 and e["t_ms"] == 1001     # 1000 steps/s
 
 
 def test_long_straight_wraps_counters(tmp_path):
     # 33000 steps > 32767: the 16-bit counters wrap during the motion
-    r = build_and_run(tmp_path, "straight.c", defines=["SPEED=1000", "DIST=0", "STEPS=33000"])
+    r = build_and_run(tmp_path, "straight.c", defines=["SPEED=1000", "STEPS=33000"])
     e = end(r)
     assert e["left_steps"] == 33000 and e["t_ms"] == 33001
     assert abs(e["x_mm"] - 33000 * MM_PER_STEP) < 0.5
@@ -83,10 +83,17 @@ def test_quarter_circle_left(tmp_path):
     assert abs(e["x_mm"] - 100.0) < 1.5 and abs(e["y_mm"] - 100.0) < 1.5
 
 
-def test_curve_exact_figures_from_compiler(tmp_path):
-    # outer_steps/inner_speed given: used as is (the right wheel is outer)
-    r = build_and_run(tmp_path, "curve.c", defines=[
-        "RADIUS=0", "DEGREES=10", "SPEED=1000", "OUTER=500", "INNER=250"])
+def test_curve_in_exact_steps(tmp_path):
+    # the extension param_curve_steps: the faster (right) wheel turns 500 steps
+    r = build_and_run(tmp_path, "curve.c", defines=["LEFT=250", "RIGHT=1000", "STEPS=500"])
     e = end(r)
     assert e["right_steps"] == 500 and e["left_steps"] == 125
     assert e["t_ms"] == 501
+
+
+def test_extreme_geometry_and_parameters_saturate(tmp_path):
+    # under UBSan: no signed overflow in the conversions
+    r = build_and_run(tmp_path, "overflow.c", sanitize=True)
+    assert r.returncode == 0, r.stderr
+    assert "runtime error" not in r.stderr
+    assert r.times("exit") == [5]

@@ -9,17 +9,17 @@
 #ifndef SPEED
 #define SPEED 500
 #endif
-#ifndef OUTER
-#define OUTER 0
-#endif
-#ifndef INNER
-#define INNER 0
-#endif
 
 int main(void)
 {
-    static param_start_curve p = { RADIUS, DEGREES, SPEED, OUTER, INNER };
+#ifdef STEPS
+    /* the extension in exact steps: LEFT, RIGHT wheel speeds */
+    static param_curve_steps p = { LEFT, RIGHT, STEPS };
+    int a1 = register_action(curve_steps, &p);
+#else
+    static param_start_curve p = { RADIUS, DEGREES, SPEED };
     int a1 = register_action(start_curve, &p);
+#endif
     int a2 = register_action(exit_main, NULL);
     register_event(immediate, NULL, a1);
     register_event(event_stop_motor, NULL, a2);

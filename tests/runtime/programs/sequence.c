@@ -4,14 +4,14 @@
 
 int main(void)
 {
-    static param_start_straight fwd = { 1000, 0, 200 };
-    static param_start_curve spin = { 0, 90, 500, 0, 0 };
-    static param_start_straight back = { -1000, 0, 100 };
+    static param_straight_steps fwd = { 1000, 200 };
+    static param_start_curve spin = { 0, 90, 500 };
+    static param_straight_steps back = { -1000, 100 };
     static const action steps[] = {
-        { start_straight, &fwd },
+        { straight_steps, &fwd },
         { set_timer, NULL },
         { start_curve, &spin },
-        { action_start_straight, &back },
+        { action_straight_steps, &back },
     };
     static param_sequence seq = { steps, 4 };
     int a_seq = register_action(run_sequence, &seq);

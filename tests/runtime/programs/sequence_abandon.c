@@ -4,17 +4,17 @@
 
 int main(void)
 {
-    static param_start_straight s1 = { 1000, 0, 1000 };
-    static param_start_straight s2 = { 1000, 0, 50 };
-    static param_start_straight other = { -1000, 0, 20 };
-    static const action steps[] = { { start_straight, &s1 }, { start_straight, &s1 } };
-    static const action steps2[] = { { start_straight, &s2 }, { exit_main, NULL },
-                                     { start_straight, &s2 } };
+    static param_straight_steps s1 = { 1000, 1000 };
+    static param_straight_steps s2 = { 1000, 50 };
+    static param_straight_steps other = { -1000, 20 };
+    static const action steps[] = { { straight_steps, &s1 }, { straight_steps, &s1 } };
+    static const action steps2[] = { { straight_steps, &s2 }, { exit_main, NULL },
+                                     { straight_steps, &s2 } };
     static param_sequence seq = { steps, 2 };
     static param_sequence seq2 = { steps2, 3 };
     static param_event_timer t300 = { 300 };
     int a_seq = register_action(run_sequence, &seq);
-    int a_other = register_action(start_straight, &other);
+    int a_other = register_action(straight_steps, &other);
     int a_seq2 = register_action(action_run_sequence, &seq2);
 
     set_timer(NULL);

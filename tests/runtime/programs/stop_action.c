@@ -4,7 +4,7 @@
 
 int main(void)
 {
-    static param_start_straight go = { 500, 1000, 0 };
+    static param_start_straight go = { 500, 1000 };
     static param_event_timer t500 = { 500 };
     int a_go = register_action(start_straight, &go);
     int a_stop = register_action(stop_motor, NULL);

@@ -2,14 +2,14 @@
  * stop_motor event between them; it fires once, when the new one ends. */
 #include "epuckrt.h"
 
-static param_start_straight go = { 500, 1000, 0 };
-static param_start_straight short_go = { 1000, 0, 10 };
+static param_start_straight go = { 500, 1000 };
+static param_straight_steps short_go = { 1000, 10 };
 
 static void swap(void *p)
 {
     (void)p;
     stop_motor(NULL);
-    start_straight(&short_go);
+    straight_steps(&short_go);
 }
 
 int main(void)

@@ -7,14 +7,17 @@
 #ifndef DIST
 #define DIST 100
 #endif
-#ifndef STEPS
-#define STEPS 0
-#endif
 
 int main(void)
 {
-    static param_start_straight p = { SPEED, DIST, STEPS };
+#ifdef STEPS
+    /* the extension in exact steps */
+    static param_straight_steps p = { SPEED, STEPS };
+    int a1 = register_action(action_straight_steps, &p);
+#else
+    static param_start_straight p = { SPEED, DIST };
     int a1 = register_action(action_start_straight, &p);
+#endif
     int a2 = register_action(action_exit_main, NULL);
     register_event(event_immediate, NULL, a1);
     register_event(event_stop_motor, NULL, a2);

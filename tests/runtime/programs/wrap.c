@@ -3,7 +3,7 @@
 #include "epuckrt.h"
 #include "motor_led/advance_one_timer/e_motors.h"
 
-static param_start_straight fwd = { 1000, 100, 0 };   /* 776 steps */
+static param_start_straight fwd = { 1000, 100 };   /* 776 steps */
 static void preset_and_go(void *unused)
 {
     (void)unused;
@@ -14,7 +14,7 @@ static void preset_and_go(void *unused)
 
 int main(void)
 {
-    static param_start_straight back = { -1000, 100, 0 };
+    static param_start_straight back = { -1000, 100 };
     static param_event_timer t3000 = { 3000 };
     int a1 = register_action(preset_and_go, NULL);
     int a2 = register_action(start_straight, &back);

@@ -4,8 +4,8 @@
 
 int main(void)
 {
-    static param_start_straight zero_len = { 250, 0, 0 };
-    static param_start_straight zero_speed = { 0, 100, 0 };
+    static param_start_straight zero_len = { 250, 0 };
+    static param_start_straight zero_speed = { 0, 100 };
     static param_event_timer t10 = { 10 }, t20 = { 20 }, t30 = { 30 };
     int a_len = register_action(start_straight, &zero_len);
     int a_speed = register_action(start_straight, &zero_speed);
