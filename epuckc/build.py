@@ -7,8 +7,10 @@ from __future__ import annotations
 
 import hashlib
 import os
+import re
 import shlex
 import shutil
+import stat
 import subprocess
 import sys
 import tempfile
@@ -16,20 +18,30 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Optional
 
-from .output import TEMP_PREFIX, OutputError, describe_os_error, prepare_directory, write_file
+from .output import (TEMP_PREFIX, OutputError, describe_os_error, is_stdout, prepare_directory,
+                     write_file)
 from .resources import cache_dir, runtime_dir
 
 HOST_CFLAGS = ["-std=c99", "-Wall", "-Wextra", "-pedantic", "-O2"]
-# Generated C is warning-free by design, so a warning there is a bug in
-# epuckc; hand-written C (the paper's figure 2 sets variables it never reads)
-# gets its warnings shown instead.
+# The -Werror policy, the same on the host and the robot: the C epuckc
+# writes (the generated program, and on the host the runtime) is
+# warning-free by design, so a warning there is a bug in epuckc and fails the
+# build; the user's own C (extern files, a hand-written program: the paper's
+# figure 2 sets variables it never reads) gets its warnings shown, not fatal.
 GENERATED_CFLAGS = HOST_CFLAGS + ["-Werror"]
+USER_CFLAGS = HOST_CFLAGS
 # The runtime's files for each target, relative to runtime_c/.
 HOST_SOURCES = ["epuckrt.c", "host/platform_host.c", "host/epuck_stub.c"]
 HOST_INCLUDES = [".", "epuck_api", "host"]
-ROBOT_FILES = ["epuckrt.c", "platform_robot.c", "epuckrt.h", "rt_platform.h", "utility.h"]
+ROBOT_SOURCES = ["epuckrt.c", "platform_robot.c"]
+ROBOT_HEADERS = ["epuckrt.h", "rt_platform.h", "utility.h"]
+ROBOT_FILES = ROBOT_SOURCES + ROBOT_HEADERS
+# Folders of the dspic project: the runtime's copies and the user's.
+DSPIC_RUNTIME = "runtime"
+DSPIC_USER = "user"
 
 
+EXIT_USAGE = 2             # bad request: e.g. an output that is one of the inputs
 EXIT_NO_TOOLCHAIN = 3      # the project is written but XC16, the library or make is missing
 
 
@@ -43,8 +55,15 @@ class BuildError(Exception):
 
 @dataclass
 class Program:
-    """A C program ready to build: its text, a name, and the user's files it
-    includes (extern actions/events), relative to `base_dir`."""
+    """A C program ready to build.
+
+    Generated from a rule file: `c_text`, the externs header
+    (`header_name`, `header_text`) when there are externs, and the user's C
+    files that define them (`user_files`, paths as the user's rule file
+    names them, joined to its folder: gcc's messages then name the user's
+    own file). Hand-written: `source_path` is compiled where it is.
+    `inputs` are every file the command reads: nothing is written over them.
+    """
     name: str
     c_text: str
     base_dir: Path
@@ -52,19 +71,59 @@ class Program:
     max_actions: Optional[int] = None
     max_events: Optional[int] = None
     generated: bool = True
+    header_name: Optional[str] = None
+    header_text: Optional[str] = None
+    source_path: Optional[Path] = None
+    inputs: list = field(default_factory=list)
+
+    def user_sources(self) -> list:
+        """The C files of the user's that are compiled on their own."""
+        return [self.source_path] if self.source_path is not None else list(self.user_files)
 
 
-def write_atomic(path: Path, data, mode: int = 0o644):
-    """Write the whole file or nothing (see output.py, which every write uses)."""
+def write_atomic(path: Path, data, mode: int = 0o644, only_if_changed: bool = False):
+    """Write the whole file or nothing (see output.py, which every write
+    uses). With only_if_changed, an identical file is left alone (its time
+    stamp too, so that make rebuilds nothing)."""
+    if only_if_changed and not is_stdout(path):
+        payload = data.encode("utf-8") if isinstance(data, str) else data
+        try:
+            if Path(path).is_file() and Path(path).read_bytes() == payload:
+                return
+        except OSError:
+            pass
     write_file(path, data, mode)
+
+
+def _same_file(a: Path, b: Path) -> bool:
+    try:
+        if os.path.samefile(a, b):
+            return True
+    except OSError:
+        pass
+    return os.path.realpath(a) == os.path.realpath(b)
+
+
+def check_outputs(outputs, inputs, inside: Optional[Path] = None):
+    """Refuse, before anything is written, to write over one of the
+    command's inputs, or (with `inside`) anywhere outside that folder, e.g.
+    through a link."""
+    for out in outputs:
+        for given in inputs:
+            if _same_file(out, given):
+                raise BuildError(f"refusing to write {out}: it is {given}, one of the files "
+                                 f"this command reads; choose another output with -o",
+                                 status=EXIT_USAGE)
+        if inside is not None:
+            root = os.path.realpath(inside)
+            real = os.path.realpath(out)
+            if os.path.commonpath([root, real]) != root:
+                raise BuildError(f"refusing to write {out}: it leads outside {inside} "
+                                 f"(to {real})", status=EXIT_USAGE)
 
 
 def c_compiler() -> list:
     return shlex.split(os.environ.get("CC") or "cc")
-
-
-def _cflags(program: Program) -> list:
-    return GENERATED_CFLAGS if program.generated else HOST_CFLAGS
 
 
 def _capacity_defines(program: Program) -> list:
@@ -79,8 +138,8 @@ def _capacity_defines(program: Program) -> list:
 # ---- host ---------------------------------------------------------------------
 
 def host_build_key(program: Program) -> str:
-    """Everything the executable depends on: the program, the user's C, the
-    runtime's sources, the compiler and the flags."""
+    """Everything the executable depends on: the program, its header, the
+    user's C, the runtime's sources, the compiler and the flags."""
     h = hashlib.sha256()
     rt = runtime_dir()
 
@@ -88,37 +147,92 @@ def host_build_key(program: Program) -> str:
         h.update(label.encode() + b"\0" + len(data).to_bytes(8, "big") + data)
 
     add("name", program.name.encode("utf-8"))
-    add("program", program.c_text.encode("utf-8"))
-    for rel in program.user_files:
-        add(f"user:{rel}", (program.base_dir / rel).read_bytes())
+    add("program", program.c_text.encode("utf-8") if program.generated else b"")
+    add("header", (program.header_text or "").encode("utf-8"))
+    for path in program.user_sources():
+        add(f"user:{os.path.realpath(path)}", Path(path).read_bytes())
     for path in sorted(rt.rglob("*")):
         if path.is_file() and path.suffix in (".c", ".h") and "build" not in path.relative_to(rt).parts:
             add(f"rt:{path.relative_to(rt).as_posix()}", path.read_bytes())
-    add("cc", " ".join(c_compiler() + _cflags(program) + _capacity_defines(program)).encode())
+    add("cc", " ".join(c_compiler() + GENERATED_CFLAGS + USER_CFLAGS
+                       + _capacity_defines(program)).encode())
     return h.hexdigest()[:24]
 
 
-def host_compile_command(c_file: Path, output: Path, program: Program) -> list:
+def _includes(program: Program, generated_dir: Path) -> list:
     rt = runtime_dir()
-    return (c_compiler() + _cflags(program) + _capacity_defines(program)
-            + [f"-I{rt / inc}" for inc in HOST_INCLUDES]
-            + [f"-I{program.base_dir}", str(c_file)]
+    return [f"-I{generated_dir}"] + [f"-I{rt / inc}" for inc in HOST_INCLUDES]
+
+
+def user_compile_command(source: Path, obj: Path, program: Program, generated_dir: Path,
+                         extra_flags=()) -> list:
+    """The user's own C, compiled where it is (its messages name it; its own
+    #includes are found beside it), warnings shown but not fatal."""
+    return (c_compiler() + USER_CFLAGS + list(extra_flags) + _capacity_defines(program)
+            + _includes(program, generated_dir) + ["-x", "c", "-c", str(source), "-o", str(obj)])
+
+
+def host_link_command(generated_dir: Path, objects: list, output: Path, program: Program) -> list:
+    """The generated program and the runtime with -Werror, then the user's
+    objects."""
+    rt = runtime_dir()
+    program_c = [str(generated_dir / f"{program.name}.c")] if program.generated else []
+    return (c_compiler() + GENERATED_CFLAGS + _capacity_defines(program)
+            + _includes(program, generated_dir) + program_c
             + [str(rt / src) for src in HOST_SOURCES]
-            + ["-o", str(output), "-lm"])
+            + [str(o) for o in objects] + ["-o", str(output), "-lm"])
 
 
-def _run_compiler(command: list, what: str):
+def _run_compiler(command: list, what: str, hint: str = ""):
     try:
         result = subprocess.run(command, capture_output=True, text=True)
     except FileNotFoundError:
         raise BuildError(f"the C compiler `{command[0]}` was not found; install one "
                          f"(e.g. `apt-get install gcc`) or set CC") from None
     if result.stderr and result.returncode == 0:
-        sys.stderr.write(result.stderr)      # warnings in hand-written C
+        sys.stderr.write(result.stderr)      # warnings in the user's C
     if result.returncode != 0:
         output = (result.stdout + result.stderr).rstrip()
         raise BuildError(f"the C compiler failed to build {what}:\n{output}\n"
-                         f"command: {shlex.join(command)}")
+                         f"command: {shlex.join(command)}{hint}")
+
+
+def _include_hint(program: Program, source: Path) -> str:
+    """A user's extern file that does not include the externs header does
+    not know the parameter structs: say so when it fails to compile."""
+    if not program.header_name:
+        return ""
+    try:
+        if program.header_name in Path(source).read_text(encoding="utf-8", errors="replace"):
+            return ""
+    except OSError:
+        return ""
+    return (f"\nhint: {source} does not include \"{program.header_name}\", the header epuckc "
+            f"writes with the parameter structs and prototypes of the externs; add\n"
+            f"    #include \"{program.header_name}\"")
+
+
+def _write_generated(program: Program, folder: Path, only_if_changed: bool = False):
+    write_atomic(folder / f"{program.name}.c", program.c_text, only_if_changed=only_if_changed)
+    if program.header_name:
+        write_atomic(folder / program.header_name, program.header_text,
+                     only_if_changed=only_if_changed)
+
+
+def prepare_sources(program: Program, folder: Path, extra_flags=()) -> list:
+    """Write the generated program and its externs header into `folder`
+    and compile the user's own C there, each file on its own (with
+    `extra_flags`, e.g. -fPIC); returns the user's objects, to be linked
+    with the program and the runtime."""
+    if program.generated:
+        _write_generated(program, folder)
+    objects = []
+    for i, source in enumerate(program.user_sources(), 1):
+        obj = folder / f"user{i}.o"
+        command = user_compile_command(source, obj, program, folder, extra_flags)
+        _run_compiler(command, str(source), _include_hint(program, source))
+        objects.append(obj)
+    return objects
 
 
 STALE_AFTER_S = 24 * 3600      # a temporary build folder older than this is abandoned
@@ -166,11 +280,11 @@ def sweep_stale(folder: Path) -> None:
 
 
 def _compile_into(folder: Path, program: Program) -> Path:
-    """Write the C file into `folder` and compile the executable there."""
-    c_file = folder / f"{program.name}.c"
-    write_file(c_file, program.c_text)
+    """Write the generated C into `folder`, compile the user's C there on
+    its own, and link the executable there."""
+    objects = prepare_sources(program, folder)
     exe = folder / program.name
-    _run_compiler(host_compile_command(c_file, exe, program), program.name)
+    _run_compiler(host_link_command(folder, objects, exe, program), program.name)
     return exe
 
 
@@ -238,11 +352,19 @@ class host_executable:
 
 
 def build_host(program: Program, out_dir: Path) -> Path:
-    """The harness executable and its C file, in `out_dir`."""
+    """The harness executable in `out_dir`, with the generated C (program
+    and externs header) it was built from; never over one of the inputs."""
+    outputs = [out_dir / program.name]
+    if program.generated:
+        outputs.append(out_dir / f"{program.name}.c")
+        if program.header_name:
+            outputs.append(out_dir / program.header_name)
+    check_outputs(outputs, program.inputs)
     out_dir = prepare_directory(out_dir)
     with host_executable(program) as exe:
         data = exe.read_bytes()
-    write_file(out_dir / f"{program.name}.c", program.c_text)
+    if program.generated:
+        _write_generated(program, out_dir)
     write_file(out_dir / program.name, data, mode=0o755)
     return out_dir / program.name
 
@@ -259,20 +381,45 @@ def find_xc16() -> Optional[Path]:
     return Path(found) if found else None
 
 
+def dspic_user_copies(program: Program) -> list:
+    """(the user's file, its copy's path inside the project): numbered in
+    the `user/` folder, so no two copies and nothing else share a name."""
+    copies = []
+    for i, source in enumerate(program.user_sources(), 1):
+        stem = re.sub(r"[^A-Za-z0-9_-]", "_", Path(source).stem) or "file"
+        copies.append((Path(source), f"{DSPIC_USER}/{i}_{stem}.c"))
+    return copies
+
+
 def write_dspic_project(program: Program, out_dir: Path, template_render) -> None:
-    """A self-contained project: the program, the runtime files the robot
-    needs, the user's C, and a Makefile for XC16."""
+    """A self-contained project inside out_dir: the program (and its
+    externs header) at the top, the runtime files the robot needs in
+    runtime/, copies of the user's C in user/, and a Makefile for XC16.
+    Files whose contents did not change are not rewritten, so `make`
+    rebuilds only what changed."""
     rt = runtime_dir()
+    copies = dspic_user_copies(program)
+    generated = [f"{program.name}.c"] if program.generated else []
+    if program.generated and program.header_name:
+        generated.append(program.header_name)
+    runtime_files = [f"{DSPIC_RUNTIME}/{rel}" for rel in ROBOT_FILES]
+    targets = generated + runtime_files + [copy for _, copy in copies] + ["Makefile"]
+    check_outputs([out_dir / t for t in targets], program.inputs, inside=out_dir)
     out_dir = prepare_directory(out_dir)
-    write_atomic(out_dir / f"{program.name}.c", program.c_text)
+    if program.generated:
+        _write_generated(program, out_dir, only_if_changed=True)
     for rel in ROBOT_FILES:
-        write_atomic(out_dir / rel, (rt / rel).read_bytes())
-    for rel in program.user_files:
-        write_atomic(out_dir / rel, (program.base_dir / rel).read_bytes())
-    sources = [f"{program.name}.c", "epuckrt.c", "platform_robot.c"]
+        write_atomic(out_dir / DSPIC_RUNTIME / rel, (rt / rel).read_bytes(), only_if_changed=True)
+    for source, copy in copies:
+        write_atomic(out_dir / copy, source.read_bytes(),
+                     mode=stat.S_IMODE(source.stat().st_mode), only_if_changed=True)
     defines = [d[2:] for d in _capacity_defines(program)]
-    write_atomic(out_dir / "Makefile", template_render("dspic.mk.j2", name=program.name,
-                                                       sources=sources, defines=defines))
+    write_atomic(out_dir / "Makefile", template_render(
+        "dspic.mk.j2", name=program.name, generated=program.generated,
+        header=program.header_name if program.generated else None,
+        runtime=DSPIC_RUNTIME, runtime_sources=[f"{DSPIC_RUNTIME}/{r}" for r in ROBOT_SOURCES],
+        runtime_headers=[f"{DSPIC_RUNTIME}/{r}" for r in ROBOT_HEADERS],
+        user_sources=[copy for _, copy in copies], defines=defines), only_if_changed=True)
 
 
 def run_make(out_dir: Path, xc16: Path) -> None:

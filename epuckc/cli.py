@@ -147,7 +147,9 @@ def _load(args, report=None):
 
 
 def cmd_compile(args) -> int:
-    from .output import OutputError, write_file
+    from .build import BuildError
+    from .driver import write_compiled
+    from .output import OutputError
     if Path(args.file).suffix == ".c":
         _error(f"{display_name(args.file)} is already C; `epuckc build` and `epuckc run` "
                "take it as it is")
@@ -157,7 +159,10 @@ def cmd_compile(args) -> int:
         return status
     out = args.output if args.output else Path(args.file).with_suffix(".c")
     try:
-        write_file(out, program.c_text)
+        write_compiled(program, out)
+    except BuildError as exc:
+        _error(str(exc))
+        return exc.status
     except OutputError as exc:
         _error(str(exc))
         return EXIT_USAGE
@@ -251,6 +256,9 @@ def cmd_run(args) -> int:
     except BuildError as exc:
         _error(str(exc))
         return exc.status
+    except OSError as exc:
+        _error(f"{exc.strerror or exc}: {exc.filename or ''}".rstrip(": "))
+        return EXIT_USAGE
 
 
 def _robot_program_loader(args):

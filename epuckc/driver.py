@@ -6,11 +6,12 @@ import re
 from pathlib import Path
 from typing import Optional
 
-from .build import (EXIT_NO_TOOLCHAIN, BuildError, Program, build_host, find_xc16,
-                    host_executable, run_make, write_dspic_project)
+from .build import (EXIT_NO_TOOLCHAIN, BuildError, Program, build_host, check_outputs,
+                    find_xc16, host_executable, run_make, write_atomic, write_dspic_project)
 from .diagnostics import Report
 from .frontend import InputError, check_file, read_error
 from .harness import run_executable
+from .output import is_stdout
 
 
 def _program_name(path: Path) -> str:
@@ -30,16 +31,45 @@ def load_program(path: Path, report: Report, max_actions: Optional[int] = None,
             raise read_error(shown, exc) from None
         except UnicodeDecodeError:
             raise InputError(f"cannot read {shown}: it is not UTF-8 text") from None
-        return Program(name, text, path.resolve().parent, [], max_actions, max_events,
-                       generated=False)
+        return Program(name, text, path.parent, [], max_actions, max_events,
+                       generated=False, source_path=path, inputs=[path])
     result = check_file(path, report, shown_name=shown,
                         max_actions=max_actions, max_events=max_events)
     if result.checked is None:
         return None
-    from .emit import emit_c
-    c_text = emit_c(result.checked, result.source.text)
-    user_files = sorted({e.file for e in result.checked.externs.values()})
-    return Program(name, c_text, path.resolve().parent, user_files, max_actions, max_events)
+    from .emit import emit_program
+    generated = emit_program(result.checked, result.source.text, name)
+    # the user's C files in the order they are declared, each once (two
+    # spellings of one file would define its functions twice)
+    user_files, seen = [], set()
+    for info in result.checked.externs.values():
+        file = path.parent / info.file
+        if os.path.realpath(file) not in seen:
+            seen.add(os.path.realpath(file))
+            user_files.append(file)
+    return Program(name, generated.c_text, path.parent, user_files, max_actions, max_events,
+                   header_name=generated.header_name, header_text=generated.header_text,
+                   inputs=[path] + user_files)
+
+
+def write_compiled(program: Program, out):
+    """`epuckc compile`: the C file, and beside it the externs header when
+    the program has externs. Neither may be one of the inputs. With `-o -`
+    the C goes to standard output and the header is not written (a note
+    says how to get it)."""
+    if is_stdout(out):
+        write_atomic(out, program.c_text)
+        if program.header_name:
+            print(f"epuckc: note: the program includes {program.header_name}, which is not "
+                  f"written with -o -; `epuckc compile FILE -o OUT.c` writes it beside OUT.c",
+                  file=sys.stderr)
+        return
+    out = Path(out)
+    outputs = [out] + ([out.parent / program.header_name] if program.header_name else [])
+    check_outputs(outputs, program.inputs)
+    write_atomic(out, program.c_text)
+    if program.header_name:
+        write_atomic(out.parent / program.header_name, program.header_text)
 
 
 def build(program: Program, target: str, out_dir: Optional[Path]) -> str:
@@ -70,6 +100,8 @@ def run_host(program: Program, scenario: Optional[str], time_limit_ms: int,
              trace: Optional[str], pose_ms: Optional[int] = None, on_built=None) -> int:
     """Build for the host (cached) and run; `on_built(exe)` is told where
     the executable is before it runs."""
+    if trace and trace != "-":
+        check_outputs([Path(trace)], program.inputs + ([Path(scenario)] if scenario else []))
     with host_executable(program) as exe:
         if on_built is not None:
             on_built(exe)

@@ -4,7 +4,9 @@ The template only prints what lowering decided (StrictUndefined catches a
 missing field rather than printing nothing)."""
 from __future__ import annotations
 
+from dataclasses import dataclass
 from functools import lru_cache
+from typing import Optional
 
 import jinja2
 
@@ -26,9 +28,27 @@ def _environment() -> jinja2.Environment:
     )
 
 
-def emit_c(program: CheckedProgram, source_text: str) -> str:
-    cprogram = lower(program, source_text, __version__)
-    return _environment().get_template("program.c.j2").render(program=cprogram)
+@dataclass
+class GeneratedC:
+    c_text: str
+    header_name: Optional[str] = None      # `<program>_externs.h`, when there are externs
+    header_text: Optional[str] = None
+
+
+def emit_program(program: CheckedProgram, source_text: str, program_name: str) -> GeneratedC:
+    """The C program and, for a program with externs, the header that the
+    program and the user's C files include."""
+    cprogram = lower(program, source_text, __version__, program_name)
+    env = _environment()
+    c_text = env.get_template("program.c.j2").render(program=cprogram)
+    if cprogram.externs_header is None:
+        return GeneratedC(c_text)
+    return GeneratedC(c_text, cprogram.externs_header,
+                      env.get_template("externs.h.j2").render(program=cprogram))
+
+
+def emit_c(program: CheckedProgram, source_text: str, program_name: str = "program") -> str:
+    return emit_program(program, source_text, program_name).c_text
 
 
 def render_template(template: str, **context) -> str:

@@ -6,14 +6,21 @@ Every C name and initialiser is decided here; the template only prints.
 The same rules decide how many registrations the runtime's arrays must hold,
 so the checker asks count_registrations() rather than guessing.
 
-Generated names never collide with each other, C keywords or the runtime:
-user names only ever appear after a prefix that the runtime does not use
-(`a_`, `rule_`), and derived names put their kind first
-(`p2_a_go` is the second parameter struct of action `go`, `p1_r3` the first
-of rule 3's own action list).
+Generated names never collide with each other, C, the runtime or the
+user's C: every name epuckc makes up, main's locals included, starts with
+PREFIX (`epk_`), which the checker forbids to extern names (the only user
+names that reach C as they are). Derived names put their kind after it
+(`epk_p2_a_go` is the second parameter struct of action `go`, `epk_p1_r3`
+the first of rule 3's own action list).
+
+Externs: their parameter structs (`param_NAME`) and prototypes go in a
+header of their own, `<program>_externs.h`, which both the generated
+program and the user's C files include; the user's C is compiled as its own
+translation unit and linked.
 """
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, field
 from pathlib import PurePath
 from typing import Optional
@@ -21,6 +28,9 @@ from typing import Optional
 from .checker import CheckedProgram, ResolvedCall
 from .stdlib import STANDARD_ACTIONS, STANDARD_EVENTS
 from .units import INT16_MAX, INT16_MIN, round_nearest
+
+# Every C name that epuckc makes up starts with this; see the module doc.
+PREFIX = "epk_"
 
 # C types of extern parameters, by declared type.
 EXTERN_C_TYPES = {"int": "int", "distance": "int", "speed": "int", "angle": "int",
@@ -33,6 +43,12 @@ def rule_action_key(index: int, rule) -> tuple:
     if len(body) == 1 and len(body[0]) == 1 and body[0][0].kind == "named":
         return ("named", body[0][0].name)
     return ("rule", index)
+
+
+def externs_header_name(program_name: str) -> str:
+    """The header that declares a program's externs, for the user's C:
+    `#include "<program>_externs.h"`."""
+    return f"{program_name}_externs.h"
 
 
 def count_registrations(program: CheckedProgram) -> tuple[int, int]:
@@ -89,11 +105,22 @@ class CExternStruct:
 
 
 @dataclass
+class CExtern:
+    """A prototype in the externs header."""
+    kind: str              # "action" | "event"
+    name: str
+    comment: str
+    param_doc: str         # what its first argument points to
+
+
+@dataclass
 class CProgram:
-    source_name: str
+    source_name: str       # for comments: already safe inside /* */
     version: str
+    externs_header: Optional[str] = None       # its file name, when there are externs
+    header_guard: str = ""
     extern_structs: list = field(default_factory=list)
-    includes: list = field(default_factory=list)
+    externs: list = field(default_factory=list)
     structs: list = field(default_factory=list)
     functions: list = field(default_factory=list)
     sequences: list = field(default_factory=list)
@@ -109,11 +136,12 @@ class CProgram:
 # ---- C text helpers ------------------------------------------------------------
 
 def c_string(text: str) -> str:
-    """A C string literal of `text`: ASCII only, so the bytes do not depend
-    on the compiler's source character set."""
+    """A C string literal of `text`: printable ASCII only, so the bytes do
+    not depend on the compiler's source character set; `?` is escaped so
+    that no trigraph (`??=`) forms."""
     out = []
     for ch in text:
-        if ch in '"\\':
+        if ch in '"\\?':
             out.append("\\" + ch)
         elif 32 <= ord(ch) < 127:
             out.append(ch)
@@ -123,8 +151,21 @@ def c_string(text: str) -> str:
 
 
 def c_comment(text: str) -> str:
-    """Text safe inside /* */: one line, no comment terminator."""
-    return " ".join(text.split()).replace("*/", "* /")
+    """Text safe inside /* */ on one line: printable ASCII (other
+    characters as `\\uXXXX`), no comment delimiters, no trigraphs; one
+    line, so no backslash-newline can splice it."""
+    out = []
+    for ch in " ".join(text.split()):
+        if 32 <= ord(ch) < 127:
+            out.append(ch)
+        elif ord(ch) <= 0xFFFF:
+            out.append(f"\\u{ord(ch):04X}")
+        else:
+            out.append(f"\\U{ord(ch):08X}")
+    text = "".join(out)
+    while "*/" in text or "/*" in text or "??" in text:
+        text = text.replace("*/", "* /").replace("/*", "/ *").replace("??", "? ?")
+    return text
 
 
 def _shorten(text: str, limit: int = 100) -> str:
@@ -145,11 +186,13 @@ class _Primitive:
 
 
 class _Lowerer:
-    def __init__(self, program: CheckedProgram, source_text: str, version: str):
+    def __init__(self, program: CheckedProgram, source_text: str, version: str,
+                 program_name: str):
         self.program = program
         self.source_lines = source_text.split("\n")
         self.source_name = PurePath(program.file).name
-        self.out = CProgram(self.source_name, version)
+        self.out = CProgram(c_comment(self.source_name), version)
+        self.program_name = program_name
         self.params: dict = {}           # id(ResolvedCall) -> param expression
         self.owner_counts: dict = {}     # owner -> structs made so far
         self.flat: dict = {}             # named action -> flattened steps
@@ -186,7 +229,7 @@ class _Lowerer:
         if key not in self.params:
             n = self.owner_counts.get(owner, 0) + 1
             self.owner_counts[owner] = n
-            name = f"p{n}_{owner}"
+            name = f"{PREFIX}p{n}_{owner}"
             ctype, init, comment = self.param_struct(call)
             self.out.structs.append(CStruct(ctype, name, init,
                                             c_comment(f"{self.where(call.node)}: {text}"
@@ -197,18 +240,18 @@ class _Lowerer:
 
     def param_struct(self, call: ResolvedCall) -> tuple[str, str, str]:
         v = call.values
-        if call.name == "start_straight":
-            # `distance` (mm) is only read when `steps` is 0; with a large
-            # wheel it may not fit a 16-bit int, and then 0 says "see steps".
-            mm = v["distance_mm"] if INT16_MIN <= v["distance_mm"] <= INT16_MAX else 0
-            return ("param_start_straight",
-                    f"{{{v['speed']}, {mm}, {v['distance']}}}",
-                    f"{v['speed']} steps/s, {v['distance']} steps")
-        if call.name == "start_curve":
-            return ("param_start_curve",
-                    f"{{{v['radius']}, {v['degrees']}, {v['speed']}, {v['outer_steps']}, {v['inner_speed']}}}",
-                    f"outer wheel {v['speed']} steps/s for {v['outer_steps']} steps, "
-                    f"inner {v['inner_speed']} steps/s")
+        if call.kind == "standard" and call.name == "start_straight":
+            return (STANDARD_ACTIONS[call.name].runtime_param,
+                    f"{{{v['speed']}, {v['distance']}}}",
+                    f"{v['speed']} steps/s for {v['distance']} steps")
+        if call.kind == "standard" and call.name == "start_curve":
+            outer, inner = v["speed"], v["inner_speed"]
+            # a positive angle turns left: the right wheel is the outer one
+            left, right = (inner, outer) if v["degrees"] >= 0 else (outer, inner)
+            return (STANDARD_ACTIONS[call.name].runtime_param,
+                    f"{{{left}, {right}, {v['outer_steps']}}}",
+                    f"left wheel {left} steps/s, right {right} steps/s, "
+                    f"{v['outer_steps']} steps of the outer wheel")
         info = self.program.externs[call.name]
         return (f"param_{call.name}", self.extern_init(info.params, v), "")
 
@@ -278,63 +321,79 @@ class _Lowerer:
                                             [p.statement for p in prims] or [";"]))
         return fname, "NULL"
 
-    def body_action(self, steps: list, owner: str, comment: str) -> tuple[str, str]:
-        """(function, param) to register for a whole body."""
+    def body_action(self, steps: list, owner: str, where: str, comment: str) -> tuple[str, str]:
+        """(function, param) to register for a whole body. `comment` (the
+        whole body) is printed once; a step's function says only its step,
+        so the C stays linear in the size of the rule file."""
         if len(steps) == 1:
-            return self.step_action(steps[0], f"do_{owner}", comment)
+            return self.step_action(steps[0], f"{PREFIX}do_{owner}", comment)
         entries = []
         for k, prims in enumerate(steps, 1):
             text = ", ".join(p.text for p in prims)
-            fn, param = self.step_action(prims, f"step{k}_{owner}", f"{comment} - step {k}: {text}")
+            fn, param = self.step_action(prims, f"{PREFIX}step{k}_{owner}",
+                                         f"{where}: step {k} of {len(steps)}: {text}")
             entries.append(f"{{{fn}, {param}}}")
-        self.out.sequences.append(CSequence(f"steps_{owner}", f"seq_{owner}", entries,
-                                            c_comment(comment)))
-        return "run_sequence", f"&seq_{owner}"
+        self.out.sequences.append(CSequence(f"{PREFIX}steps_{owner}", f"{PREFIX}seq_{owner}",
+                                            entries, c_comment(comment)))
+        return "run_sequence", f"&{PREFIX}seq_{owner}"
 
     # -- events --
 
     def event(self, rule, index: int) -> tuple[str, str]:
         ev = rule.event
         owner = f"r{index}"
+        when = f"{PREFIX}when_{owner}"
         comment = c_comment(f"{self.where(rule.node)}: {self.text_of(rule.node.event)}")
         if ev.kind == "extern":
             info = self.program.externs[ev.name]
             if not info.params:
                 return ev.name, "NULL"
-            self.out.structs.append(CStruct(f"param_{ev.name}", f"when_{owner}",
+            self.out.structs.append(CStruct(f"param_{ev.name}", when,
                                             self.extern_init(info.params, ev.values), comment))
-            return ev.name, f"&when_{owner}"
+            return ev.name, f"&{when}"
         spec = STANDARD_EVENTS[ev.name]
         if spec.runtime_param is None:      # immediate, stop_motor
             return spec.runtime, "NULL"
         if ev.name == "timer":
-            self.out.structs.append(CStruct(spec.runtime_param, f"when_{owner}",
+            self.out.structs.append(CStruct(spec.runtime_param, when,
                                             f"{{{ev.values['time']}L}}", comment))
-            return spec.runtime, f"&when_{owner}"
+            return spec.runtime, f"&{when}"
         thresholds = ["SENSOR_OFF"] * 8
         below = 0
         for sensor, op, value in ev.conditions:
             thresholds[sensor] = str(value)
             if op == "<":
                 below |= 1 << sensor
-        self.out.structs.append(CStruct(spec.runtime_param, f"when_{owner}",
+        self.out.structs.append(CStruct(spec.runtime_param, when,
                                         f"{{{{{', '.join(thresholds)}}}, 0x{below:02x}}}", comment))
-        return spec.runtime, f"&when_{owner}"
+        return spec.runtime, f"&{when}"
 
     # -- the whole program --
 
-    def lower(self) -> CProgram:
+    def externs(self):
         out = self.out
+        if not self.program.externs:
+            return
+        out.externs_header = externs_header_name(self.program_name)
+        out.header_guard = "EPK_" + re.sub(r"[^A-Za-z0-9]", "_", self.program_name).upper() \
+            + "_EXTERNS_H"
         for info in self.program.externs.values():
             if info.params:     # ISO C has no empty structs; such externs get NULL
                 out.extern_structs.append(CExternStruct(
                     f"param_{info.name}", [(EXTERN_C_TYPES[p.kind], p.name) for p in info.params]))
-            if info.file not in out.includes:
-                out.includes.append(info.file)
+            params = ", ".join(f"{p.name}: {p.kind}" for p in info.params)
+            out.externs.append(CExtern(info.kind, info.name, c_comment(
+                f"{self.where(info.node)}: extern {info.kind} {info.name}({params})"),
+                f"param_{info.name} *" if info.params else "NULL"))
+
+    def lower(self) -> CProgram:
+        out = self.out
+        self.externs()
+        cancelled = self.cancelled_rules()
         for rule in self.program.rules:
-            if rule.name is not None and self.uses_cancel(rule.name):
-                self.rule_ids[rule.name] = f"rule_{rule.name}"
-                out.rule_id_vars.append(f"rule_{rule.name}")
+            if rule.name is not None and rule.name in cancelled:
+                self.rule_ids[rule.name] = f"{PREFIX}rule_{rule.name}"
+                out.rule_id_vars.append(f"{PREFIX}rule_{rule.name}")
         registered: dict = {}          # rule_action_key -> action variable
         for index, rule in enumerate(self.program.rules, 1):
             key = rule_action_key(index, rule)
@@ -342,21 +401,23 @@ class _Lowerer:
             if key in registered:
                 action_var, new_action = registered[key], None
             else:
-                action_var = f"a{len(registered) + 1}"
+                action_var = f"{PREFIX}a{len(registered) + 1}"
                 out.action_vars.append(action_var)
                 if key[0] == "named":
                     name = key[1]
                     steps = self.named_steps(name)
                     node = self.program.action_nodes[name]
                     new_action = self.body_action(
-                        steps, f"a_{name}", f"{self.where(node)}: action {name} = {self.text_of(node.body)}")
+                        steps, f"a_{name}", self.where(node),
+                        f"{self.where(node)}: action {name} = {self.text_of(node.body)}")
                 else:
                     steps = self.flatten(rule.body, f"r{index}")
                     new_action = self.body_action(
-                        steps, f"r{index}", f"{self.where(rule.node)}: {body_text}")
+                        steps, f"r{index}", self.where(rule.node),
+                        f"{self.where(rule.node)}: {body_text}")
                 registered[key] = action_var
             event_function, event_param = self.event(rule, index)
-            event_var = f"e{index}"
+            event_var = f"{PREFIX}e{index}"
             out.event_vars.append(event_var)
             head = f"rule {rule.name}: " if rule.name else ""
             out.registrations.append(CRegistration(
@@ -375,12 +436,14 @@ class _Lowerer:
                             f"{round_nearest(geo.axle_mm * 1000)}L, {geo.steps_per_rev}L")
         return out
 
-    def uses_cancel(self, rule_name: str) -> bool:
-        def in_steps(steps):
-            return any(c.kind == "cancel" and c.name == rule_name for step in steps for c in step)
-        return any(in_steps(r.body) for r in self.program.rules) or \
-            any(in_steps(s) for s in self.program.actions.values())
+    def cancelled_rules(self) -> set:
+        """The rules that some `cancel` names, found in one pass."""
+        names = set()
+        for steps in [r.body for r in self.program.rules] + list(self.program.actions.values()):
+            names.update(c.name for step in steps for c in step if c.kind == "cancel")
+        return names
 
 
-def lower(program: CheckedProgram, source_text: str, version: str) -> CProgram:
-    return _Lowerer(program, source_text, version).lower()
+def lower(program: CheckedProgram, source_text: str, version: str,
+          program_name: str = "program") -> CProgram:
+    return _Lowerer(program, source_text, version, program_name).lower()

@@ -37,6 +37,7 @@ class ActionSpec:
     doc: str
     runtime: str              # the runtime's action function the call becomes
     motion: bool = False      # starts a motion (ends with a `stop_motor` event)
+    runtime_param: Optional[str] = None   # its parameter struct, if any
 
     @property
     def signature(self) -> str:
@@ -66,7 +67,9 @@ ACTIONS = (
                (Param("speed", SPEED, "wheel speed; negative drives backwards", _SPEED_RANGE),
                 Param("distance", DISTANCE, "how far; negative drives backwards", _STEPS_RANGE)),
                "drives straight; backwards when exactly one of them is negative",
-               "start_straight", motion=True),
+               # compiled to exact steps: the runtime's extension, so the
+               # paper's param_start_straight stays the paper's
+               "straight_steps", motion=True, runtime_param="param_straight_steps"),
     ActionSpec("start_curve",
                (Param("radius", DISTANCE, "from the robot's centre to the circle's centre",
                       ">= 0 [E036], a 16-bit int of mm [E034]"),
@@ -76,7 +79,7 @@ ACTIONS = (
                       _SPEED_RANGE)),
                "drives an arc through the robot's centre; positive degrees turn left, negative "
                "right; `speed` is the outer wheel's; radius 0 turns on the spot",
-               "start_curve", motion=True),
+               "curve_steps", motion=True, runtime_param="param_curve_steps"),
     ActionSpec("stop_motor", (), "stops the wheels; the current motion ends", "stop_motor"),
     ActionSpec("set_timer", (), "(re)starts the one timer at 0", "set_timer"),
     ActionSpec("reset_timer", (), "stops the timer", "reset_timer"),

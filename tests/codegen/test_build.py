@@ -30,25 +30,28 @@ def test_dspic_without_xc16_writes_the_project_and_says_what_is_missing(tmp_path
     assert result.returncode == 3, result.stderr
     assert "xc16-gcc" in result.stderr and str(out) in result.stderr
     assert "Traceback" not in result.stderr
-    for name in ("extern_spin.c", "epuckrt.c", "platform_robot.c", "epuckrt.h",
-                 "utility.h", "rt_platform.h", "spin.c", "Makefile"):
+    for name in ("extern_spin.c", "extern_spin_externs.h", "runtime/epuckrt.c",
+                 "runtime/platform_robot.c", "runtime/epuckrt.h", "runtime/utility.h",
+                 "runtime/rt_platform.h", "user/1_spin.c", "Makefile"):
         assert (out / name).is_file(), name
 
 
 def test_dspic_project_compiles_on_the_host_against_the_library_declarations(tmp_path):
     out, _ = dspic_project(tmp_path)
     cc = require_tool("cc")
-    for source in ("extern_spin.c", "epuckrt.c", "platform_robot.c"):
-        subprocess.run([cc, *WARN, f"-I{out}", f"-I{EPUCK_API}", "-c", str(out / source),
-                        "-o", str(tmp_path / "x.o")], check=True)
+    for source in ("extern_spin.c", "runtime/epuckrt.c", "runtime/platform_robot.c",
+                   "user/1_spin.c"):
+        subprocess.run([cc, *WARN, f"-I{out}", f"-I{out / 'runtime'}", f"-I{EPUCK_API}", "-c",
+                        str(out / source), "-o", str(tmp_path / "x.o")], check=True)
 
 
 def test_dspic_project_compiles_with_16_bit_int(tmp_path):
     out, _ = dspic_project(tmp_path, example="square.epk")
     avr = require_tool("avr-gcc")
-    for source in ("square.c", "epuckrt.c", "platform_robot.c"):
-        subprocess.run([avr, "-mmcu=atmega128", *WARN, "-Os", f"-I{out}", f"-I{EPUCK_API}",
-                        "-c", str(out / source), "-o", str(tmp_path / "x.o")], check=True)
+    for source in ("square.c", "runtime/epuckrt.c", "runtime/platform_robot.c"):
+        subprocess.run([avr, "-mmcu=atmega128", *WARN, "-Os", f"-I{out}", f"-I{out / 'runtime'}",
+                        f"-I{EPUCK_API}", "-c", str(out / source), "-o", str(tmp_path / "x.o")],
+                       check=True)
 
 
 def _fake_xc16(bin_dir: Path, log: Path):
@@ -106,7 +109,11 @@ def test_dspic_build_runs_make_with_xc16_from_xc16_dir(tmp_path):
     assert (out / "extern_spin.hex").is_file()
     calls = log.read_text().splitlines()
     compiles = [c for c in calls if " -c " in c]
-    assert len(compiles) == 3 + 8          # program, runtime, robot layer + library
+    assert len(compiles) == 4 + 8          # program, runtime, robot layer, spin.c + library
+    # generated C is -Werror, the user's not
+    [program] = [c for c in compiles if c.endswith("-c extern_spin.c -o extern_spin.o")]
+    [user] = [c for c in compiles if "user/1_spin.c" in c]
+    assert "-Werror" in program and "-Werror" not in user
     assert all("-mcpu=30F6014A" in c for c in calls if c.startswith("xc16-gcc"))
     assert calls[-1] == "xc16-bin2hex extern_spin.elf"
 

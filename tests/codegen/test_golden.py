@@ -1,6 +1,6 @@
-"""Golden tests: for each rule file under tests/golden/, the generated C and
-the diagnostics are compared with tests/golden/expected/NAME.c and
-NAME.stderr. `pytest --update-goldens` rewrites them for review in git."""
+"""Golden tests: for each rule file under tests/golden/, the generated C, its
+externs header and the diagnostics are compared with
+tests/golden/expected/NAME.c, NAME_externs.h and NAME.stderr. `pytest --update-goldens` rewrites them for review in git."""
 from pathlib import Path
 
 import pytest
@@ -27,8 +27,14 @@ def test_generated_c_and_diagnostics(case, tmp_path, update_goldens):
                     env={"NO_COLOR": "1"})
     expected_c = GOLDEN / "expected" / f"{case}.c"
     _compare(GOLDEN / "expected" / f"{case}.stderr", result.stderr, update_goldens)
+    header = tmp_path / f"{case}_externs.h"
+    expected_h = GOLDEN / "expected" / header.name
     if result.returncode == 0:
         _compare(expected_c, out.read_text(encoding="utf-8"), update_goldens)
+        if header.exists():
+            _compare(expected_h, header.read_text(encoding="utf-8"), update_goldens)
+        else:
+            assert not expected_h.exists(), f"{case} writes no header but has a golden one"
     else:
         assert result.returncode == 1
         assert not out.exists(), "a failed compile must write nothing"
@@ -36,5 +42,6 @@ def test_generated_c_and_diagnostics(case, tmp_path, update_goldens):
 
 
 def test_every_case_is_covered():
-    stale = {p.stem for p in (GOLDEN / "expected").glob("*.*")} - set(CASES)
+    stale = {p.stem.removesuffix("_externs") for p in (GOLDEN / "expected").glob("*.*")} \
+        - set(CASES)
     assert not stale, f"golden files without a case: {stale}"

@@ -7,55 +7,55 @@
  */
 #include "utility.h"
 
-/* cancel.epk:3: start_straight(200, 1 mm) (200 steps/s, 8 steps) */
-static param_start_straight p1_r2 = {200, 1, 8};
+/* cancel.epk:3: start_straight(200, 1 mm) (200 steps/s for 8 steps) */
+static param_straight_steps epk_p1_r2 = {200, 8};
 /* cancel.epk:3: timer(100 ms) */
-static param_event_timer when_r2 = {100L};
+static param_event_timer epk_when_r2 = {100L};
 /* cancel.epk:4: timer(350 ms) */
-static param_event_timer when_r3 = {350L};
+static param_event_timer epk_when_r3 = {350L};
 /* cancel.epk:5: timer(1 s) */
-static param_event_timer when_r4 = {1000L};
+static param_event_timer epk_when_r4 = {1000L};
 
 /* Event ids of the rules that `cancel` names. */
-static int rule_tick;
+static int epk_rule_tick;
 
 /* cancel.epk:4: cancel tick */
-static void do_r3(void *param)
+static void epk_do_r3(void *epk_param)
 {
-    (void)param;
-    cancel_event(rule_tick);
+    (void)epk_param;
+    cancel_event(epk_rule_tick);
 }
 
 int main(void)
 {
-    int a1, a2, a3, a4;
-    int e1, e2, e3, e4;
+    int epk_a1, epk_a2, epk_a3, epk_a4;
+    int epk_e1, epk_e2, epk_e3, epk_e4;
 
     /* cancel.epk:2: on immediate do set_timer */
-    a1 = register_action(set_timer, NULL);
-    name_action(a1, "set_timer");
-    e1 = register_event(immediate, NULL, a1);
-    name_event(e1, "cancel.epk:2 on immediate");
+    epk_a1 = register_action(set_timer, NULL);
+    name_action(epk_a1, "set_timer");
+    epk_e1 = register_event(immediate, NULL, epk_a1);
+    name_event(epk_e1, "cancel.epk:2 on immediate");
 
     /* cancel.epk:3: rule tick: on timer(100 ms) repeat do start_straight(200, 1 mm) */
-    a2 = register_action(start_straight, &p1_r2);
-    name_action(a2, "start_straight(200, 1 mm)");
-    e2 = register_event(timer, &when_r2, a2);
-    name_event(e2, "cancel.epk:3 rule tick: on timer(100 ms) repeat");
-    set_event_repeat(e2, 1);
-    rule_tick = e2;
+    epk_a2 = register_action(straight_steps, &epk_p1_r2);
+    name_action(epk_a2, "start_straight(200, 1 mm)");
+    epk_e2 = register_event(timer, &epk_when_r2, epk_a2);
+    name_event(epk_e2, "cancel.epk:3 rule tick: on timer(100 ms) repeat");
+    set_event_repeat(epk_e2, 1);
+    epk_rule_tick = epk_e2;
 
     /* cancel.epk:4: on timer(350 ms) do cancel tick */
-    a3 = register_action(do_r3, NULL);
-    name_action(a3, "cancel tick");
-    e3 = register_event(timer, &when_r3, a3);
-    name_event(e3, "cancel.epk:4 on timer(350 ms)");
+    epk_a3 = register_action(epk_do_r3, NULL);
+    name_action(epk_a3, "cancel tick");
+    epk_e3 = register_event(timer, &epk_when_r3, epk_a3);
+    name_event(epk_e3, "cancel.epk:4 on timer(350 ms)");
 
     /* cancel.epk:5: on timer(1 s) do exit_main */
-    a4 = register_action(exit_main, NULL);
-    name_action(a4, "exit_main");
-    e4 = register_event(timer, &when_r4, a4);
-    name_event(e4, "cancel.epk:5 on timer(1 s)");
+    epk_a4 = register_action(exit_main, NULL);
+    name_action(epk_a4, "exit_main");
+    epk_e4 = register_event(timer, &epk_when_r4, epk_a4);
+    name_event(epk_e4, "cancel.epk:5 on timer(1 s)");
 
     mainloop();
     return 0;

@@ -7,76 +7,76 @@
  */
 #include "utility.h"
 
-/* events.epk:3: start_straight(300, 1 cm) (300 steps/s, 78 steps) */
-static param_start_straight p1_r2 = {300, 10, 78};
+/* events.epk:3: start_straight(300, 1 cm) (300 steps/s for 78 steps) */
+static param_straight_steps epk_p1_r2 = {300, 78};
 /* events.epk:3: sensor(ir2 > 1000, ir5 < 20) */
-static param_event_sensor when_r2 = {{SENSOR_OFF, SENSOR_OFF, 1000, SENSOR_OFF, SENSOR_OFF, 20, SENSOR_OFF, SENSOR_OFF}, 0x20};
+static param_event_sensor epk_when_r2 = {{SENSOR_OFF, SENSOR_OFF, 1000, SENSOR_OFF, SENSOR_OFF, 20, SENSOR_OFF, SENSOR_OFF}, 0x20};
 /* events.epk:5: timer(400 ms) */
-static param_event_timer when_r4 = {400L};
+static param_event_timer epk_when_r4 = {400L};
 /* events.epk:6: event_timer(time: 3 s) */
-static param_event_timer when_r5 = {3000L};
+static param_event_timer epk_when_r5 = {3000L};
 
 /* events.epk:2: start_sensor, set_timer */
-static void do_r1(void *param)
+static void epk_do_r1(void *epk_param)
 {
-    (void)param;
+    (void)epk_param;
     start_sensor(NULL);
     set_timer(NULL);
 }
 
 /* events.epk:4: reset_timer, set_timer */
-static void do_r3(void *param)
+static void epk_do_r3(void *epk_param)
 {
-    (void)param;
+    (void)epk_param;
     reset_timer(NULL);
     set_timer(NULL);
 }
 
 /* events.epk:6: stop_motor, exit_main */
-static void do_r5(void *param)
+static void epk_do_r5(void *epk_param)
 {
-    (void)param;
+    (void)epk_param;
     stop_motor(NULL);
     exit_main(NULL);
 }
 
 int main(void)
 {
-    int a1, a2, a3, a4, a5;
-    int e1, e2, e3, e4, e5;
+    int epk_a1, epk_a2, epk_a3, epk_a4, epk_a5;
+    int epk_e1, epk_e2, epk_e3, epk_e4, epk_e5;
 
     /* events.epk:2: on immediate do start_sensor, set_timer */
-    a1 = register_action(do_r1, NULL);
-    name_action(a1, "start_sensor, set_timer");
-    e1 = register_event(immediate, NULL, a1);
-    name_event(e1, "events.epk:2 on immediate");
+    epk_a1 = register_action(epk_do_r1, NULL);
+    name_action(epk_a1, "start_sensor, set_timer");
+    epk_e1 = register_event(immediate, NULL, epk_a1);
+    name_event(epk_e1, "events.epk:2 on immediate");
 
     /* events.epk:3: rule near: on sensor(ir2 > 1000, ir5 < 20) repeat do start_straight(300, 1 cm) */
-    a2 = register_action(start_straight, &p1_r2);
-    name_action(a2, "start_straight(300, 1 cm)");
-    e2 = register_event(sensor, &when_r2, a2);
-    name_event(e2, "events.epk:3 rule near: on sensor(ir2 > 1000, ir5 < 20) repeat");
-    set_event_repeat(e2, 1);
+    epk_a2 = register_action(straight_steps, &epk_p1_r2);
+    name_action(epk_a2, "start_straight(300, 1 cm)");
+    epk_e2 = register_event(sensor, &epk_when_r2, epk_a2);
+    name_event(epk_e2, "events.epk:3 rule near: on sensor(ir2 > 1000, ir5 < 20) repeat");
+    set_event_repeat(epk_e2, 1);
 
     /* events.epk:4: rule moved: on stop_motor repeat do reset_timer, set_timer */
-    a3 = register_action(do_r3, NULL);
-    name_action(a3, "reset_timer, set_timer");
-    e3 = register_event(event_stop_motor, NULL, a3);
-    name_event(e3, "events.epk:4 rule moved: on stop_motor repeat");
-    set_event_repeat(e3, 1);
+    epk_a3 = register_action(epk_do_r3, NULL);
+    name_action(epk_a3, "reset_timer, set_timer");
+    epk_e3 = register_event(event_stop_motor, NULL, epk_a3);
+    name_event(epk_e3, "events.epk:4 rule moved: on stop_motor repeat");
+    set_event_repeat(epk_e3, 1);
 
     /* events.epk:5: on timer(400 ms) repeat do stop_sensor */
-    a4 = register_action(stop_sensor, NULL);
-    name_action(a4, "stop_sensor");
-    e4 = register_event(timer, &when_r4, a4);
-    name_event(e4, "events.epk:5 on timer(400 ms) repeat");
-    set_event_repeat(e4, 1);
+    epk_a4 = register_action(stop_sensor, NULL);
+    name_action(epk_a4, "stop_sensor");
+    epk_e4 = register_event(timer, &epk_when_r4, epk_a4);
+    name_event(epk_e4, "events.epk:5 on timer(400 ms) repeat");
+    set_event_repeat(epk_e4, 1);
 
     /* events.epk:6: on event_timer(time: 3 s) do stop_motor, exit_main */
-    a5 = register_action(do_r5, NULL);
-    name_action(a5, "stop_motor, exit_main");
-    e5 = register_event(timer, &when_r5, a5);
-    name_event(e5, "events.epk:6 on event_timer(time: 3 s)");
+    epk_a5 = register_action(epk_do_r5, NULL);
+    name_action(epk_a5, "stop_motor, exit_main");
+    epk_e5 = register_event(timer, &epk_when_r5, epk_a5);
+    name_event(epk_e5, "events.epk:6 on event_timer(time: 3 s)");
 
     mainloop();
     return 0;

@@ -1,5 +1,7 @@
 /* after.c - an extern event: occurs once `ms` milliseconds of polls have
  * passed since it was registered (one poll per millisecond on the harness). */
+#include "extern_externs.h"
+
 void after(void *param, void *status)
 {
     const param_after *p = (const param_after *)param;

@@ -2,7 +2,9 @@
  * record the arguments so that a test can see they arrived converted. */
 #include <stdio.h>
 
-static param_start_straight mark_motion;
+#include "extern_externs.h"
+
+static param_straight_steps mark_motion;
 
 void mark(void *param)
 {
@@ -11,7 +13,7 @@ void mark(void *param)
            p->count, p->length, p->pace, p->turn, p->wait);
     mark_motion.speed = p->pace;
     mark_motion.steps = p->length;
-    start_straight(&mark_motion);
+    straight_steps(&mark_motion);
 }
 
 void noop(void *param)
