@@ -9,12 +9,16 @@ from __future__ import annotations
 
 import math
 import os
+import re
+from functools import lru_cache
 from pathlib import Path
 from typing import Optional
 
 from . import ast
+from .cnames import extern_name_problem, parameter_name_problem
 from .diagnostics import Collector, Fix, Note
 from .records import field, record
+from .resources import runtime_dir
 from .source import Span
 from .stdlib import (ACTION_ALIASES, EVENT_ALIASES, EXTERN_TYPES, MOTION_ACTIONS,
                      SENSOR_NAMES, STANDARD_ACTIONS, STANDARD_EVENTS, THRESHOLD_MAX, Param)
@@ -26,20 +30,6 @@ DEFAULT_CAPACITY = 32      # frontend.py passes the runtime header's MAX_ACTIONS
 # A duration written without a unit is in ms; below this many it was very
 # likely meant in seconds (`timer(2)`), and W008 says so.
 BARE_DURATION_WARNING = 100
-
-# Names an extern's C function cannot have: C99's keywords, `main`, and the
-# runtime's own functions and types (epuckrt.h). User names elsewhere never
-# reach C unprefixed (see lower.py).
-RESERVED_C_NAMES = frozenset("""
-    auto break case char const continue default do double else enum extern float for
-    goto if inline int long register restrict return short signed sizeof static struct
-    switch typedef union unsigned void volatile while _Bool _Complex _Imaginary main
-    register_action register_event cancel_action cancel_event mainloop set_event_repeat
-    set_robot_geometry name_action name_event run_sequence action event event_status
-    action_func event_func immediate sensor timer wait getselector
-""".split())
-RESERVED_C_PREFIXES = ("action_", "event_", "param_", "e_", "rt_", "stub_", "EPUCK_", "MAX_")
-
 
 # ---- the checked program ------------------------------------------------------
 
@@ -130,6 +120,7 @@ class Checker:
         self.actions: dict = {}          # name -> ActionDef
         self.externs: dict = {}          # name -> ExternInfo
         self.broken_externs: dict = {}   # name -> kind, of externs with bad declarations
+        self.extern_c_names: dict = {}   # name -> first ExternDef: one C namespace
         self.rule_names: dict = {}       # name -> Rule
         self.used_actions: set = set()
         self.called: set = set()         # standard actions called anywhere
@@ -225,16 +216,35 @@ class Checker:
     def _extern(self, stmt: ast.ExternDef, claim):
         if self._clashes_with_standard(stmt.name, stmt.kind):
             return
-        if stmt.name.name in RESERVED_C_NAMES or stmt.name.name.startswith(RESERVED_C_PREFIXES):
-            # an extern is a C function of exactly this name in the program
+        # an extern is a C function of exactly this name, its parameters the
+        # fields of a struct, both declared after utility.h (cnames.py)
+        problem = extern_name_problem(stmt.name.name, bool(stmt.params))
+        if problem is not None:
             self.diags.error("E027", stmt.name.span,
                              f"an extern {stmt.kind} cannot be named {_code(stmt.name.name)}: "
-                             "C or the runtime already uses that name",
+                             f"{problem}",
                              help=f"rename it in both files, e.g. `my_{stmt.name.name}`")
+            self.broken_externs[stmt.name.name] = stmt.kind
             return
+        first = self.extern_c_names.get(stmt.name.name)
+        if first is not None and first.kind != stmt.kind:
+            self.diags.error("E015", stmt.name.span,
+                             f"{_code(stmt.name.name)} is already an extern {first.kind}: "
+                             "both would be the C function of that name",
+                             help="rename one of them in both files",
+                             notes=[Note("first declared here", first.name.span)])
+            return
+        self.extern_c_names.setdefault(stmt.name.name, stmt)
         params, ok = [], True
         names: dict = {}
         for p in stmt.params:
+            problem = parameter_name_problem(p.name.name)
+            if problem is not None:
+                self.diags.error("E027", p.name.span,
+                                 f"a parameter cannot be named {_code(p.name.name)}: {problem}",
+                                 help=f"rename it in the declaration and in your C, "
+                                      f"e.g. `{p.name.name.strip('_') or 'value'}_value`")
+                ok = False
             if p.type.name not in EXTERN_TYPES:
                 self.diags.error("E026", p.type.span, f"unknown type {_code(p.type.name)}",
                                  help=did_you_mean(p.type, EXTERN_TYPES)
@@ -343,28 +353,33 @@ class Checker:
         self.geo = Geometry(circumference, axle, steps_per_rev, max_speed)
 
     def _robot_range(self, name: str, setting, q: Quantity) -> bool:
-        """The runtime keeps the wheel and the axle in micrometres and the
-        steps per turn in 32-bit longs (set_robot_geometry): each setting
-        must fit, which also keeps every derived quantity finite."""
+        """The runtime takes the wheel and the axle in micrometres and the
+        steps per turn as 32-bit longs (set_robot_geometry), up to its limits
+        EPUCK_MAX_GEOMETRY_UM and EPUCK_MAX_STEPS_PER_REV (epuckrt.h), within
+        which its conversions cannot overflow: each setting must fit, which
+        also keeps every derived quantity finite."""
+        max_um, max_steps = runtime_geometry_limits()
         if name in ("wheel_diameter", "wheel_circumference", "axle"):
-            um = q.value * 1000 * (math.pi if name == "wheel_diameter" else 1)
-            if 1 <= round_nearest(um) <= INT32_MAX:
+            factor = math.pi if name == "wheel_diameter" else 1
+            um = q.value * 1000 * factor
+            if 1 <= round_nearest(um) <= max_um:
                 return True
-            low = 0.001 / (math.pi if name == "wheel_diameter" else 1)
-            high = math.floor(INT32_MAX / 1000 / (math.pi if name == "wheel_diameter" else 1))
+            low = 0.001 / factor
+            high = math.floor(max_um / 1000 / factor)
             what = {"wheel_diameter": "the wheel's circumference", "axle": "the axle",
                     "wheel_circumference": "the wheel's circumference"}[name]
             self.diags.error("E037", setting.value.span,
                              f"`{name}` of `{_clip(_shown(setting.value))}` is out of range: "
                              f"give {low:.4g} mm to {high} mm",
-                             help=f"the runtime keeps {what} in micrometres in a 32-bit long; "
-                                  f"for the e-puck, write `{name}: {_ROBOT_EXAMPLE[name]}`")
+                             help=f"the runtime keeps {what} in micrometres, at most "
+                                  f"{max_um // 1000000} m; for the e-puck, write "
+                                  f"`{name}: {_ROBOT_EXAMPLE[name]}`")
             return False
-        if name == "steps_per_rev" and q.value > INT32_MAX:
+        if name == "steps_per_rev" and q.value > max_steps:
             self.diags.error("E037", setting.value.span,
                              f"`steps_per_rev` of `{_clip(_shown(setting.value))}` is out of range: "
-                             f"give 1 to {INT32_MAX}",
-                             help="the runtime counts steps per turn in a 32-bit long; for the "
+                             f"give 1 to {max_steps}",
+                             help=f"the runtime takes at most {max_steps} steps per turn; for the "
                                   "e-puck, write `steps_per_rev: 1000`")
             return False
         return True
@@ -939,6 +954,16 @@ class Checker:
                                  f"holds {limit}",
                                  help=f"raise the capacity with `{option} {count}` (RAM permitting) "
                                       f"or merge rules")
+
+
+@lru_cache(maxsize=1)
+def runtime_geometry_limits() -> tuple[int, int]:
+    """EPUCK_MAX_GEOMETRY_UM and EPUCK_MAX_STEPS_PER_REV of the runtime
+    header, so that the checker and the runtime cannot disagree."""
+    header = (runtime_dir() / "epuckrt.h").read_text(encoding="utf-8")
+    found = dict(re.findall(r"#define\s+(EPUCK_MAX_GEOMETRY_UM|EPUCK_MAX_STEPS_PER_REV)\s+(\d+)",
+                            header))
+    return int(found["EPUCK_MAX_GEOMETRY_UM"]), int(found["EPUCK_MAX_STEPS_PER_REV"])
 
 
 _ROBOT_EXAMPLE = {"wheel_diameter": "41 mm", "wheel_circumference": "128.8 mm",
