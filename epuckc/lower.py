@@ -139,6 +139,8 @@ def c_string(text: str) -> str:
     """A C string literal of `text`: printable ASCII only, so the bytes do
     not depend on the compiler's source character set; `?` is escaped so
     that no trigraph (`??=`) forms."""
+    if text.isascii() and text.isprintable() and not any(c in text for c in '"\\?'):
+        return f'"{text}"'
     out = []
     for ch in text:
         if ch in '"\\?':
@@ -154,15 +156,11 @@ def c_comment(text: str) -> str:
     """Text safe inside /* */ on one line: printable ASCII (other
     characters as `\\uXXXX`), no comment delimiters, no trigraphs; one
     line, so no backslash-newline can splice it."""
-    out = []
-    for ch in " ".join(text.split()):
-        if 32 <= ord(ch) < 127:
-            out.append(ch)
-        elif ord(ch) <= 0xFFFF:
-            out.append(f"\\u{ord(ch):04X}")
-        else:
-            out.append(f"\\U{ord(ch):08X}")
-    text = "".join(out)
+    text = " ".join(text.split())
+    if not (text.isascii() and text.isprintable()):
+        text = "".join(ch if 32 <= ord(ch) < 127 else
+                       f"\\u{ord(ch):04X}" if ord(ch) <= 0xFFFF else f"\\U{ord(ch):08X}"
+                       for ch in text)
     while "*/" in text or "/*" in text or "??" in text:
         text = text.replace("*/", "* /").replace("/*", "/ *").replace("??", "? ?")
     return text
