@@ -18,15 +18,8 @@ scanned (nothing can be built then anyway).
 """
 from __future__ import annotations
 
-import hashlib
-import json
 import os
 import re
-import shlex
-import shutil
-import subprocess
-import tempfile
-from dataclasses import dataclass, field
 from functools import lru_cache
 from pathlib import Path
 from typing import Optional
@@ -62,34 +55,32 @@ def is_reserved(name: str, file_scope: bool) -> bool:
     return file_scope and name.startswith("_")
 
 
-@dataclass
 class CNames:
-    """name -> the header that declares it."""
-    ordinary: dict = field(default_factory=dict)    # functions, objects, enum constants
-    typedefs: dict = field(default_factory=dict)
-    macros: dict = field(default_factory=dict)
-    complete: bool = True                           # False: no compiler, runtime headers only
+    """name -> the header that declares it. (A plain class: this module is
+    imported on the `check` path, where a dataclass costs start-up time.)"""
+
+    def __init__(self, ordinary=None, typedefs=None, macros=None, complete: bool = True):
+        self.ordinary = ordinary or {}    # functions, objects, enum constants
+        self.typedefs = typedefs or {}
+        self.macros = macros or {}
+        self.complete = complete          # False: no compiler, runtime headers only
 
     def declared(self, name: str) -> Optional[str]:
         """Where `name` is declared as anything, or None."""
         return self.macros.get(name) or self.typedefs.get(name) or self.ordinary.get(name)
 
-    def type_or_macro(self, name: str) -> Optional[str]:
-        return self.macros.get(name) or self.typedefs.get(name)
-
 
 # ---- scanning preprocessed C ----------------------------------------------------
 
-_TOKEN = re.compile(r"""
+_TOKEN_RE = r"""
     (?P<ws>\s+)
   | (?P<str>L?"(?:[^"\\\n]|\\.)*"|L?'(?:[^'\\\n]|\\.)*')
   | (?P<id>[A-Za-z_][A-Za-z0-9_]*)
   | (?P<num>\.?[0-9](?:[eEpP][+-]|[A-Za-z0-9_.])*)
   | (?P<punct>\.\.\.|->|[{}()\[\];,=*]|.)
-""", re.VERBOSE | re.DOTALL)
-_MARKER = re.compile(r'#\s*(?:line\s+)?(\d+)\s+"((?:[^"\\]|\\.)*)"((?:\s+\d+)*)')
-_DEFINE = re.compile(r"#\s*define\s+([A-Za-z_][A-Za-z0-9_]*)")
-_UNDEF = re.compile(r"#\s*undef\s+([A-Za-z_][A-Za-z0-9_]*)")
+"""
+_MARKER_RE = r'#\s*(?:line\s+)?(\d+)\s+"((?:[^"\\]|\\.)*)"((?:\s+\d+)*)'
+_DEFINE_RE = r"#\s*define\s+([A-Za-z_][A-Za-z0-9_]*)"
 _TAG_KEYWORDS = {"struct", "union", "enum"}
 
 
@@ -109,7 +100,7 @@ class _Scanner:
         self.after_tag = False
 
     def feed(self, text: str):
-        for m in _TOKEN.finditer(text):
+        for m in re.finditer(_TOKEN_RE, text, re.VERBOSE | re.DOTALL):
             kind = m.lastgroup
             if kind == "ws":
                 continue
@@ -161,7 +152,7 @@ def scan(preprocessed: str, names: CNames, label) -> None:
     for line in preprocessed.splitlines():
         stripped = line.lstrip()
         if stripped.startswith("#"):
-            marker = _MARKER.match(stripped)
+            marker = re.match(_MARKER_RE, stripped)
             if marker:
                 path, flags = marker.group(2), marker.group(3).split()
                 if "1" in flags:
@@ -172,7 +163,7 @@ def scan(preprocessed: str, names: CNames, label) -> None:
                 else:
                     stack[-1] = path
                 continue
-            define = _DEFINE.match(stripped)
+            define = re.match(_DEFINE_RE, stripped)
             if define:
                 names.macros.setdefault(define.group(1), label(stack[-1], stack))
             continue
@@ -196,6 +187,7 @@ def _include_dirs() -> list:
 
 
 def _compiler() -> list:
+    import shlex
     return shlex.split(os.environ.get("CC") or "cc")
 
 
@@ -215,6 +207,9 @@ def _label_factory():
 
 
 def _cache_key(compiler: list) -> str:
+    import hashlib
+    import shlex
+    import shutil
     h = hashlib.sha256(f"{FORMAT}\0{shlex.join(compiler)}\0".encode())
     binary = shutil.which(compiler[0]) if compiler else None
     if binary:
@@ -228,6 +223,8 @@ def _cache_key(compiler: list) -> str:
 
 
 def _extract_with_compiler(compiler: list) -> Optional[CNames]:
+    import subprocess
+    import tempfile
     probe = "".join(f'#include "{h}"\n' for h in _runtime_headers()) + \
         "".join(f"#include <{h}>\n" for h in STANDARD_HEADERS)
     names = CNames()
@@ -246,7 +243,7 @@ def _extract_with_compiler(compiler: list) -> Optional[CNames]:
     if declared.returncode != 0 or predefined.returncode != 0:
         return None
     scan(declared.stdout, names, label)
-    for m in _DEFINE.finditer(predefined.stdout):
+    for m in re.finditer(_DEFINE_RE, predefined.stdout):
         names.macros.setdefault(m.group(1), "the compiler (predefined)")
     return names
 
@@ -264,6 +261,7 @@ def _extract_from_runtime_headers() -> CNames:
 def visible_names() -> CNames:
     """The names, from the cache when the headers and compiler are the
     same as when they were extracted."""
+    import json
     compiler = _compiler()
     key = _cache_key(compiler)
     path = cache_dir() / "cnames" / f"{key}.json"
