@@ -38,8 +38,8 @@ class ResolvedCall:
     """A call whose arguments are checked and converted.
 
     kind: "standard" | "extern" | "named" | "cancel"
-    values: parameter name -> integer in runtime units; for start_straight
-    also `distance_mm`, for start_curve `outer_steps` and `inner_speed`.
+    values: parameter name -> integer in runtime units; for start_curve
+    also `outer_steps` and `inner_speed`.
     shown: parameter name -> the argument as the user wrote it.
     """
     kind: str
@@ -781,10 +781,7 @@ class Checker:
             return None
         values, shown = converted
         geo = self.geo
-        if name == "start_straight":
-            q = self._value(bound["distance"].value, DISTANCE, "distance")
-            values["distance_mm"] = round_nearest(q.mm(geo))
-        elif name == "start_curve":
+        if name == "start_curve":
             radius = self._value(bound["radius"].value, DISTANCE, "radius")
             if radius.mm(geo) < 0:
                 self.diags.error("E036", bound["radius"].value.span,

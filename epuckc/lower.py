@@ -27,7 +27,7 @@ from typing import Optional
 
 from .checker import CheckedProgram, ResolvedCall
 from .stdlib import STANDARD_ACTIONS, STANDARD_EVENTS
-from .units import INT16_MAX, INT16_MIN, round_nearest
+from .units import round_nearest
 
 # Every C name that epuckc makes up starts with this; see the module doc.
 PREFIX = "epk_"
