@@ -243,3 +243,16 @@ def test_dspic_make_rebuilds_only_what_changed(tmp_path, fake_toolchain):
     epuckc("build", rules, "--target", "dspic", "-o", out, env=env, check=True)
     compiles = [c for c in log.read_text().splitlines() if " -c " in c]
     assert len(compiles) == 1 and "user/1_spin.c" in compiles[0]
+
+
+def test_extern_path_with_a_quote_and_a_backslash(tmp_path):
+    """The path never reaches C: no `#include "we"ird.c"` any more."""
+    rules, c_file, before = make_program(tmp_path, "prog", 'we"ird\\x.c')
+    rules.write_text(SPIN_RULES.format(path='we\\"ird\\\\x.c'))
+    records, _ = run_program(rules, tmp_path)
+    assert records[-1]["kind"] == "exit"
+    out = tmp_path / "proj"
+    epuckc("build", rules, "--target", "dspic", "-o", out,
+           env={"PATH": "/usr/bin:/bin", "XC16_DIR": ""})
+    assert (out / "user" / "1_we_ird_x.c").read_bytes() == before[0]
+    assert '"' not in (out / "Makefile").read_text().split("USER_SOURCES =")[1].splitlines()[0]
