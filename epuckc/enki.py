@@ -26,8 +26,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Optional
 
-from .build import (BuildError, Program, _capacity_defines, _cflags, _run_compiler, c_compiler,
-                    host_build_key)
+from .build import (GENERATED_CFLAGS, BuildError, Program, _capacity_defines, _run_compiler,
+                    c_compiler, host_build_key, prepare_sources)
 from .resources import cache_dir, runtime_dir
 from .world import World, runner_spec
 
@@ -89,13 +89,16 @@ def build_robot(program: Program) -> Path:
     rt = runtime_dir()
 
     def produce(out: Path):
-        c_file = out.parent / f"{program.name}.c"
-        c_file.write_text(program.c_text, encoding="utf-8")
-        command = (c_compiler() + _cflags(program) + _capacity_defines(program)
-                   + ["-fPIC", "-shared"]
+        # as on the host: the user's C on its own, then the generated
+        # program and the runtime with -Werror
+        folder = out.parent
+        objects = prepare_sources(program, folder, ["-fPIC"])
+        program_c = [str(folder / f"{program.name}.c")] if program.generated else []
+        command = (c_compiler() + GENERATED_CFLAGS + _capacity_defines(program)
+                   + ["-fPIC", "-shared", f"-I{folder}"]
                    + [f"-I{rt / inc}" for inc in ROBOT_INCLUDES]
-                   + [f"-I{program.base_dir}", str(c_file)]
-                   + [str(rt / src) for src in ROBOT_SOURCES]
+                   + program_c + [str(rt / src) for src in ROBOT_SOURCES]
+                   + [str(o) for o in objects]
                    + ["-Wl,--wrap=" + ",--wrap=".join(WRAPPED), "-Wl,-Bsymbolic",
                       "-o", str(out), "-lm"])
         _run_compiler(command, f"{program.name} for the Enki world")
