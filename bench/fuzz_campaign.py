@@ -7,7 +7,8 @@ clean under ASan/UBSan on the host harness.
     python3 bench/fuzz_campaign.py [--count N] [--seed S]
 
 Prints how many programs were generated, accepted (built and ran clean) and
-rejected; stops at the first failure and prints it (exit status 1).
+rejected; stops at the first failure and prints it (exit status 1). An
+interrupt (Ctrl-C, kill -INT) ends the campaign with the counts so far.
 The last count goes in docs/performance.md."""
 from __future__ import annotations
 
@@ -54,13 +55,16 @@ def main() -> int:
             if (n + 1) % 100 == 0:
                 print(f"  {n + 1} programs, {counts[Outcome.BUILT]} built", file=sys.stderr)
 
+        stopped = ""
         try:
             campaign()
         except AssertionError as exc:
             print(f"FAILED after {sum(counts.values())} programs:\n{exc}")
             return 1
+        except KeyboardInterrupt:       # Ctrl-C or kill -INT: report what was done
+            stopped = " (interrupted)"
     total = sum(counts.values())
-    print(f"{total} programs generated in {time.monotonic() - started:.0f} s: "
+    print(f"{total} programs generated{stopped} in {time.monotonic() - started:.0f} s: "
           f"{counts[Outcome.BUILT]} accepted, built with gcc and avr-gcc (-Werror) and run "
           f"clean under ASan/UBSan; {counts[Outcome.REJECTED]} rejected by the checker; "
           f"0 failures")
