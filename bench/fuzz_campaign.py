@@ -8,12 +8,13 @@ clean under ASan/UBSan on the host harness.
 
 Prints how many programs were generated, accepted (built and ran clean) and
 rejected; stops at the first failure and prints it (exit status 1). An
-interrupt (Ctrl-C, kill -INT) ends the campaign with the counts so far.
+interrupt (Ctrl-C, or `kill PID`) ends the campaign with the counts so far.
 The last count goes in docs/performance.md."""
 from __future__ import annotations
 
 import argparse
 import shutil
+import signal
 import sys
 import tempfile
 import time
@@ -39,6 +40,10 @@ def main() -> int:
         return 2
     counts: Counter = Counter()
     started = time.monotonic()
+
+    def interrupted(signum, frame):
+        raise KeyboardInterrupt
+    signal.signal(signal.SIGTERM, interrupted)      # `kill PID` reports too
     with tempfile.TemporaryDirectory(prefix="epuckc-fuzz-") as tmp:
         tmp = Path(tmp)
         runtime = runtime_objects(tmp, cc)
@@ -61,7 +66,7 @@ def main() -> int:
         except AssertionError as exc:
             print(f"FAILED after {sum(counts.values())} programs:\n{exc}")
             return 1
-        except KeyboardInterrupt:       # Ctrl-C or kill -INT: report what was done
+        except KeyboardInterrupt:       # Ctrl-C or kill: report what was done
             stopped = " (interrupted)"
     total = sum(counts.values())
     print(f"{total} programs generated{stopped} in {time.monotonic() - started:.0f} s: "
