@@ -247,7 +247,7 @@ def cmd_run(args) -> int:
         except OSError:
             unchanged = False
         if unchanged:
-            runcache.record(key, exe, [program.base_dir / f for f in program.user_files],
+            runcache.record(key, exe, program.user_files,
                             render_report(report, "human"),
                             render_report(report, "human", colour=True), report.warning_count)
     try:
