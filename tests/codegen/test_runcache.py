@@ -32,7 +32,9 @@ def program(tmp_path):
     """A rule file with a warning and an extern C file, in a folder of its own."""
     require_tool("cc")
     shutil.copy(EXAMPLES / "extern_spin.epk", tmp_path / "spin_rules.epk")
-    shutil.copy(EXAMPLES / "spin.c", tmp_path / "spin.c")
+    # the extern C includes the header named after the rule file
+    (tmp_path / "spin.c").write_text((EXAMPLES / "spin.c").read_text().replace(
+        "extern_spin_externs.h", "spin_rules_externs.h"))
     with open(tmp_path / "spin_rules.epk", "a", encoding="utf-8") as f:
         f.write("\nconst UNUSED = 5 mm\n")
     return tmp_path / "spin_rules.epk"
