@@ -256,3 +256,12 @@ def test_extern_path_with_a_quote_and_a_backslash(tmp_path):
            env={"PATH": "/usr/bin:/bin", "XC16_DIR": ""})
     assert (out / "user" / "1_we_ird_x.c").read_bytes() == before[0]
     assert '"' not in (out / "Makefile").read_text().split("USER_SOURCES =")[1].splitlines()[0]
+
+
+def test_compile_to_standard_output_says_where_the_header_is(tmp_path):
+    rules, c_file, before = make_program(tmp_path, "prog", "spin.c")
+    result = epuckc("compile", rules, "-o", "-", cwd=tmp_path)
+    assert result.returncode == 0, result.stderr
+    assert '#include "prog_externs.h"' in result.stdout
+    assert "prog_externs.h" in result.stderr and "note" in result.stderr
+    assert not (tmp_path / "prog_externs.h").exists()
