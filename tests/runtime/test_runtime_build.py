@@ -4,6 +4,7 @@ harness's settings and errors, determinism."""
 import os
 import stat
 import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -212,14 +213,20 @@ def test_scenario_time_formats(tmp_path):
     assert r.times("event", "sensor") == [1, 100, 200, 300]
 
 
-def test_bench_runtime_size_runs():
-    require_tool("avr-gcc")
-    require_tool("avr-size")
-    res = subprocess.run(["bash", str(REPO / "bench" / "runtime_size.sh")],
+def test_bench_robot_runs():
+    """bench/robot_bench.py measures all three figures side by side with
+    their references (10 rules only, to stay quick)."""
+    for tool in ("valgrind", "avr-gcc", "avr-size", "simavr"):
+        require_tool(tool)
+    res = subprocess.run([sys.executable, str(REPO / "bench" / "robot_bench.py"), "--sizes", "10"],
                          capture_output=True, text=True)
     assert res.returncode == 0, res.stdout + res.stderr
-    assert "epuckrt.o" in res.stdout and "rules10.elf" in res.stdout
-    assert res.stdout.count("(TOTALS)") == 2
+    rows = [line.split() for line in res.stdout.splitlines() if line.startswith("    10 ")]
+    assert len(rows) == 3, res.stdout
+    instructions, reference = float(rows[0][1]), float(rows[0][2])
+    assert 0 < reference < instructions
+    assert int(rows[1][1]) > 0            # RAM bytes
+    assert 0 < int(rows[2][1]) < 16000    # cycles per poll, 10 rules
 
 
 # ---- scenario files as users write them ---------------------------------------
