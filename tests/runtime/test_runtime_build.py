@@ -10,8 +10,8 @@ from pathlib import Path
 import pytest
 
 from conftest import REPO, require_tool
-from rt_helpers import (INCLUDES, PROGRAMS, RUNTIME, SOURCES, STRICT, build,
-                        build_and_run, cc, run)
+from rt_helpers import (INCLUDES, PROGRAMS, RUNTIME, SOURCES, STRICT, build,  # noqa: F401
+                        build_and_run, cc, registration, run)
 
 
 def make(*args, env=None):
@@ -81,6 +81,7 @@ def test_sanitized_list_covers_all_programs():
 
 
 @pytest.mark.parametrize("name", sorted(SANITIZED))
+@pytest.mark.usefixtures("registration")
 def test_runs_clean_under_sanitizers(tmp_path, name):
     opts = SANITIZED[name]
     r = build_and_run(tmp_path, name, defines=opts.get("defines", ()),
@@ -90,6 +91,7 @@ def test_runs_clean_under_sanitizers(tmp_path, name):
     assert "runtime error" not in r.stderr and "Sanitizer" not in r.stderr
 
 
+@pytest.mark.usefixtures("registration")
 def test_deterministic(tmp_path):
     exe = build(tmp_path, PROGRAMS / "sequence.c")
     a = run(exe, tmp_path)
@@ -185,6 +187,7 @@ def test_bad_time_limit(tmp_path):
         assert r.returncode == 2 and "EPUCK_TIME_LIMIT_MS" in r.stderr, bad
 
 
+@pytest.mark.usefixtures("registration")
 def test_time_limit_timeout(tmp_path):
     exe = build(tmp_path, PROGRAMS / "straight.c")
     r = run(exe, tmp_path, time_limit=1000)
@@ -205,6 +208,7 @@ def test_default_time_limit_is_60s(tmp_path):
     assert r.returncode == 3 and r.trace[-1]["t_ms"] == 60000
 
 
+@pytest.mark.usefixtures("registration")
 def test_scenario_time_formats(tmp_path):
     exe = build(tmp_path, PROGRAMS / "sensor_edge.c")
     scn = "0 ir0=0\n100ms ir0=900\n0.2 s ir0=0\n0.3s ir0=900 IR7=1\n"

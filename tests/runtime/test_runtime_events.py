@@ -1,7 +1,9 @@
 """Registration, cancelling, ordering, one-shot/repeat, sensor and timer
 events, the stop_motor event and the sequencer, each a small C program run
 on the host harness, checked on its JSON trace."""
-from rt_helpers import build_and_run
+import pytest
+
+from rt_helpers import both_paths, build_and_run  # noqa: F401 (both_paths: autouse)
 
 TRACE_KEYS = ["t_ms", "kind", "name", "id", "left_steps", "right_steps",
               "x_mm", "y_mm", "heading_deg"]
@@ -32,6 +34,7 @@ def test_register_and_cancel_return_values(tmp_path):
     assert r.trace[-1]["kind"] == "exit"
 
 
+@pytest.mark.dynamic_only
 def test_capacity_from_defines(tmp_path):
     r = build_and_run(tmp_path, "capacity.c", defines=["MAX_ACTIONS=3", "MAX_EVENTS=4"],
                       env={"EPUCK_QUIET": "1"})
