@@ -34,21 +34,24 @@ static int n_events;
 /* ---- the static tables (register_program) ----------------------------------
  * Ids 0..s_actions-1 and 0..s_events-1 are the program's table entries; the
  * arrays' ids follow (array index + s_actions / s_events).  The program's
- * RAM state is six bit planes, bit (k % 8) of byte k / 8 for entry k: */
+ * RAM state is six bit planes of 16-bit words, bit k % 16 of word k / 16
+ * for entry k: */
 static const rt_program *prog;      /* NULL: none registered */
 static int s_actions, s_events;     /* its table sizes, 0 without one */
-static unsigned char *action_off;   /* the action was cancelled */
-static unsigned char *ev_armed;     /* the event is armed (valid_flag) */
-static unsigned char *ev_repeat;    /* repeat_flag */
-static unsigned char *ev_latch;     /* compiled condition at its last poll */
-static unsigned char *ev_now;       /* compiled conditions of this poll */
-static unsigned char *ev_compiled;  /* the event is a compiled condition */
+static unsigned s_words;            /* RT_WORDS(s_events) */
+static unsigned *action_off;        /* the action was cancelled */
+static unsigned *ev_armed;          /* the event is armed (valid_flag) */
+static unsigned *ev_repeat;         /* repeat_flag */
+static unsigned *ev_latch;          /* compiled condition at its last poll */
+static unsigned *ev_now;            /* compiled conditions of this poll */
+static unsigned *ev_compiled;       /* the event is a compiled condition */
 static int conditions_valid;        /* ev_now holds this poll's conditions */
 
-#define BIT_OF(k) ((unsigned char)(1u << ((unsigned)(k) & 7u)))
-#define BIT_GET(plane, k) (((plane)[(k) >> 3] & BIT_OF(k)) != 0)
-#define BIT_SET(plane, k) ((plane)[(k) >> 3] |= BIT_OF(k))
-#define BIT_CLEAR(plane, k) ((plane)[(k) >> 3] &= (unsigned char)~BIT_OF(k))
+#define WORD_MASK 0xFFFFu
+#define BIT_OF(k) (1u << ((unsigned)(k) & 15u))
+#define BIT_GET(plane, k) (((plane)[(k) >> 4] & BIT_OF(k)) != 0)
+#define BIT_SET(plane, k) ((plane)[(k) >> 4] |= BIT_OF(k))
+#define BIT_CLEAR(plane, k) ((plane)[(k) >> 4] &= ~BIT_OF(k))
 
 /* ---- millisecond clock ---------------------------------------------------
  * A 1 ms e-puck agenda (cycle 10 x 0.1 ms) counts; it runs in the Timer2
@@ -113,6 +116,8 @@ static void read_prox(unsigned mask)
 {
     unsigned n, todo = mask & ~prox_valid & 0xFFu;
 
+    if (todo == 0)
+        return;
     for (n = 0; todo != 0; n++, todo >>= 1) {
         if (todo & 1u)
             prox[n] = e_get_prox(n);
@@ -284,7 +289,7 @@ void (name_event)(int event_id, const char *name)
 
 int register_program(const rt_program *p)
 {
-    int k, bytes_a, bytes_e;
+    int k, words_a, words_e;
 
     if (p == NULL || prog != NULL || n_actions != 0 || n_events != 0
             || p->n_actions < 0 || p->n_events < 0 || p->state == NULL
@@ -302,15 +307,15 @@ int register_program(const rt_program *p)
                 || (e->memory != RT_NO_MEMORY && (e->memory < 0 || p->memory == NULL)))
             return -1;
     }
-    bytes_a = RT_BYTES(p->n_actions);
-    bytes_e = RT_BYTES(p->n_events);
+    words_a = RT_WORDS(p->n_actions);
+    words_e = RT_WORDS(p->n_events);
     action_off = p->state;
-    ev_armed = action_off + bytes_a;
-    ev_repeat = ev_armed + bytes_e;
-    ev_latch = ev_repeat + bytes_e;
-    ev_now = ev_latch + bytes_e;
-    ev_compiled = ev_now + bytes_e;
-    for (k = 0; k < bytes_a + 5 * bytes_e; k++)
+    ev_armed = action_off + words_a;
+    ev_repeat = ev_armed + words_e;
+    ev_latch = ev_repeat + words_e;
+    ev_now = ev_latch + words_e;
+    ev_compiled = ev_now + words_e;
+    for (k = 0; k < words_a + 5 * words_e; k++)
         p->state[k] = 0;
     for (k = 0; k < p->n_actions; k++)
         rt_new_action(k, p->actions[k].action_function);
@@ -328,6 +333,7 @@ int register_program(const rt_program *p)
     prog = p;
     s_actions = p->n_actions;
     s_events = p->n_events;
+    s_words = (unsigned)words_e;
     return 0;
 }
 
@@ -704,65 +710,76 @@ static void fire_static(int id)
         BIT_CLEAR(ev_armed, id);
 }
 
-/* The compiled conditions of byte b of the table's events, computed once
- * per poll (the sensors are on). */
-static unsigned char conditions_byte(int b)
+/* ~0u while the sensors are on (this poll's compiled conditions are then
+ * in ev_now, computed at the first call of the poll), 0 while they are off:
+ * a mask for ev_now. */
+static unsigned conditions_mask(void)
 {
+    if (!sensors_on || prog->conditions == NULL)
+        return 0;
     if (!conditions_valid) {
         read_prox(prog->sensors);
         prog->conditions(prox, ev_now);
         conditions_valid = 1;
     }
-    return ev_now[b];
+    return ~0u;
 }
 
-/* Phase (5) for the table's events, eight at a time: a byte whose armed
+/* Polls a table event that is not a compiled condition. */
+static void poll_static_function(int id)
+{
+    const rt_event *e = &prog->events[id];
+    event_status st;
+
+    st.occurred = 0;
+    st.memory = e->memory != RT_NO_MEMORY ? prog->memory[e->memory] : 0;
+    e->event_function((void *)e->event_param, &st);
+    if (e->memory != RT_NO_MEMORY)
+        prog->memory[e->memory] = st.memory;
+    if (st.occurred)
+        fire_static(id);
+}
+
+/* Phase (5) for the table's events, sixteen at a time: a word whose armed
  * events are all compiled conditions that do not become true only has its
  * latches updated; the others are polled one by one in index order, and
- * the byte re-read after each, since an action may change the sensors or
+ * the word re-read after each, since an action may change the sensors or
  * cancel events.  Returns 1 when exit_main ran. */
 static int poll_static(void)
 {
-    int b, bytes = RT_BYTES(s_events);
+    unsigned w;
+    unsigned *armed = ev_armed, *latch = ev_latch, *compiled = ev_compiled, *now = ev_now;
+    unsigned on = conditions_mask();
 
-    for (b = 0; b < bytes; b++) {
-        unsigned char todo = ev_armed[b];   /* armed and not polled yet */
+    for (w = 0; w < s_words; w++) {
+        unsigned todo = armed[w];       /* armed and not polled yet */
         while (todo != 0) {
-            unsigned char comp = (unsigned char)(todo & ev_compiled[b]);
-            unsigned char cond = comp != 0 && sensors_on
-                                 ? (unsigned char)(conditions_byte(b) & comp) : 0;
-            unsigned char pick = (unsigned char)((cond & ~ev_latch[b]) | (todo & ~comp));
-            unsigned char low, below;
-            int k, id;
+            unsigned comp = todo & compiled[w];
+            unsigned cond = now[w] & comp & on;
+            unsigned pick = (cond & ~latch[w]) | (todo & ~comp);
+            unsigned low, below;
+            int k;
 
             if (pick == 0) {
-                /* no event of the byte occurs: the latches follow */
-                ev_latch[b] = (unsigned char)((ev_latch[b] & ~comp) | cond);
+                /* no event of the word occurs: the latches follow */
+                latch[w] = (latch[w] & ~comp) | cond;
                 break;
             }
             for (k = 0; !((pick >> k) & 1u); k++)
                 ;
             low = BIT_OF(k);
-            below = (unsigned char)(low - 1u);
-            ev_latch[b] = (unsigned char)((ev_latch[b] & ~(comp & below)) | (cond & below));
-            id = b * 8 + k;
+            below = low - 1u;
+            latch[w] = (latch[w] & ~(comp & below)) | (cond & below);
             if (comp & low) {
-                ev_latch[b] |= low;     /* the condition became true */
-                fire_static(id);
+                latch[w] |= low;        /* the condition became true */
+                fire_static((int)(w * 16u) + k);
             } else {
-                const rt_event *e = &prog->events[id];
-                event_status st;
-                st.occurred = 0;
-                st.memory = e->memory != RT_NO_MEMORY ? prog->memory[e->memory] : 0;
-                e->event_function((void *)e->event_param, &st);
-                if (e->memory != RT_NO_MEMORY)
-                    prog->memory[e->memory] = st.memory;
-                if (st.occurred)
-                    fire_static(id);
+                poll_static_function((int)(w * 16u) + k);
             }
             if (exit_requested)
                 return 1;
-            todo = (unsigned char)(ev_armed[b] & ~(low | below));
+            on = conditions_mask();     /* the action may have started the sensors */
+            todo = armed[w] & ~(low | below) & WORD_MASK;
         }
     }
     return 0;

@@ -131,19 +131,20 @@ typedef struct {
     int n_actions;
     const rt_event *events;
     int n_events;
-    /* The compiled sensor conditions, or NULL: sets bit (k % 8) of bits[k / 8]
-     * for each event k with a NULL function whose condition holds (other
-     * bits 0), from the proximity readings ir[0..7] of this poll.  Called at
-     * most once per poll, while the sensors are on; the event occurs when
-     * its condition becomes true, as event_sensor's. */
-    void (*conditions)(const int *ir, unsigned char *bits);
-    unsigned char sensors;      /* bit n: conditions reads ir[n] */
-    unsigned char *state;       /* RAM, RT_STATE_BYTES(n_actions, n_events) bytes */
+    /* The compiled sensor conditions, or NULL: for each event k with a NULL
+     * function, sets bit k % 16 of bits[k / 16] to its condition, from the
+     * proximity readings ir[0..7] of this poll (the other bits are not
+     * read).  Called at most once per poll, while the sensors are on; the
+     * event occurs when its condition becomes true, as event_sensor's. */
+    void (*conditions)(const int *ir, unsigned *bits);
+    unsigned sensors;           /* bit n: conditions reads ir[n] */
+    unsigned *state;            /* RAM, RT_STATE_WORDS(n_actions, n_events) */
     long *memory;               /* RAM, one per memory index used, or NULL */
 } rt_program;
 
-#define RT_BYTES(n) (((n) + 7) / 8)
-#define RT_STATE_BYTES(n_actions, n_events) (RT_BYTES(n_actions) + 5 * RT_BYTES(n_events))
+/* The state is bit planes of 16-bit words (unsigned is at least 16 bits). */
+#define RT_WORDS(n) (((n) + 15) / 16)
+#define RT_STATE_WORDS(n_actions, n_events) (RT_WORDS(n_actions) + 5 * RT_WORDS(n_events))
 
 /* Registers a program's tables: its actions get ids 0..n_actions-1, its
  * events 0..n_events-1, all armed.  Returns 0, or -1 (and registers

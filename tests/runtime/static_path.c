@@ -24,17 +24,17 @@ static rt_event evs[CAP];
 static const param_event_sensor *sensor_params[CAP];   /* compiled: its thresholds */
 static const char *sensor_names[CAP];
 static long memory[CAP];
-static unsigned char state[RT_STATE_BYTES(CAP, CAP)];
+static unsigned state[RT_STATE_WORDS(CAP, CAP)];
 static int n_acts, n_evs, recording = 1;
 static rt_program program;
 
 /* The sensor conditions, evaluated like event_sensor's (a generic version
  * of what epuckc generates per program). */
-static void conditions(const int *ir, unsigned char *bits)
+static void conditions(const int *ir, unsigned *bits)
 {
     int k;
     unsigned n;
-    for (k = 0; k < RT_BYTES(n_evs); k++)
+    for (k = 0; k < RT_WORDS(n_evs); k++)
         bits[k] = 0;
     for (k = 0; k < n_evs; k++) {
         const param_event_sensor *p = sensor_params[k];
@@ -43,7 +43,7 @@ static void conditions(const int *ir, unsigned char *bits)
         for (n = 0; n < 8; n++) {
             if (p->sensef[n] != SENSOR_OFF
                     && ((p->below >> n) & 1u ? ir[n] < p->sensef[n] : ir[n] > p->sensef[n])) {
-                bits[k / 8] |= (unsigned char)(1u << (k % 8));
+                bits[k / 16] |= 1u << (k % 16);
                 break;
             }
         }
