@@ -6,8 +6,9 @@ register_program, the rules' sensor conditions compiled into one function
 the runtime calls once per poll, and only the state that changes in RAM.
 
 Every C name and initialiser is decided here; the template only prints.
-The same rules decide how many registrations the runtime's arrays must hold,
-so the checker asks count_registrations() rather than guessing.
+The checker asks count_registrations() how many entries of the runtime's
+dynamic arrays (MAX_ACTIONS, MAX_EVENTS) a program needs: none, since the
+rules are tables.
 
 Generated names never collide with each other, C keywords or the runtime:
 user names only ever appear after a prefix that the runtime does not use
@@ -39,9 +40,10 @@ def rule_action_key(index: int, rule) -> tuple:
 
 
 def count_registrations(program: CheckedProgram) -> tuple[int, int]:
-    """(actions, events) that the program registers with the runtime."""
-    actions = {rule_action_key(i, r) for i, r in enumerate(program.rules)}
-    return len(actions), len(program.rules)
+    """(actions, events) that the program registers in the runtime's dynamic
+    arrays: none, a rule file's rules are const tables (register_program),
+    however many there are.  Only the user's C can register more."""
+    return 0, 0
 
 
 # ---- the C-shaped program ------------------------------------------------------
@@ -78,7 +80,7 @@ class CAction:
     function: str
     param: str             # "&name" or "NULL"
     comment: str
-    label: str             # C string: its name in the host's trace
+    action_label: str      # C string: its name in the host's trace
 
 
 @dataclass
@@ -90,14 +92,21 @@ class CEvent:
     flags: str             # "RT_REPEAT" or "0"
     memory: str            # index in event_memory, or "RT_NO_MEMORY"
     comment: str
-    label: str
+    event_label: str
+
+
+@dataclass
+class CCondition:
+    """`if (condition) c[word] |= bit;`, setting one event's bit."""
+    statement: str
+    comment: str
 
 
 @dataclass
 class CConditionWord:
-    """One word of the conditions function: `c[index] = bits`."""
+    """One word of the conditions function: `c[index]`, its CConditions."""
     index: int
-    terms: list            # (C statement setting the event's bit, comment)
+    terms: list
 
 
 @dataclass
@@ -363,7 +372,7 @@ class _Lowerer:
                 self.rule_ids[rule.name] = f"rule_{rule.name}"
                 out.rule_ids.append((f"rule_{rule.name}", index))
         registered: dict = {}          # rule_action_key -> action id
-        conditions: dict = {}          # word -> [(expression, comment)]
+        conditions: dict = {}          # word -> [CCondition]
         for index, rule in enumerate(self.program.rules, 1):
             key = rule_action_key(index, rule)
             body_text = self.text_of(rule.node.body)
@@ -387,7 +396,7 @@ class _Lowerer:
             if condition is not None:
                 term = f"if ({condition}) c[{event_id // 16}] |= 0x{1 << (event_id % 16):04x}u;"
                 conditions.setdefault(event_id // 16, []).append(
-                    (term, c_comment(f"event {event_id}: {self.where(rule.node)}")))
+                    CCondition(term, c_comment(f"event {event_id}: {self.where(rule.node)}")))
             slot = "RT_NO_MEMORY"
             if memory:
                 slot = str(out.memory_slots)
