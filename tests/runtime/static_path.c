@@ -8,7 +8,8 @@
  * tables cannot hold (a NULL function, an unknown action): then the tables
  * are registered with register_program and every later call goes to the
  * runtime as it is, so later registrations are dynamic and get the ids that
- * follow the tables'.  A sensor event (event_sensor / sensor with a
+ * follow the tables'.  A program that calls register_program itself runs
+ * as it is.  A sensor event (event_sensor / sensor with a
  * parameter) becomes a compiled condition, as epuckc generates them: a
  * NULL event function and a bit set by conditions() below.
  */
@@ -116,3 +117,5 @@ void sp_set_event_repeat(int id, int repeat) { flush(); set_event_repeat(id, rep
 void sp_name_action(int id, const char *name) { flush(); name_action(id, name); }
 void sp_name_event(int id, const char *name) { flush(); name_event(id, name); }
 void sp_mainloop(void) { flush(); mainloop(); }
+/* a program that registers its own tables: nothing to collect */
+int sp_register_program(const rt_program *p) { flush(); return register_program(p); }

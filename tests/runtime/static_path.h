@@ -12,3 +12,4 @@
 #define name_action sp_name_action
 #define name_event sp_name_event
 #define mainloop sp_mainloop
+#define register_program sp_register_program
