@@ -192,7 +192,8 @@ class _Lowerer:
         self.params: dict = {}           # id(ResolvedCall) -> param expression
         self.owner_counts: dict = {}     # owner -> structs made so far
         self.flat: dict = {}             # named action -> flattened steps
-        self.rule_ids: dict = {}         # rule name -> file-scope id variable
+        self.rule_ids: dict = {}         # rule name -> C name of its event id
+        self.sensors: set = set()        # the IRs the compiled conditions read
 
     def text_of(self, node) -> str:
         """The source text of a node, from its span, on one line and without
@@ -360,7 +361,6 @@ class _Lowerer:
 
     def lower(self) -> CProgram:
         out = self.out
-        self.sensors = set()
         for info in self.program.externs.values():
             if info.params:     # ISO C has no empty structs; such externs get NULL
                 out.extern_structs.append(CExternStruct(
@@ -389,7 +389,7 @@ class _Lowerer:
                                                        f"r{index}", where)
                 registered[key] = len(out.actions)
                 out.actions.append(CAction(function, const_ref(param),
-                                           c_comment(f"{len(out.actions)}: {_shorten(where)}"),
+                                           c_comment(f"{registered[key]}: {_shorten(where)}"),
                                            c_string(_shorten(body_text))))
             function, param, memory, condition = self.event(rule, index)
             event_id = len(out.events)

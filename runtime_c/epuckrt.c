@@ -197,7 +197,7 @@ static int action_ok(int id)
 static int event_ok(int id)
 {
     if (id >= 0 && id < s_events)
-        return 1;   /* a cancelled table event is only disarmed: the same to everyone */
+        return 1;   /* table events stay registered: cancel_event disarms them */
     id -= s_events;
     return id >= 0 && id < n_events && events[id].event_function != NULL;
 }

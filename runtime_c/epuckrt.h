@@ -146,8 +146,9 @@ typedef struct {
 #define RT_WORDS(n) (((n) + 15) / 16)
 #define RT_STATE_WORDS(n_actions, n_events) (RT_WORDS(n_actions) + 5 * RT_WORDS(n_events))
 
-/* Registers a program's tables: its actions get ids 0..n_actions-1, its
- * events 0..n_events-1, all armed.  Returns 0, or -1 (and registers
+/* Registers a program's tables (before mainloop; tables registered by an
+ * action are polled from the next poll): its actions get ids
+ * 0..n_actions-1, its events 0..n_events-1, all armed.  Returns 0, or -1 (and registers
  * nothing) when a program or anything else was registered before, or a
  * table is inconsistent (an action_id out of range, a NULL action function,
  * a NULL event function without conditions, a NULL state). */
