@@ -7,7 +7,8 @@ reference in one run (issue 11, "On the robot"):
              fire, compiled by epuckc, against the hand-written reference
              (bench/reference_chain.c: an if-chain with an edge latch per
              rule, the proximity values read once per poll) for the same
-             rules.  Per poll = (instructions of a run of P2 polls - of P1
+             rules; for context also the same rules in hand-written C on the
+             paper's dynamic API (an event_sensor registration per rule).  Per poll = (instructions of a run of P2 polls - of P1
              polls) / (P2 - P1); for the runtime the host harness's own
              per-poll work (rt_platform_idle: the virtual robot, the
              scenario) is subtracted, the reference has none.
@@ -91,6 +92,29 @@ def sensor_program(n: int) -> str:
     return "\n".join(lines) + "\n"
 
 
+def dynamic_program(n: int) -> str:
+    """The same rules written by hand with the paper's dynamic API: one
+    register_event(event_sensor, ...) per rule (context: the path of
+    hand-written C)."""
+    params = ",\n".join(
+        "    {{" + ", ".join(str(t) if k == s else "SENSOR_OFF" for k in range(8)) + "}, 0}"
+        for s, t in sensor_rules(n))
+    return f"""#include "epuckrt.h"
+static param_event_sensor rules[{n}] = {{
+{params}
+}};
+int main(void)
+{{
+    int on = register_action(start_sensor, NULL), turn = register_action(stop_motor, NULL), i;
+    register_event(immediate, NULL, on);
+    for (i = 0; i < {n}; i++)
+        set_event_repeat(register_event(event_sensor, &rules[i], turn), 1);
+    mainloop();
+    return 0;
+}}
+"""
+
+
 def compile_epk(text: str, work: Path, name: str) -> tuple:
     """epuckc compile; returns (C file, [capacity defines])."""
     epk = work / f"{name}.epk"
@@ -146,6 +170,18 @@ def bench_callgrind(sizes, work: Path, p1=1000, p2=2000) -> list:
             total, idle = callgrind_ir(exe, d, env=env, function="rt_platform_idle")
             per.append(total - idle)
         runtime = (per[1] - per[0]) / (p2 - p1)
+        dyn_c = d / f"dynamic{n}.c"
+        dyn_c.write_text(dynamic_program(n))
+        dyn_exe = d / f"dynamic{n}"
+        run(["cc", *HOST_CFLAGS, "-DMAX_ACTIONS=2", f"-DMAX_EVENTS={n + 1}", f"-I{RT}",
+             f"-I{RT / 'epuck_api'}", f"-I{RT / 'host'}", dyn_c, *HOST_SOURCES, "-o", dyn_exe, "-lm"])
+        per = []
+        for polls in (p1, p2):
+            env = {k: v for k, v in os.environ.items() if not k.startswith("EPUCK_")}
+            env.update(EPUCK_QUIET="1", EPUCK_TIME_LIMIT_MS=str(polls))
+            total, idle = callgrind_ir(dyn_exe, d, env=env, function="rt_platform_idle")
+            per.append(total - idle)
+        dynamic = (per[1] - per[0]) / (p2 - p1)
         (d / "chain_rules.h").write_text("".join(f"RULE({i}, {s}, {t})\n"
                                                  for i, (s, t) in enumerate(sensor_rules(n))))
         ref_exe = d / "chain"
@@ -153,7 +189,7 @@ def bench_callgrind(sizes, work: Path, p1=1000, p2=2000) -> list:
              RT / "host" / "epuck_stub.c", "-o", ref_exe, "-lm"])
         ref = [callgrind_ir(ref_exe, d, args=[polls])[0] for polls in (p1, p2)]
         reference = (ref[1] - ref[0]) / (p2 - p1)
-        rows.append((n, runtime, reference))
+        rows.append((n, runtime, reference, dynamic))
     return rows
 
 
@@ -287,9 +323,11 @@ def main() -> int:
             status = 1
         else:
             print("\n== x86 instructions per poll, N armed sensor rules that never fire (callgrind)")
-            print(f"{'rules':>6} {'epuckc':>10} {'reference chain':>16} {'ratio':>7} {'per rule':>9}")
-            for n, rt, ref in bench_callgrind(sizes, work):
-                print(f"{n:>6} {rt:>10.0f} {ref:>16.0f} {rt / ref:>6.2f}x {rt / n:>9.1f}")
+            print(f"{'rules':>6} {'epuckc':>10} {'reference chain':>16} {'ratio':>7} {'per rule':>9}"
+                  f"   {'dynamic API (hand-written C)':>28}")
+            for n, rt, ref, dyn in bench_callgrind(sizes, work):
+                print(f"{n:>6} {rt:>10.0f} {ref:>16.0f} {rt / ref:>6.2f}x {rt / n:>9.1f}"
+                      f"   {dyn:>28.0f}")
     if "ram" in parts:
         if missing("avr-gcc", "avr-size"):
             print(f"ram: skipped, missing {missing('avr-gcc', 'avr-size')}")

@@ -645,13 +645,13 @@ void event_sensor(void *param, void *status)
     unsigned n;
 
     if (p != NULL && sensors_on) {
+        if (prox_valid != 0xFFu)
+            read_prox(0xFFu);       /* the first sensor event of this poll */
         for (n = 0; n < 8; n++) {
             int threshold = p->sensef[n];
-            int value;
+            int value = prox[n];
             if (threshold == SENSOR_OFF)
                 continue;
-            read_prox(1u << n);
-            value = prox[n];
             if ((p->below >> n) & 1u ? value < threshold : value > threshold) {
                 cond = 1;
                 break;
