@@ -124,6 +124,8 @@ typedef struct {
     int memory;                 /* index in rt_program.memory of the status's
                                    memory, kept between polls (0 at the
                                    start), or RT_NO_MEMORY */
+    /* Rule priorities and modes (issue 9) belong here as `int priority;
+     * int mode;`: see docs/runtime.md, "Static registration". */
 } rt_event;
 
 typedef struct {
