@@ -157,3 +157,22 @@ def test_generated_c_is_strict_on_gcc_and_16_bit_avr_gcc(c_file, compiler, tmp_p
                               f"-I{REPO / 'tests' / 'golden'}", "-c", str(c_file),
                               "-o", str(tmp_path / "x.o")], capture_output=True, text=True)
         assert res.returncode == 0, res.stderr
+
+
+@pytest.mark.parametrize("compiler", ["cc", "avr-gcc"])
+def test_a_program_without_rules_still_builds(compiler, tmp_path):
+    """W006 is only a warning: the C of a rule-less program (no tables) must
+    compile strictly too."""
+    tool = require_tool(compiler)
+    text = "const x = 3 cm\n"
+    epk = tmp_path / "empty.epk"
+    epk.write_text(text)
+    result = check_file(epk, Report())
+    assert result.checked is not None
+    c_file = tmp_path / "empty.c"
+    c_file.write_text(emit_c(result.checked, text))
+    assert "register_program(&" not in c_file.read_text()
+    target = ["-mmcu=atmega128", "-Os"] if compiler == "avr-gcc" else ["-O2"]
+    res = subprocess.run([tool, *STRICT, *target, f"-I{RT}", f"-I{RT / 'epuck_api'}", "-c",
+                          str(c_file), "-o", str(tmp_path / "x.o")], capture_output=True, text=True)
+    assert res.returncode == 0, res.stderr
