@@ -1,17 +1,22 @@
-"""Lowering: a CheckedProgram becomes the registrations of the paper's model
-(parameter structs, generated action functions, sequences, register_action /
-register_event calls) that templates/program.c.j2 lays out.
+"""Lowering: a CheckedProgram becomes the paper's model (parameter structs,
+generated action functions, sequences, actions and the events that trigger
+them) in the runtime's static registration form that templates/program.c.j2
+lays out: const tables of actions and events registered at once with
+register_program, the rules' sensor conditions compiled into one function
+the runtime calls once per poll, and only the state that changes in RAM.
 
 Every C name and initialiser is decided here; the template only prints.
-The same rules decide how many registrations the runtime's arrays must hold,
-so the checker asks count_registrations() rather than guessing.
+The checker asks count_registrations() how many entries of the runtime's
+dynamic arrays (MAX_ACTIONS, MAX_EVENTS) a program needs: none, since the
+rules are tables.
 
 Generated names never collide with each other, C, the runtime or the
-user's C: every name epuckc makes up, main's locals included, starts with
-PREFIX (`epk_`), which the checker forbids to extern names (the only user
-names that reach C as they are). Derived names put their kind after it
-(`epk_p2_a_go` is the second parameter struct of action `go`, `epk_p1_r3`
-the first of rule 3's own action list).
+user's C: every name epuckc makes up (tables, state, the conditions
+function and its locals, structs, functions) starts with PREFIX (`epk_`),
+which the checker forbids to extern names (the only user names that reach C
+as they are). Derived names put their kind after it (`epk_p2_a_go` is the
+second parameter struct of action `go`, `epk_p1_r3` the first of rule 3's
+own action list).
 
 Externs: their parameter structs (`param_NAME`) and prototypes go in a
 header of their own, `<program>_externs.h`, which both the generated
@@ -52,16 +57,18 @@ def externs_header_name(program_name: str) -> str:
 
 
 def count_registrations(program: CheckedProgram) -> tuple[int, int]:
-    """(actions, events) that the program registers with the runtime."""
-    actions = {rule_action_key(i, r) for i, r in enumerate(program.rules)}
-    return len(actions), len(program.rules)
+    """(actions, events) that the program registers in the runtime's dynamic
+    arrays: none, a rule file's rules are const tables (register_program),
+    however many there are.  Only the user's C can register more."""
+    return 0, 0
 
 
 # ---- the C-shaped program ------------------------------------------------------
 
 @dataclass
 class CStruct:
-    """A static parameter struct: `static TYPE NAME = INIT; /* COMMENT */`."""
+    """A parameter struct: `static const TYPE NAME = INIT; /* COMMENT */`
+    (const: XC16 keeps it in program memory)."""
     ctype: str
     name: str
     init: str
@@ -85,17 +92,38 @@ class CSequence:
 
 
 @dataclass
-class CRegistration:
+class CAction:
+    """An entry of the action table: `{function, param}`; its id is its index."""
+    function: str
+    param: str             # "&name" or "NULL"
     comment: str
-    action_var: str
-    new_action: Optional[tuple]    # (function, param expression) when registered here
-    action_label: str
-    event_var: str
-    event_function: str
-    event_param: str
+    action_label: str      # C string: its name in the host's trace
+
+
+@dataclass
+class CEvent:
+    """An entry of the event table; its id is its index."""
+    function: str          # "NULL": a compiled sensor condition
+    param: str
+    action: int            # index in the action table
+    flags: str             # "RT_REPEAT" or "0"
+    memory: str            # index in epk_event_memory, or "RT_NO_MEMORY"
+    comment: str
     event_label: str
-    repeat: bool
-    rule_id_var: Optional[str]     # file-scope id for `cancel RULE`
+
+
+@dataclass
+class CCondition:
+    """`if (condition) epk_c[word] |= bit;`, setting one event's bit."""
+    statement: str
+    comment: str
+
+
+@dataclass
+class CConditionWord:
+    """One word of the conditions function: `epk_c[index]`, its CConditions."""
+    index: int
+    terms: list
 
 
 @dataclass
@@ -124,12 +152,13 @@ class CProgram:
     structs: list = field(default_factory=list)
     functions: list = field(default_factory=list)
     sequences: list = field(default_factory=list)
-    rule_id_vars: list = field(default_factory=list)
-    action_vars: list = field(default_factory=list)
-    event_vars: list = field(default_factory=list)
-    registrations: list = field(default_factory=list)
-    actions_needed: int = 0
-    events_needed: int = 0
+    rule_ids: list = field(default_factory=list)     # (C name, event id) for `cancel RULE`
+    actions: list = field(default_factory=list)      # CAction
+    events: list = field(default_factory=list)       # CEvent
+    conditions: list = field(default_factory=list)   # CConditionWord
+    sensors: str = "0x00"                             # the IRs the conditions read
+    watched: list = field(default_factory=list)       # ... as sensor numbers
+    memory_slots: int = 0                             # longs of epk_event_memory
     geometry: Optional[str] = None   # set_robot_geometry arguments, for a robot block
 
 
@@ -166,6 +195,17 @@ def c_comment(text: str) -> str:
     return text
 
 
+def const_ref(param: str) -> str:
+    """A parameter for a const table entry (rt_action, rt_event)."""
+    return "NULL" if param == "NULL" else f"&{param}"
+
+
+def void_ref(param: str) -> str:
+    """A parameter passed where the paper's API takes `void *` (a call, a
+    sequence step): the const struct's address, cast; actions only read it."""
+    return "NULL" if param == "NULL" else f"(void *)&{param}"
+
+
 def _shorten(text: str, limit: int = 100) -> str:
     text = " ".join(text.split())
     return text if len(text) <= limit else text[: limit - 3] + "..."
@@ -194,7 +234,8 @@ class _Lowerer:
         self.params: dict = {}           # id(ResolvedCall) -> param expression
         self.owner_counts: dict = {}     # owner -> structs made so far
         self.flat: dict = {}             # named action -> flattened steps
-        self.rule_ids: dict = {}         # rule name -> file-scope id variable
+        self.rule_ids: dict = {}         # rule name -> C name of its event id
+        self.sensors: set = set()        # the IRs the compiled conditions read
 
     def text_of(self, node) -> str:
         """The source text of a node, from its span, on one line and without
@@ -218,8 +259,8 @@ class _Lowerer:
     def primitive(self, call: ResolvedCall, owner: str) -> _Primitive:
         text = self.text_of(call.node)
         if call.kind == "cancel":
-            var = self.rule_ids[call.name]
-            return _Primitive(None, "", f"cancel_event({var});", text)
+            name = self.rule_ids[call.name]
+            return _Primitive(None, "", f"cancel_event({name});", text)
         function = STANDARD_ACTIONS[call.name].runtime if call.kind == "standard" else call.name
         if not call.values:       # stop_motor, exit_main, an extern without parameters...
             return _Primitive(function, "NULL", f"{function}(NULL);", text)
@@ -232,9 +273,9 @@ class _Lowerer:
             self.out.structs.append(CStruct(ctype, name, init,
                                             c_comment(f"{self.where(call.node)}: {text}"
                                                       + (f" ({comment})" if comment else ""))))
-            self.params[key] = f"&{name}"
+            self.params[key] = name
         param = self.params[key]
-        return _Primitive(function, param, f"{function}({param});", text)
+        return _Primitive(function, param, f"{function}({void_ref(param)});", text)
 
     def param_struct(self, call: ResolvedCall) -> tuple[str, str, str]:
         v = call.values
@@ -330,14 +371,16 @@ class _Lowerer:
             text = ", ".join(p.text for p in prims)
             fn, param = self.step_action(prims, f"{PREFIX}step{k}_{owner}",
                                          f"{where}: step {k} of {len(steps)}: {text}")
-            entries.append(f"{{{fn}, {param}}}")
+            entries.append(f"{{{fn}, {void_ref(param)}}}")
         self.out.sequences.append(CSequence(f"{PREFIX}steps_{owner}", f"{PREFIX}seq_{owner}",
                                             entries, c_comment(comment)))
-        return "run_sequence", f"&{PREFIX}seq_{owner}"
+        return "run_sequence", f"{PREFIX}seq_{owner}"
 
     # -- events --
 
-    def event(self, rule, index: int) -> tuple[str, str]:
+    def event(self, rule, index: int) -> tuple:
+        """(function, param name or "NULL", memory?, condition): a sensor
+        event is a compiled condition (function "NULL", its C expression)."""
         ev = rule.event
         owner = f"r{index}"
         when = f"{PREFIX}when_{owner}"
@@ -345,26 +388,20 @@ class _Lowerer:
         if ev.kind == "extern":
             info = self.program.externs[ev.name]
             if not info.params:
-                return ev.name, "NULL"
+                return ev.name, "NULL", True, None
             self.out.structs.append(CStruct(f"param_{ev.name}", when,
                                             self.extern_init(info.params, ev.values), comment))
-            return ev.name, f"&{when}"
+            return ev.name, when, True, None
         spec = STANDARD_EVENTS[ev.name]
         if spec.runtime_param is None:      # immediate, stop_motor
-            return spec.runtime, "NULL"
+            return spec.runtime, "NULL", spec.memory, None
         if ev.name == "timer":
             self.out.structs.append(CStruct(spec.runtime_param, when,
                                             f"{{{ev.values['time']}L}}", comment))
-            return spec.runtime, f"&{when}"
-        thresholds = ["SENSOR_OFF"] * 8
-        below = 0
-        for sensor, op, value in ev.conditions:
-            thresholds[sensor] = str(value)
-            if op == "<":
-                below |= 1 << sensor
-        self.out.structs.append(CStruct(spec.runtime_param, when,
-                                        f"{{{{{', '.join(thresholds)}}}, 0x{below:02x}}}", comment))
-        return spec.runtime, f"&{when}"
+            return spec.runtime, when, spec.memory, None
+        terms = [f"{PREFIX}ir{sensor} {op} {value}" for sensor, op, value in ev.conditions]
+        self.sensors |= {sensor for sensor, _, _ in ev.conditions}
+        return "NULL", "NULL", False, " || ".join(terms)
 
     # -- the whole program --
 
@@ -388,46 +425,50 @@ class _Lowerer:
         out = self.out
         self.externs()
         cancelled = self.cancelled_rules()
-        for rule in self.program.rules:
+        for index, rule in enumerate(self.program.rules):
             if rule.name is not None and rule.name in cancelled:
                 self.rule_ids[rule.name] = f"{PREFIX}rule_{rule.name}"
-                out.rule_id_vars.append(f"{PREFIX}rule_{rule.name}")
-        registered: dict = {}          # rule_action_key -> action variable
+                out.rule_ids.append((f"{PREFIX}rule_{rule.name}", index))
+        registered: dict = {}          # rule_action_key -> action id
+        conditions: dict = {}          # word -> [CCondition]
         for index, rule in enumerate(self.program.rules, 1):
             key = rule_action_key(index, rule)
             body_text = self.text_of(rule.node.body)
-            if key in registered:
-                action_var, new_action = registered[key], None
-            else:
-                action_var = f"{PREFIX}a{len(registered) + 1}"
-                out.action_vars.append(action_var)
+            if key not in registered:
                 if key[0] == "named":
                     name = key[1]
                     steps = self.named_steps(name)
                     node = self.program.action_nodes[name]
-                    new_action = self.body_action(
-                        steps, f"a_{name}", self.where(node),
-                        f"{self.where(node)}: action {name} = {self.text_of(node.body)}")
+                    where = f"{self.where(node)}: action {name} = {self.text_of(node.body)}"
+                    function, param = self.body_action(steps, f"a_{name}", self.where(node), where)
                 else:
-                    steps = self.flatten(rule.body, f"r{index}")
-                    new_action = self.body_action(
-                        steps, f"r{index}", self.where(rule.node),
-                        f"{self.where(rule.node)}: {body_text}")
-                registered[key] = action_var
-            event_function, event_param = self.event(rule, index)
-            event_var = f"{PREFIX}e{index}"
-            out.event_vars.append(event_var)
+                    where = f"{self.where(rule.node)}: {body_text}"
+                    function, param = self.body_action(self.flatten(rule.body, f"r{index}"),
+                                                       f"r{index}", self.where(rule.node), where)
+                registered[key] = len(out.actions)
+                out.actions.append(CAction(function, const_ref(param),
+                                           c_comment(f"{registered[key]}: {_shorten(where)}"),
+                                           c_string(_shorten(body_text))))
+            function, param, memory, condition = self.event(rule, index)
+            event_id = len(out.events)
+            if condition is not None:
+                term = f"if ({condition}) {PREFIX}c[{event_id // 16}] |= 0x{1 << (event_id % 16):04x}u;"
+                conditions.setdefault(event_id // 16, []).append(
+                    CCondition(term, c_comment(f"event {event_id}: {self.where(rule.node)}")))
+            slot = "RT_NO_MEMORY"
+            if memory:
+                slot = str(out.memory_slots)
+                out.memory_slots += 1
             head = f"rule {rule.name}: " if rule.name else ""
-            out.registrations.append(CRegistration(
-                comment=c_comment(f"{self.where(rule.node)}: {self.text_of(rule.node)}"),
-                action_var=action_var, new_action=new_action,
-                action_label=c_string(_shorten(body_text)),
-                event_var=event_var, event_function=event_function, event_param=event_param,
-                event_label=c_string(_shorten(f"{self.where(rule.node)} {head}on "
-                                              f"{self.text_of(rule.node.event)}"
-                                              + (" repeat" if rule.repeat else ""))),
-                repeat=rule.repeat, rule_id_var=self.rule_ids.get(rule.name)))
-        out.actions_needed, out.events_needed = count_registrations(self.program)
+            out.events.append(CEvent(
+                function, const_ref(param), registered[key], "RT_REPEAT" if rule.repeat else "0",
+                slot, c_comment(f"{event_id}: {self.where(rule.node)}: {self.text_of(rule.node)}"),
+                c_string(_shorten(f"{self.where(rule.node)} {head}on "
+                                  f"{self.text_of(rule.node.event)}"
+                                  + (" repeat" if rule.repeat else "")))))
+        out.conditions = [CConditionWord(w, terms) for w, terms in sorted(conditions.items())]
+        out.sensors = f"0x{sum(1 << n for n in self.sensors):02x}"
+        out.watched = sorted(self.sensors)
         if self.program.robot_given:
             geo = self.program.geometry
             out.geometry = (f"{round_nearest(geo.wheel_circumference_mm * 1000)}L, "

@@ -31,6 +31,28 @@ static event events[MAX_EVENTS];
 static int n_actions;   /* slots used so far, cancelled ones included */
 static int n_events;
 
+/* ---- the static tables (register_program) ----------------------------------
+ * Ids 0..s_actions-1 and 0..s_events-1 are the program's table entries; the
+ * arrays' ids follow (array index + s_actions / s_events).  The program's
+ * RAM state is six bit planes of 16-bit words, bit k % 16 of word k / 16
+ * for entry k: */
+static const rt_program *prog;      /* NULL: none registered */
+static int s_actions, s_events;     /* its table sizes, 0 without one */
+static unsigned s_words;            /* RT_WORDS(s_events) */
+static unsigned *action_off;        /* the action was cancelled */
+static unsigned *ev_armed;          /* the event is armed (valid_flag) */
+static unsigned *ev_repeat;         /* repeat_flag */
+static unsigned *ev_latch;          /* compiled condition at its last poll */
+static unsigned *ev_now;            /* compiled conditions of this poll */
+static unsigned *ev_compiled;       /* the event is a compiled condition */
+static int conditions_valid;        /* ev_now holds this poll's conditions */
+
+#define WORD_MASK 0xFFFFu
+#define BIT_OF(k) (1u << ((unsigned)(k) & 15u))
+#define BIT_GET(plane, k) (((plane)[(k) >> 4] & BIT_OF(k)) != 0)
+#define BIT_SET(plane, k) ((plane)[(k) >> 4] |= BIT_OF(k))
+#define BIT_CLEAR(plane, k) ((plane)[(k) >> 4] &= ~BIT_OF(k))
+
 /* ---- millisecond clock ---------------------------------------------------
  * A 1 ms e-puck agenda (cycle 10 x 0.1 ms) counts; it runs in the Timer2
  * interrupt on the robot, hence volatile.  Unsigned so that the increment
@@ -84,6 +106,24 @@ static long timer_start;        /* rt_millis() at set_timer */
 
 /* Proximity polling (start_sensor / stop_sensor); off at start. */
 static int sensors_on;
+
+/* The proximity readings, read once per poll: bit n of prox_valid says
+ * prox[n] was read in this poll (cleared at the start of each poll). */
+static int prox[8];
+static unsigned prox_valid;
+
+static void read_prox(unsigned mask)
+{
+    unsigned n, todo = mask & ~prox_valid & 0xFFu;
+
+    if (todo == 0)
+        return;
+    for (n = 0; todo != 0; n++, todo >>= 1) {
+        if (todo & 1u)
+            prox[n] = e_get_prox(n);
+    }
+    prox_valid |= mask & 0xFFu;
+}
 
 /* Motion: at most one at a time.  Progress is measured from the 16-bit step
  * counters at each poll and accumulated in long. */
@@ -147,11 +187,18 @@ static long wheel_delta(int now, int last)
 
 static int action_ok(int id)
 {
+    if (id >= 0 && id < s_actions)
+        return !BIT_GET(action_off, id);
+    id -= s_actions;
     return id >= 0 && id < n_actions && actions[id].action_function != NULL;
 }
 
+/* A registered event that was not cancelled (it may have fired and disarmed). */
 static int event_ok(int id)
 {
+    if (id >= 0 && id < s_events)
+        return 1;   /* table events stay registered: cancel_event disarms them */
+    id -= s_events;
     return id >= 0 && id < n_events && events[id].event_function != NULL;
 }
 
@@ -163,8 +210,8 @@ int register_action(action_func f, void *action_param)
     id = n_actions++;
     actions[id].action_function = f;
     actions[id].action_param = action_param;
-    rt_new_action(id, f);
-    return id;
+    rt_new_action(s_actions + id, f);
+    return s_actions + id;
 }
 
 int register_event(event_func f, void *event_param, int action_id)
@@ -182,15 +229,20 @@ int register_event(event_func f, void *event_param, int action_id)
     e->repeat_flag = 0;
     e->status.occurred = 0;
     e->status.memory = 0;
-    rt_new_event(id, f);
-    return id;
+    rt_new_event(s_events + id, f);
+    return s_events + id;
 }
 
 void cancel_action(int action_id)
 {
     if (!action_ok(action_id))
         return;
+    if (action_id < s_actions) {
+        BIT_SET(action_off, action_id);
+        return;
+    }
     /* A NULL function marks the slot cancelled; it is never reused. */
+    action_id -= s_actions;
     actions[action_id].action_function = NULL;
     actions[action_id].action_param = NULL;
 }
@@ -199,26 +251,90 @@ void cancel_event(int event_id)
 {
     if (!event_ok(event_id))
         return;
+    if (event_id < s_events) {
+        BIT_CLEAR(ev_armed, event_id);
+        return;
+    }
+    event_id -= s_events;
     events[event_id].valid_flag = 0;
     events[event_id].event_function = NULL;
 }
 
 void set_event_repeat(int event_id, int repeat)
 {
-    if (event_ok(event_id))
-        events[event_id].repeat_flag = repeat != 0;
+    if (!event_ok(event_id))
+        return;
+    if (event_id < s_events) {
+        if (repeat)
+            BIT_SET(ev_repeat, event_id);
+        else
+            BIT_CLEAR(ev_repeat, event_id);
+        return;
+    }
+    events[event_id - s_events].repeat_flag = repeat != 0;
 }
 
-void name_action(int action_id, const char *name)
+/* Parenthesised: epuckrt.h may define them as macros (EPUCKRT_NO_NAMES). */
+void (name_action)(int action_id, const char *name)
 {
-    if (action_id >= 0 && action_id < n_actions)
+    if (action_id >= 0 && action_id < s_actions + n_actions)
         rt_name_action(action_id, name);
 }
 
-void name_event(int event_id, const char *name)
+void (name_event)(int event_id, const char *name)
 {
-    if (event_id >= 0 && event_id < n_events)
+    if (event_id >= 0 && event_id < s_events + n_events)
         rt_name_event(event_id, name);
+}
+
+int register_program(const rt_program *p)
+{
+    int k, words_a, words_e;
+
+    if (p == NULL || prog != NULL || n_actions != 0 || n_events != 0
+            || p->n_actions < 0 || p->n_events < 0 || p->state == NULL
+            || (p->n_actions > 0 && p->actions == NULL)
+            || (p->n_events > 0 && p->events == NULL))
+        return -1;
+    for (k = 0; k < p->n_actions; k++) {
+        if (p->actions[k].action_function == NULL)
+            return -1;
+    }
+    for (k = 0; k < p->n_events; k++) {
+        const rt_event *e = &p->events[k];
+        if (e->action_id < 0 || e->action_id >= p->n_actions
+                || (e->event_function == NULL && p->conditions == NULL)
+                || (e->memory != RT_NO_MEMORY && (e->memory < 0 || p->memory == NULL)))
+            return -1;
+    }
+    words_a = RT_WORDS(p->n_actions);
+    words_e = RT_WORDS(p->n_events);
+    action_off = p->state;
+    ev_armed = action_off + words_a;
+    ev_repeat = ev_armed + words_e;
+    ev_latch = ev_repeat + words_e;
+    ev_now = ev_latch + words_e;
+    ev_compiled = ev_now + words_e;
+    for (k = 0; k < words_a + 5 * words_e; k++)
+        p->state[k] = 0;
+    for (k = 0; k < p->n_actions; k++)
+        rt_new_action(k, p->actions[k].action_function);
+    for (k = 0; k < p->n_events; k++) {
+        const rt_event *e = &p->events[k];
+        BIT_SET(ev_armed, k);
+        if (e->flags & RT_REPEAT)
+            BIT_SET(ev_repeat, k);
+        if (e->event_function == NULL)
+            BIT_SET(ev_compiled, k);
+        if (e->memory != RT_NO_MEMORY)
+            p->memory[e->memory] = 0;
+        rt_new_event(k, e->event_function);
+    }
+    prog = p;
+    s_actions = p->n_actions;
+    s_events = p->n_events;
+    s_words = (unsigned)words_e;
+    return 0;
 }
 
 /* ---- motion control -------------------------------------------------------- */
@@ -577,12 +693,13 @@ void event_sensor(void *param, void *status)
     unsigned n;
 
     if (p != NULL && sensors_on) {
+        if (prox_valid != 0xFFu)
+            read_prox(0xFFu);       /* the first sensor event of this poll */
         for (n = 0; n < 8; n++) {
             int threshold = p->sensef[n];
-            int value;
+            int value = prox[n];
             if (threshold == SENSOR_OFF)
                 continue;
-            value = e_get_prox(n);
             if ((p->below >> n) & 1u ? value < threshold : value > threshold) {
                 cond = 1;
                 break;
@@ -615,21 +732,119 @@ void immediate(void *param, void *status) { event_immediate(param, status); }
 static void run_action(int action_id)
 {
     int previous = current_action_id;
+    action_func f;
+    void *param;
 
     if (!action_ok(action_id))
         return;     /* cancelled: the event fires but runs nothing */
+    if (action_id < s_actions) {
+        f = prog->actions[action_id].action_function;
+        param = (void *)prog->actions[action_id].action_param;
+    } else {
+        f = actions[action_id - s_actions].action_function;
+        param = actions[action_id - s_actions].action_param;
+    }
     rt_trace_action(action_id, -1, 0);
     current_action_id = action_id;
-    actions[action_id].action_function(actions[action_id].action_param);
+    f(param);
     current_action_id = previous;
 }
 
-/* Phase (5): poll the armed events in index order.  Returns 1 when exit_main
- * ran. */
+/* A table event occurred: trace it, run its action, disarm it unless it
+ * repeats. */
+static void fire_static(int id)
+{
+    rt_trace_event(id);
+    run_action(prog->events[id].action_id);
+    if (!BIT_GET(ev_repeat, id))
+        BIT_CLEAR(ev_armed, id);
+}
+
+/* ~0u while the sensors are on (this poll's compiled conditions are then
+ * in ev_now, computed at the first call of the poll), 0 while they are off:
+ * a mask for ev_now. */
+static unsigned conditions_mask(void)
+{
+    if (!sensors_on || prog->conditions == NULL)
+        return 0;
+    if (!conditions_valid) {
+        read_prox(prog->sensors);
+        prog->conditions(prox, ev_now);
+        conditions_valid = 1;
+    }
+    return ~0u;
+}
+
+/* Polls a table event that is not a compiled condition. */
+static void poll_static_function(int id)
+{
+    const rt_event *e = &prog->events[id];
+    event_status st;
+
+    st.occurred = 0;
+    st.memory = e->memory != RT_NO_MEMORY ? prog->memory[e->memory] : 0;
+    e->event_function((void *)e->event_param, &st);
+    if (e->memory != RT_NO_MEMORY)
+        prog->memory[e->memory] = st.memory;
+    if (st.occurred)
+        fire_static(id);
+}
+
+/* Phase (5) for the table's events, sixteen at a time: a word whose armed
+ * events are all compiled conditions that do not become true only has its
+ * latches updated; the others are polled one by one in index order, and
+ * the word re-read after each, since an action may change the sensors or
+ * cancel events.  Returns 1 when exit_main ran. */
+static int poll_static(void)
+{
+    unsigned w;
+    unsigned *armed = ev_armed, *latch = ev_latch, *compiled = ev_compiled, *now = ev_now;
+    unsigned on = conditions_mask();
+
+    for (w = 0; w < s_words; w++) {
+        unsigned todo = armed[w];       /* armed and not polled yet */
+        while (todo != 0) {
+            unsigned comp = todo & compiled[w];
+            unsigned cond = now[w] & comp & on;
+            unsigned pick = (cond & ~latch[w]) | (todo & ~comp);
+            unsigned low, below;
+            int k;
+
+            if (pick == 0) {
+                /* no event of the word occurs: the latches follow */
+                latch[w] = (latch[w] & ~comp) | cond;
+                break;
+            }
+            for (k = 0; !((pick >> k) & 1u); k++)
+                ;
+            low = BIT_OF(k);
+            below = low - 1u;
+            latch[w] = (latch[w] & ~(comp & below)) | (cond & below);
+            if (comp & low) {
+                latch[w] |= low;        /* the condition became true */
+                fire_static((int)(w * 16u) + k);
+            } else {
+                poll_static_function((int)(w * 16u) + k);
+            }
+            if (exit_requested)
+                return 1;
+            on = conditions_mask();     /* the action may have started the sensors */
+            todo = armed[w] & ~(low | below) & WORD_MASK;
+        }
+    }
+    return 0;
+}
+
+/* Phase (5): poll the armed events in index order: the table's, then the
+ * registered ones.  Returns 1 when exit_main ran. */
 static int poll_events(void)
 {
     int i;
 
+    conditions_valid = 0;
+    prox_valid = 0;
+    if (prog != NULL && poll_static())
+        return 1;
     /* n_events is re-read: an action may register events, polled at once */
     for (i = 0; i < n_events; i++) {
         event *e = &events[i];
@@ -638,7 +853,7 @@ static int poll_events(void)
         e->status.occurred = 0;
         e->event_function(e->event_param, &e->status);
         if (e->status.occurred) {
-            rt_trace_event(i);
+            rt_trace_event(s_events + i);
             run_action(e->action_id);
             if (!e->repeat_flag)
                 e->valid_flag = 0;
@@ -673,5 +888,6 @@ void mainloop(void)
     seq_waiting = 0;
     seen_moving = 0;
     exit_requested = 0;
+    prox_valid = 0;
     rt_trace_exit();
 }

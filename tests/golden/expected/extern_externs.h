@@ -5,7 +5,9 @@
  * Your C file includes this header: it declares each extern's parameter
  * struct (the declared parameters in order, in the runtime's units: steps,
  * steps/s, degrees, ms) and the function your C defines; it also includes
- * the whole runtime API (utility.h).
+ * the whole runtime API (utility.h). The parameter your function gets points
+ * to a const struct of the generated program (kept in program memory on the
+ * robot): read it, never write it.
  */
 #ifndef EPK_EXTERN_EXTERNS_H
 #define EPK_EXTERN_EXTERNS_H

@@ -2,30 +2,50 @@
  * fig2.epk, compiled by epuckc 0.1.0. Do not edit: edit the rule file.
  *
  * As in the paper's figure 2: parameter structs, then the actions and the
- * events that trigger them registered with the runtime, then mainloop().
- * Registrations: 2 actions, 2 events.
+ * events that trigger them, then mainloop().  The actions and events are
+ * const tables registered at once (register_program), which the robot keeps
+ * in program memory; the rules' sensor conditions are compiled into one
+ * function.  Tables: 2 actions, 2 events.
  */
 #include "utility.h"
 
 /* fig2.epk:3: start_straight(speed: 250 steps/s, distance: 100 mm) (250 steps/s for 776 steps) */
-static param_straight_steps epk_p1_a_go = {250, 776};
+static const param_straight_steps epk_p1_a_go = {250, 776};
+
+/* The actions, {function, parameter}: an action's id is its index. */
+static const rt_action epk_action_table[] = {
+    {straight_steps, &epk_p1_a_go},   /* 0: fig2.epk:3: action go = start_straight(speed: 250 steps/s, distance: 100 mm) */
+    {exit_main, NULL},   /* 1: fig2.epk:4: action quit = exit_main */
+};
+
+/* The events, {function, parameter, action id, flags, memory}: an event's id
+ * is its index.  A NULL function is the rule's condition in
+ * epk_event_conditions; memory is the event's slot in epk_event_memory
+ * (timers keep their last firing). */
+static const rt_event epk_event_table[] = {
+    /* 0: fig2.epk:6: on immediate do go */
+    {immediate, NULL, 0, 0, RT_NO_MEMORY},
+    /* 1: fig2.epk:7: on stop_motor do quit */
+    {event_stop_motor, NULL, 1, 0, RT_NO_MEMORY},
+};
+
+/* What changes while the program runs, the only part in RAM. */
+static unsigned epk_event_state[RT_STATE_WORDS(2, 2)];
+
+static const rt_program epk_program = {
+    epk_action_table, 2, epk_event_table, 2,
+    NULL, 0x00, epk_event_state, NULL
+};
 
 int main(void)
 {
-    int epk_a1, epk_a2;
-    int epk_e1, epk_e2;
+    (void)register_program(&epk_program);
 
-    /* fig2.epk:6: on immediate do go */
-    epk_a1 = register_action(straight_steps, &epk_p1_a_go);
-    name_action(epk_a1, "go");
-    epk_e1 = register_event(immediate, NULL, epk_a1);
-    name_event(epk_e1, "fig2.epk:6 on immediate");
-
-    /* fig2.epk:7: on stop_motor do quit */
-    epk_a2 = register_action(exit_main, NULL);
-    name_action(epk_a2, "quit");
-    epk_e2 = register_event(event_stop_motor, NULL, epk_a2);
-    name_event(epk_e2, "fig2.epk:7 on stop_motor");
+    /* Names in the host harness's trace; without them on the robot (EPUCKRT_NO_NAMES). */
+    name_action(0, "go");
+    name_action(1, "quit");
+    name_event(0, "fig2.epk:6 on immediate");
+    name_event(1, "fig2.epk:7 on stop_motor");
 
     mainloop();
     return 0;

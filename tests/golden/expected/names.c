@@ -2,16 +2,20 @@
  * names.epk, compiled by epuckc 0.1.0. Do not edit: edit the rule file.
  *
  * As in the paper's figure 2: parameter structs, then the actions and the
- * events that trigger them registered with the runtime, then mainloop().
- * Registrations: 2 actions, 2 events.
+ * events that trigger them, then mainloop().  The actions and events are
+ * const tables registered at once (register_program), which the robot keeps
+ * in program memory; the rules' sensor conditions are compiled into one
+ * function.  Tables: 2 actions, 2 events.
  */
 #include "utility.h"
 
 /* names.epk:2: start_straight(100, 1 cm) (100 steps/s for 78 steps) */
-static param_straight_steps epk_p1_a_int = {100, 78};
+static const param_straight_steps epk_p1_a_int = {100, 78};
 
 /* Event ids of the rules that `cancel` names. */
-static int epk_rule_main;
+enum {
+    epk_rule_main = 0
+};
 
 /* names.epk:6: seq_a_x, cancel main */
 static void epk_do_r2(void *epk_param)
@@ -23,29 +27,45 @@ static void epk_do_r2(void *epk_param)
 
 /* names.epk:3: action register_action = int then exit_main */
 static const action epk_steps_a_register_action[] = {
-    {straight_steps, &epk_p1_a_int},
+    {straight_steps, (void *)&epk_p1_a_int},
     {exit_main, NULL},
 };
-static param_sequence epk_seq_a_register_action = {epk_steps_a_register_action, 2};
+static const param_sequence epk_seq_a_register_action = {epk_steps_a_register_action, 2};
+
+/* The actions, {function, parameter}: an action's id is its index. */
+static const rt_action epk_action_table[] = {
+    {run_sequence, &epk_seq_a_register_action},   /* 0: names.epk:3: action register_action = int then exit_main */
+    {epk_do_r2, NULL},   /* 1: names.epk:6: seq_a_x, cancel main */
+};
+
+/* The events, {function, parameter, action id, flags, memory}: an event's id
+ * is its index.  A NULL function is the rule's condition in
+ * epk_event_conditions; memory is the event's slot in epk_event_memory
+ * (timers keep their last firing). */
+static const rt_event epk_event_table[] = {
+    /* 0: names.epk:5: rule main: on immediate do register_action */
+    {immediate, NULL, 0, 0, RT_NO_MEMORY},
+    /* 1: names.epk:6: rule while: on stop_motor repeat do seq_a_x, cancel main */
+    {event_stop_motor, NULL, 1, RT_REPEAT, RT_NO_MEMORY},
+};
+
+/* What changes while the program runs, the only part in RAM. */
+static unsigned epk_event_state[RT_STATE_WORDS(2, 2)];
+
+static const rt_program epk_program = {
+    epk_action_table, 2, epk_event_table, 2,
+    NULL, 0x00, epk_event_state, NULL
+};
 
 int main(void)
 {
-    int epk_a1, epk_a2;
-    int epk_e1, epk_e2;
+    (void)register_program(&epk_program);
 
-    /* names.epk:5: rule main: on immediate do register_action */
-    epk_a1 = register_action(run_sequence, &epk_seq_a_register_action);
-    name_action(epk_a1, "register_action");
-    epk_e1 = register_event(immediate, NULL, epk_a1);
-    name_event(epk_e1, "names.epk:5 rule main: on immediate");
-    epk_rule_main = epk_e1;
-
-    /* names.epk:6: rule while: on stop_motor repeat do seq_a_x, cancel main */
-    epk_a2 = register_action(epk_do_r2, NULL);
-    name_action(epk_a2, "seq_a_x, cancel main");
-    epk_e2 = register_event(event_stop_motor, NULL, epk_a2);
-    name_event(epk_e2, "names.epk:6 rule while: on stop_motor repeat");
-    set_event_repeat(epk_e2, 1);
+    /* Names in the host harness's trace; without them on the robot (EPUCKRT_NO_NAMES). */
+    name_action(0, "register_action");
+    name_action(1, "seq_a_x, cancel main");
+    name_event(0, "names.epk:5 rule main: on immediate");
+    name_event(1, "names.epk:6 rule while: on stop_motor repeat");
 
     mainloop();
     return 0;
