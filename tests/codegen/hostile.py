@@ -27,7 +27,9 @@ HOSTILE = """int NULL static __LINE__ __func__ __STDC__ _x _Bad printf exit abs 
     a2 e2 epk_a1 epk_e1 epk_p1_r1 register_action register_event mainloop timer sensor
     immediate sequence run_sequence action event param_x e_init_port rt_millis stub_pose
     time speed steps count memory status errno bool true FILE stdin assert signal while
-    straight_steps curve_steps param_straight_steps EPUCK_MAX_SPEED MAX_ACTIONS y q""".split()
+    straight_steps curve_steps param_straight_steps EPUCK_MAX_SPEED MAX_ACTIONS y q
+    action_table event_table event_state event_memory event_program event_conditions ir c
+    ir0 epk_ir epk_c epk_program register_program rt_program rt_event RT_REPEAT""".split()
 FILE_STEMS = ["prog", "x??=", "a*b", "c\\d", "\u00e9t\u00e9", "int", "epuckrt", "utility",
               "main", "q'uote", "sp ace"]
 EXTERN_TYPES = ["int", "distance", "speed", "angle", "duration"]
