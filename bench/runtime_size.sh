@@ -39,6 +39,18 @@ int e_get_steps_left(void) { return 0; }
 int e_get_steps_right(void) { return 0; }
 void e_init_ad_scan(unsigned char m) { (void)m; }
 int e_get_prox(unsigned int n) { (void)n; return 0; }
+int e_get_ambient_light(unsigned int n) { (void)n; return 0; }
+void e_set_led(unsigned int n, unsigned int v) { (void)n; (void)v; }
+void e_set_body_led(unsigned int v) { (void)v; }
+void e_set_front_led(unsigned int v) { (void)v; }
+void e_init_sound(void) {}
+void e_play_sound(int o, int l) { (void)o; (void)l; }
+int e_get_micro_volume(unsigned int n) { (void)n; return 0; }
+int e_get_acc(unsigned int n) { (void)n; return 0; }
+void e_init_remote_control(void) {}
+unsigned char e_get_check(void) { return 0; }
+unsigned char e_get_data(void) { return 0; }
+int getselector(void) { return 0; }
 C
 
 # a program of $1 rules like the code generator's: "every k ms: straight",

@@ -20,6 +20,12 @@
 #include "motor_led/advance_one_timer/e_agenda.h"
 #include "a_d/advance_ad_scan/e_prox.h"
 #include "a_d/advance_ad_scan/e_ad_conv.h"
+#include "a_d/advance_ad_scan/e_micro.h"
+#include "a_d/advance_ad_scan/e_acc.h"
+#include "motor_led/e_led.h"
+#include "motor_led/advance_one_timer/e_remote_control.h"
+#include "codec/e_sound.h"
+#include "utility/utility.h"
 
 #if MAX_ACTIONS < 1 || MAX_EVENTS < 1
 #error "MAX_ACTIONS and MAX_EVENTS must be at least 1"
@@ -30,6 +36,13 @@ static action actions[MAX_ACTIONS];
 static event events[MAX_EVENTS];
 static int n_actions;   /* slots used so far, cancelled ones included */
 static int n_events;
+
+/* Extension state of each event, kept beside the paper's struct: its
+ * priority (set_event_priority) and mode (set_event_mode, 0: none). */
+static struct {
+    int priority;
+    int mode;
+} event_ext[MAX_EVENTS];
 
 /* ---- millisecond clock ---------------------------------------------------
  * A 1 ms e-puck agenda (cycle 10 x 0.1 ms) counts; it runs in the Timer2
@@ -57,6 +70,17 @@ long rt_millis(void)
 }
 
 static int initialised;
+static int remote_wanted;       /* an event_remote was registered */
+static int remote_started;      /* e_init_remote_control() has run */
+static int accel_wanted;        /* an event_tap or event_tilt was registered */
+
+static void remote_start(void)
+{
+    if (remote_wanted && initialised && !remote_started) {
+        remote_started = 1;
+        e_init_remote_control();
+    }
+}
 
 static void rt_init(void)
 {
@@ -71,12 +95,21 @@ static void rt_init(void)
     e_init_ad_scan(ALL_ADC);
     (void)e_activate_agenda(clock_tick, 10);
     rt_platform_init();
+    remote_start();     /* only for programs that use the remote control */
 }
 
 /* ---- state of the standard actions and events --------------------------- */
 
 static int exit_requested;      /* set by exit_main, checked by mainloop */
 static int current_action_id = -1;  /* the action being run by mainloop */
+static int current_event_id = -1;   /* the event whose action runs (-1: none) */
+
+/* Modes: the current one (0: none), entries so far, and whether a mode was
+ * entered during this poll's walk (then no mode's event fires until the
+ * next poll). */
+static int current_mode;
+static int mode_entered_in_poll;
+static int mode_trace_pending;      /* enter_mode before mainloop */
 
 /* Timer (set_timer / reset_timer / event_timer). */
 static int timer_running;
@@ -94,7 +127,9 @@ static struct {
     long target;    /* steps, >= 0 */
     long left;      /* signed steps turned since the start */
     long right;
-} motion;
+    int owner;      /* event whose action started it (-1: none); the
+                       motors are its until the motion ends */
+} motion = { 0, 0, 0, 0, 0, -1 };
 static int last_left;           /* raw counters at the previous poll */
 static int last_right;
 static unsigned motion_starts;  /* incremented at every motion start */
@@ -107,6 +142,7 @@ static int stop_sample;         /* the stop_motor condition of this poll */
 static const param_sequence *seq;   /* NULL: none */
 static int seq_next;                /* index of the next step to run */
 static int seq_action_id;           /* id used in the trace of its steps */
+static int seq_event_id;            /* the event whose action started it */
 static int seq_waiting;             /* a step's motion is under way */
 static unsigned seq_generation;     /* changes when a sequence replaces one */
 static int in_step;                 /* > 0 while a step's function runs */
@@ -182,6 +218,14 @@ int register_event(event_func f, void *event_param, int action_id)
     e->repeat_flag = 0;
     e->status.occurred = 0;
     e->status.memory = 0;
+    event_ext[id].priority = 0;
+    event_ext[id].mode = 0;
+    if (f == event_remote) {
+        remote_wanted = 1;
+        remote_start();
+    }
+    if (f == event_tap || f == event_tilt)
+        accel_wanted = 1;
     rt_new_event(id, f);
     return id;
 }
@@ -209,6 +253,30 @@ void set_event_repeat(int event_id, int repeat)
         events[event_id].repeat_flag = repeat != 0;
 }
 
+void set_event_priority(int event_id, int priority)
+{
+    if (event_ok(event_id))
+        event_ext[event_id].priority = priority;
+}
+
+void set_event_mode(int event_id, int mode)
+{
+    if (event_ok(event_id) && mode >= 0)
+        event_ext[event_id].mode = mode;
+}
+
+void disarm_event(int event_id)
+{
+    if (event_ok(event_id))
+        events[event_id].valid_flag = 0;
+}
+
+void name_mode(int mode, const char *name)
+{
+    if (mode > 0)
+        rt_name_mode(mode, name);
+}
+
 void name_action(int action_id, const char *name)
 {
     if (action_id >= 0 && action_id < n_actions)
@@ -224,6 +292,23 @@ void name_event(int event_id, const char *name)
 /* ---- motion control -------------------------------------------------------- */
 
 static void sequence_outside_command(void);
+
+/* Motor arbitration: 1 when the running action may not command the motors
+ * because the motion in progress belongs to an event of higher priority
+ * (the command is then traced as suppressed and not carried out).  Commands
+ * from outside any event's action (main, before mainloop) always pass. */
+static int motors_refused(const char *command)
+{
+    int owner = motion.owner, me = current_event_id;
+
+    if (!motion.active || owner < 0 || me < 0 || owner == me)
+        return 0;
+    if (event_ext[me].priority >= event_ext[owner].priority)
+        return 0;
+    rt_trace_suppressed(me, event_ext[me].priority, owner, event_ext[owner].priority,
+                        command);
+    return 1;
+}
 
 static void wheels(int left, int right)
 {
@@ -251,6 +336,7 @@ static void motion_begin(int left, int right, long target, int watch)
         right = 0;
     }
     motion.active = 1;
+    motion.owner = current_event_id;
     motion.watch = watch;
     motion.target = target;
     motion.left = 0;
@@ -320,7 +406,7 @@ void action_start_straight(void *param)
     long steps;
     int backwards, speed;
 
-    if (p == NULL)
+    if (p == NULL || motors_refused("start_straight"))
         return;
     if (p->steps != 0) {
         steps = abs_l(p->steps);
@@ -341,7 +427,7 @@ void action_start_curve(void *param)
     int outer, inner, left_turn;
     long outer_steps;
 
-    if (p == NULL)
+    if (p == NULL || motors_refused("start_curve"))
         return;
     outer = clamp_speed(p->speed);
     left_turn = p->degrees >= 0;    /* left: the right wheel is outer */
@@ -367,6 +453,8 @@ void action_start_curve(void *param)
 void action_stop_motor(void *param)
 {
     (void)param;
+    if (motors_refused("stop_motor"))
+        return;
     sequence_outside_command();
     motion.active = 0;
     wheels(0, 0);
@@ -430,13 +518,16 @@ static void sequence_run_steps(void)
 
         rt_trace_action(seq_action_id, index, seq->count);
         if (step->action_function != NULL) {
-            int previous = current_action_id;
-            /* a step that runs a sequence names it after this one */
+            int previous = current_action_id, previous_event = current_event_id;
+            /* a step that runs a sequence names it after this one; its
+             * motor commands are those of the event that started it */
             current_action_id = seq_action_id;
+            current_event_id = seq_event_id;
             in_step++;
             step->action_function(step->action_param);
             in_step--;
             current_action_id = previous;
+            current_event_id = previous_event;
         }
         if (generation != seq_generation || seq == NULL)
             return;     /* the step ran a sequence that replaced this one */
@@ -456,6 +547,8 @@ void action_run_sequence(void *param)
 {
     const param_sequence *p = (const param_sequence *)param;
 
+    if (motors_refused("run_sequence"))
+        return;
     seq_generation++;
     seq = NULL;
     seq_waiting = 0;
@@ -464,6 +557,7 @@ void action_run_sequence(void *param)
     seq = p;
     seq_next = 0;
     seq_action_id = current_action_id;
+    seq_event_id = current_event_id;
     sequence_run_steps();
 }
 
@@ -521,28 +615,226 @@ void event_timer(void *param, void *status)
 
 /* Occurs when the condition becomes true (status->memory: the condition at
  * the previous poll, 0 before the first). */
+static int thresholds_passed(const param_event_sensor *p, int (*reading)(unsigned int))
+{
+    unsigned n;
+
+    for (n = 0; n < 8; n++) {
+        int threshold = p->sensef[n];
+        int value;
+        if (threshold == SENSOR_OFF)
+            continue;
+        value = reading(n);
+        if ((p->below >> n) & 1u ? value < threshold : value > threshold)
+            return 1;
+    }
+    return 0;
+}
+
+/* Rising edge of cond: status->memory holds the condition at the previous
+ * poll (0 before the first). */
+static void edge(event_status *st, int cond)
+{
+    st->occurred = cond && st->memory == 0;
+    st->memory = cond;
+}
+
 void event_sensor(void *param, void *status)
 {
     const param_event_sensor *p = (const param_event_sensor *)param;
-    event_status *st = (event_status *)status;
-    int cond = 0;
-    unsigned n;
 
-    if (p != NULL && sensors_on) {
-        for (n = 0; n < 8; n++) {
-            int threshold = p->sensef[n];
-            int value;
-            if (threshold == SENSOR_OFF)
-                continue;
-            value = e_get_prox(n);
-            if ((p->below >> n) & 1u ? value < threshold : value > threshold) {
-                cond = 1;
-                break;
-            }
+    edge((event_status *)status, p != NULL && sensors_on && thresholds_passed(p, e_get_prox));
+}
+
+/* ---- extension: modes ---------------------------------------------------------- */
+
+void enter_mode(int mode)
+{
+    int i, left = current_mode;
+
+    if (mode <= 0)
+        return;
+    current_mode = mode;
+    for (i = 0; i < n_events; i++) {
+        /* re-armed as at registration; cancel_event's are gone for good */
+        if (event_ext[i].mode == mode && events[i].event_function != NULL) {
+            events[i].valid_flag = 1;
+            events[i].status.occurred = 0;
+            events[i].status.memory = 0;
         }
     }
-    st->occurred = cond && st->memory == 0;
-    st->memory = cond;
+    if (!initialised) {
+        mode_trace_pending = 1;     /* traced when mainloop starts */
+        return;
+    }
+    mode_entered_in_poll = 1;
+    rt_trace_mode(mode);
+    if (left == 0)
+        return;
+    /* what the rules of the mode left were doing with the motors ends */
+    if (seq != NULL && seq_event_id >= 0 && event_ext[seq_event_id].mode == left) {
+        seq_generation++;
+        seq = NULL;
+        seq_waiting = 0;
+    }
+    if (motion.active && motion.owner >= 0 && event_ext[motion.owner].mode == left) {
+        motion.active = 0;
+        wheels(0, 0);
+    }
+}
+
+void action_enter_mode(void *param)
+{
+    const param_enter_mode *p = (const param_enter_mode *)param;
+
+    if (p != NULL)
+        enter_mode(p->mode);
+}
+
+/* Occurs at its first poll after it was (re-)armed: mode entries reset
+ * status->memory to 0. */
+void event_enter_mode(void *param, void *status)
+{
+    event_status *st = (event_status *)status;
+
+    (void)param;
+    st->occurred = st->memory == 0;
+    st->memory = 1;
+}
+
+/* ---- extension: LEDs and sound --------------------------------------------------- */
+
+void action_set_led(void *param)
+{
+    const param_set_led *p = (const param_set_led *)param;
+
+    if (p == NULL || p->value < SET_LED_OFF || p->value > SET_LED_TOGGLE)
+        return;
+    if (p->led >= 0 && p->led <= SET_LED_ALL)
+        e_set_led((unsigned)p->led, (unsigned)p->value);
+    else if (p->led == SET_LED_BODY)
+        e_set_body_led((unsigned)p->value);
+    else if (p->led == SET_LED_FRONT)
+        e_set_front_led((unsigned)p->value);
+}
+
+/* [offset, length] in words of the library's samples (codec/e_const_sound.s) */
+static const int sound_samples[5][2] = {
+    { 0, 2112 }, { 2116, 1760 }, { 3878, 3412 }, { 7294, 3732 }, { 11028, 8016 }
+};
+static int sound_ready;
+
+void action_play_sound(void *param)
+{
+    const param_play_sound *p = (const param_play_sound *)param;
+
+    if (p == NULL || p->sound < 0 || p->sound > SOUND_WOUAAAAAAAAH)
+        return;
+    if (!sound_ready) {
+        sound_ready = 1;
+        e_init_sound();
+    }
+    e_play_sound(sound_samples[p->sound][0], sound_samples[p->sound][1]);
+}
+
+/* ---- extension: selector, microphones, accelerometer, remote, ambient light ----- */
+
+void event_selector(void *param, void *status)
+{
+    const param_event_selector *p = (const param_event_selector *)param;
+
+    edge((event_status *)status, p != NULL && getselector() == p->position);
+}
+
+void event_clap(void *param, void *status)
+{
+    const param_event_clap *p = (const param_event_clap *)param;
+    int cond = 0;
+    unsigned m;
+
+    if (p != NULL)
+        for (m = 0; m < 3 && !cond; m++)
+            cond = e_get_micro_volume(m) > p->volume;
+    edge((event_status *)status, cond);
+}
+
+/* Accelerometer samples, taken once per poll (phase 4) when a tap or tilt
+ * event is registered: this poll's, the previous poll's, and the first
+ * (the robot at rest). */
+static int acc_now[3], acc_prev[3], acc_rest[3];
+static int acc_samples;
+
+static void accel_sample(void)
+{
+    unsigned k;
+
+    for (k = 0; k < 3; k++) {
+        acc_prev[k] = acc_now[k];
+        acc_now[k] = e_get_acc(k);
+        if (acc_samples == 0) {
+            acc_prev[k] = acc_now[k];
+            acc_rest[k] = acc_now[k];
+        }
+    }
+    acc_samples = 1;
+}
+
+static int differs(int a, int b, int threshold)
+{
+    long d = (long)a - b;
+    return (d < 0 ? -d : d) > threshold;
+}
+
+void event_tap(void *param, void *status)
+{
+    const param_event_accel *p = (const param_event_accel *)param;
+    int cond = 0;
+    unsigned k;
+
+    if (p != NULL && acc_samples)
+        for (k = 0; k < 3 && !cond; k++)
+            cond = differs(acc_now[k], acc_prev[k], p->threshold);
+    edge((event_status *)status, cond);
+}
+
+void event_tilt(void *param, void *status)
+{
+    const param_event_accel *p = (const param_event_accel *)param;
+    int cond = 0;
+    unsigned k;
+
+    if (p != NULL && acc_samples)
+        for (k = 0; k < 2 && !cond; k++)
+            cond = differs(acc_now[k], acc_rest[k], p->threshold);
+    edge((event_status *)status, cond);
+}
+
+/* status->memory: 0 before the first poll, else 1 + the check bit seen at
+ * the previous poll; a new press toggles the bit. */
+void event_remote(void *param, void *status)
+{
+    const param_event_remote *p = (const param_event_remote *)param;
+    event_status *st = (event_status *)status;
+    int check;
+
+    st->occurred = 0;
+    if (p == NULL || !remote_started)
+        return;
+    check = e_get_check() != 0;
+    st->occurred = st->memory != 0 && check != st->memory - 1 && e_get_data() == p->key;
+    st->memory = check + 1;
+}
+
+static int ambient_reading(unsigned int n)
+{
+    return e_get_ambient_light(n);
+}
+
+void event_ambient(void *param, void *status)
+{
+    const param_event_sensor *p = (const param_event_sensor *)param;
+
+    edge((event_status *)status, p != NULL && thresholds_passed(p, ambient_reading));
 }
 
 /* ---- the paper's short spellings -------------------------------------------- */
@@ -574,27 +866,64 @@ static void run_action(int action_id)
     current_action_id = previous;
 }
 
-/* Phase (5): poll the armed events in index order.  Returns 1 when exit_main
- * ran. */
+/* An event is polled when armed, and when in a mode, that mode is the
+ * current one and was not entered during this poll. */
+static int armed(int i)
+{
+    const event *e = &events[i];
+    int mode = event_ext[i].mode;
+
+    if (!e->valid_flag || e->event_function == NULL)
+        return 0;
+    return mode == 0 || (mode == current_mode && !mode_entered_in_poll);
+}
+
+/* The highest priority below `below` among the armed events (all of them
+ * when !bounded); returns 0 when there is none. */
+static int next_level(int bounded, int below, int *level)
+{
+    int i, found = 0;
+
+    for (i = 0; i < n_events; i++) {
+        int p = event_ext[i].priority;
+        if (!armed(i) || (bounded && p >= below))
+            continue;
+        if (!found || p > *level)
+            *level = p;
+        found = 1;
+    }
+    return found;
+}
+
+/* Phase (5): poll the armed events, highest priority first, in index order
+ * within a priority (with all priorities equal: in index order, as in the
+ * paper).  Returns 1 when exit_main ran. */
 static int poll_events(void)
 {
-    int i;
+    int i, level = 0, more;
 
-    /* n_events is re-read: an action may register events, polled at once */
-    for (i = 0; i < n_events; i++) {
-        event *e = &events[i];
-        if (!e->valid_flag || e->event_function == NULL)
-            continue;
-        e->status.occurred = 0;
-        e->event_function(e->event_param, &e->status);
-        if (e->status.occurred) {
-            rt_trace_event(i);
-            run_action(e->action_id);
-            if (!e->repeat_flag)
-                e->valid_flag = 0;
+    mode_entered_in_poll = 0;
+    more = next_level(0, 0, &level);
+    while (more) {
+        /* n_events is re-read: an action may register events, polled at once */
+        for (i = 0; i < n_events; i++) {
+            event *e = &events[i];
+            if (event_ext[i].priority != level || !armed(i))
+                continue;
+            e->status.occurred = 0;
+            e->event_function(e->event_param, &e->status);
+            if (e->status.occurred) {
+                rt_trace_event(i);
+                current_event_id = i;
+                run_action(e->action_id);
+                current_event_id = -1;
+                if (!e->repeat_flag)
+                    e->valid_flag = 0;
+            }
+            if (exit_requested)
+                return 1;
         }
-        if (exit_requested)
-            return 1;
+        more = next_level(1, level, &level);
     }
     return 0;
 }
@@ -603,6 +932,10 @@ void mainloop(void)
 {
     rt_init();
     exit_requested = 0;
+    if (mode_trace_pending) {
+        mode_trace_pending = 0;
+        rt_trace_mode(current_mode);
+    }
     last_left = e_get_steps_left();
     last_right = e_get_steps_right();
     for (;;) {
@@ -613,6 +946,8 @@ void mainloop(void)
             break;
         stop_sample = seen_moving && !motion.active;    /* (4) */
         seen_moving = motion.active;
+        if (accel_wanted)
+            accel_sample();
         if (poll_events())          /* (5) */
             break;
     }
