@@ -74,6 +74,13 @@ class CancelCall:
 
 
 @dataclass(frozen=True)
+class EnterCall:
+    """`enter MODE`: makes MODE the current mode."""
+    mode: Ident
+    span: Span
+
+
+@dataclass(frozen=True)
 class Step:
     """Calls that run together, in order, in one poll: `A, B`."""
     calls: tuple
@@ -138,9 +145,33 @@ class Rule:
     repeat: bool
     body: ActionBody
     span: Span
+    priority: Optional[Value] = None    # `priority N`; None: 0
+    mode: Optional[Ident] = None        # the mode whose block holds it
 
 
-Statement = Union[RobotBlock, ConstDef, ActionDef, ExternDef, Rule]
+@dataclass(frozen=True)
+class ModeDef:
+    """`[initial] mode NAME { ... }`. Its rules are Rule statements of their
+    own (in file order, with `mode` set); `span` is the head `mode NAME {`."""
+    name: Ident
+    initial: bool
+    span: Span
+
+
+@dataclass(frozen=True)
+class ModeOpen:
+    """The parser's view of a mode's head; parse() turns it into a ModeDef."""
+    name: Ident
+    initial: bool
+    span: Span
+
+
+@dataclass(frozen=True)
+class ModeClose:
+    span: Span
+
+
+Statement = Union[RobotBlock, ConstDef, ActionDef, ExternDef, Rule, ModeDef]
 
 
 @dataclass

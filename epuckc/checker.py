@@ -14,10 +14,10 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Optional
 
-from . import ast
+from . import ast, check_arbitration, check_modes
 from .diagnostics import Collector, Note
 from .source import Span
-from .stdlib import (ACTION_ALIASES, EVENT_ALIASES, EXTERN_TYPES, MOTION_ACTIONS,
+from .stdlib import (ACTION_ALIASES, CHOICE, EVENT_ALIASES, EXTERN_TYPES, MOTION_ACTIONS,
                      SENSOR_NAMES, STANDARD_ACTIONS, STANDARD_EVENTS, THRESHOLD_MAX, Param)
 from .units import (ANGLE, ARTICLE, DISTANCE, DURATION, INT, INT16_MAX, INT16_MIN, INT32_MAX,
                     KIND_UNITS, SPEED, UNITS, Geometry, Quantity, curve_wheels,
@@ -27,6 +27,7 @@ DEFAULT_CAPACITY = 32      # frontend.py passes the runtime header's MAX_ACTIONS
 # A duration written without a unit is in ms; below this many it was very
 # likely meant in seconds (`timer(2)`), and W008 says so.
 BARE_DURATION_WARNING = 100
+PRIORITY_MAX = 255         # `priority N`: 0 (the default) .. 255
 
 # Names an extern's C function cannot have: C99's keywords, `main`, and the
 # runtime's own functions and types (epuckrt.h). User names elsewhere never
@@ -38,6 +39,7 @@ RESERVED_C_NAMES = frozenset("""
     register_action register_event cancel_action cancel_event mainloop set_event_repeat
     set_robot_geometry name_action name_event run_sequence action event event_status
     action_func event_func immediate sensor timer wait getselector
+    set_event_priority set_event_mode enter_mode disarm_event name_mode
 """.split())
 RESERVED_C_PREFIXES = ("action_", "event_", "param_", "e_", "rt_", "stub_", "EPUCK_", "MAX_")
 
@@ -48,7 +50,7 @@ RESERVED_C_PREFIXES = ("action_", "event_", "param_", "e_", "rt_", "stub_", "EPU
 class ResolvedCall:
     """A call whose arguments are checked and converted.
 
-    kind: "standard" | "extern" | "named" | "cancel"
+    kind: "standard" | "extern" | "named" | "cancel" | "enter" (name: the mode)
     values: parameter name -> integer in runtime units; for start_straight
     also `distance_mm`, for start_curve `outer_steps` and `inner_speed`.
     shown: parameter name -> the argument as the user wrote it.
@@ -65,7 +67,7 @@ class ResolvedEvent:
     kind: str               # "standard" | "extern"
     name: str
     values: dict            # timer: time (ms); extern: its params
-    conditions: tuple = ()  # sensor: (index, op, threshold), sorted by index
+    conditions: tuple = ()  # sensor, ambient: (index, op, threshold), sorted by index
     node: object = None
 
 
@@ -76,6 +78,8 @@ class ResolvedRule:
     repeat: bool
     body: list              # steps, each a list of ResolvedCall
     node: ast.Rule
+    priority: int = 0
+    mode: Optional[str] = None      # the mode whose block holds it
 
 
 @dataclass
@@ -96,6 +100,8 @@ class CheckedProgram:
     externs: dict = field(default_factory=dict)   # name -> ExternInfo
     rules: list = field(default_factory=list)     # ResolvedRule
     robot_given: bool = False
+    modes: list = field(default_factory=list)     # mode names, in declared order
+    initial_mode: Optional[str] = None
 
 
 def did_you_mean(name: str, candidates) -> Optional[str]:
@@ -136,6 +142,8 @@ class Checker:
         self._const_reported: set = set()
         self._const_diagnostics: set = set()
         self._resolved_actions: dict = {}
+        self.modes: dict = {}            # name -> ModeDef
+        self.initial_mode: Optional[str] = None
 
     # -- entry point --
 
@@ -149,12 +157,16 @@ class Checker:
         for name, node in self.actions.items():
             out.actions[name] = self._named_action(name)
             out.action_nodes[name] = node
+        out.modes, out.initial_mode = list(self.modes), self.initial_mode
         for rule in self.program.of_type(ast.Rule):
             event = self._event(rule.event)
             body = self._body(rule.body)
-            if event is not None:
+            priority = self._priority(rule.priority)
+            check_modes.check_rule(self, rule, event)
+            if event is not None and priority is not None:
                 out.rules.append(ResolvedRule(rule.name.name if rule.name else None,
-                                              event, rule.repeat, body, rule))
+                                              event, rule.repeat, body, rule, priority,
+                                              rule.mode.name if rule.mode else None))
         # Warnings that conclude from an absence ("no action runs set_timer",
         # "never used") are drawn only from a complete program: a statement
         # or call dropped by an error may be the very one that was missing,
@@ -163,6 +175,8 @@ class Checker:
         self._never_fire(out, complete)
         if complete:
             self._unused()
+        check_modes.check_program(self, out, complete)
+        check_arbitration.check_program(self, out)
         self._capacity(out)
         return out
 
@@ -197,6 +211,7 @@ class Checker:
             elif isinstance(stmt, ast.Rule) and stmt.name is not None:
                 if claim("rule", stmt.name, "rule"):
                     self.rule_names[stmt.name.name] = stmt
+        check_modes.declare(self, claim)
 
     def _clashes_with_standard(self, ident: ast.Ident, namespace: str) -> bool:
         standard = STANDARD_ACTIONS if namespace == "action" else STANDARD_EVENTS
@@ -520,7 +535,7 @@ class Checker:
             if isinstance(arg, ast.ConditionArg):
                 self.diags.error("E024", arg.span,
                                  f"a condition such as `{arg.sensor.name} {arg.op} ...` "
-                                 f"can only be given to `sensor`",
+                                 f"can only be given to `sensor` or `ambient`",
                                  help=_signature_help(call_name.name, params))
                 ok = False
                 continue
@@ -576,6 +591,13 @@ class Checker:
         values, shown, ok = {}, {}, True
         for p in params:
             arg = bound[p.name]
+            if p.kind == CHOICE:
+                choice = self._choice(arg.value, p)
+                if choice is None:
+                    ok = False
+                    continue
+                values[p.name], shown[p.name] = choice, _shown(arg.value)
+                continue
             q = self._value(arg.value, p.kind, p.name)
             if q is None:
                 ok = False
@@ -593,7 +615,13 @@ class Checker:
         if p.kind == INT:
             if not self._whole(node, q.value):
                 return None
-            return self._fits16(int(q.value), node, p.name, "")
+            v = self._fits16(int(q.value), node, p.name, "")
+            if v is not None and p.lo is not None and not p.lo <= v <= p.hi:
+                self.diags.error(p.range_code, node.span,
+                                 f"{_code(p.name)} `{_shown(node)}` is outside {p.lo}..{p.hi}",
+                                 help=f"{_code(p.name)} is {p.doc}: {p.range.split(' [')[0]}")
+                return None
+            return v
         if p.kind == DISTANCE:
             return self._fits16(round_nearest(q.steps(geo)), node, p.name, " steps")
         if p.kind == SPEED:
@@ -631,6 +659,53 @@ class Checker:
                          help="split the motion into several shorter ones with `then`"
                          if param == "distance" else None)
         return None
+
+    def _choice(self, value, p: Param) -> Optional[str]:
+        """The C text of a value of an enumerated parameter (`led3`, `haa`,
+        `mute`, or a number its Choices accept)."""
+        choices = p.choices
+        if isinstance(value, ast.ConstRef) and not value.negative:
+            choice = choices.get(value.name.name)
+            if choice is not None:
+                return choice.c
+            if value.name.name not in self.consts or choices.numbers is None:
+                names = choices.names()
+                self.diags.error("E041", value.name.span,
+                                 f"unknown {choices.what} {_code(value.name.name)}",
+                                 help=(did_you_mean(value.name.name, names) or "")
+                                 + (" " if did_you_mean(value.name.name, names) else "")
+                                 + f"{_code(p.name)} is one of {choices.describe()}")
+                return None
+        if choices.numbers is None:
+            self.diags.error("E041", value.span,
+                             f"{_code(p.name)} names a {choices.what}, not a number",
+                             help=f"write one of {choices.describe()}")
+            return None
+        q = self._value(value, INT, p.name)
+        if q is None or not self._whole(value, q.value):
+            return None
+        lo, hi = choices.numbers
+        if not lo <= q.value <= hi:
+            self.diags.error("E042", value.span,
+                             f"{_code(p.name)} `{_shown(value)}` is outside {lo}..{hi}",
+                             help=f"the numbered {choices.what}s are {lo}..{hi}; the others have "
+                                  f"names: {', '.join(map(_code, choices.names()))}")
+            return None
+        return str(int(q.value))
+
+    def _priority(self, value) -> Optional[int]:
+        """A rule's priority: a whole number 0..PRIORITY_MAX, 0 without one."""
+        if value is None:
+            return 0
+        q = self._value(value, INT, "priority")
+        if q is None or not self._whole(value, q.value):
+            return None
+        if not 0 <= q.value <= PRIORITY_MAX:
+            self.diags.error("E042", value.span,
+                             f"priority `{_shown(value)}` is outside 0..{PRIORITY_MAX}",
+                             help="rules without a priority have 0; a higher number wins the motors")
+            return None
+        return int(q.value)
 
     # -- actions --
 
@@ -684,6 +759,8 @@ class Checker:
         return steps
 
     def _call(self, call) -> Optional[ResolvedCall]:
+        if isinstance(call, ast.EnterCall):
+            return check_modes.enter_call(self, call)
         if isinstance(call, ast.CancelCall):
             name = call.rule.name
             if name not in self.rule_names:
@@ -779,8 +856,8 @@ class Checker:
     def _event(self, call: ast.Call) -> Optional[ResolvedEvent]:
         name = call.name.name
         canonical = EVENT_ALIASES.get(name, name)
-        if canonical == "sensor":
-            return self._sensor(call)
+        if canonical in STANDARD_EVENTS and STANDARD_EVENTS[canonical].params is None:
+            return self._sensor(call, canonical)
         if canonical in STANDARD_EVENTS:
             params = STANDARD_EVENTS[canonical].params
             bound = self._bind(call.name, call.args, params, "event")
@@ -808,16 +885,17 @@ class Checker:
                          f"declare others with `extern event {name}(...) from \"{name}.c\"`")
         return None
 
-    def _sensor(self, call: ast.Call) -> Optional[ResolvedEvent]:
+    def _sensor(self, call: ast.Call, event: str = "sensor") -> Optional[ResolvedEvent]:
+        """`sensor` and `ambient`: conditions on the eight IR sensors."""
         if not call.args:
-            self.diags.error("E017", call.span, "`sensor` needs at least one condition",
-                             help="write e.g. `sensor(ir0 > 300, ir7 > 300)`")
+            self.diags.error("E017", call.span, f"`{event}` needs at least one condition",
+                             help=f"write e.g. `{event}(ir0 > 300, ir7 > 300)`")
             return None
         conditions, seen, ok = [], {}, True
         sensors = SENSOR_NAMES
         for arg in call.args:
             if not isinstance(arg, ast.ConditionArg):
-                self.diags.error("E024", arg.span, "`sensor` takes conditions such as `ir0 > 300`",
+                self.diags.error("E024", arg.span, f"`{event}` takes conditions such as `ir0 > 300`",
                                  help="compare a sensor ir0..ir7 with a threshold using `>` or `<`")
                 ok = False
                 continue
@@ -844,13 +922,15 @@ class Checker:
             if not 0 <= q.value <= THRESHOLD_MAX:
                 self.diags.error("E032", arg.value.span,
                                  f"threshold `{_shown(arg.value)}` is outside 0..{THRESHOLD_MAX}",
-                                 help="proximity readings are 12-bit: 0 (nothing near) to 4095 (touching)")
+                                 help="proximity readings are 12-bit: 0 (nothing near) to 4095 (touching)"
+                                 if event == "sensor" else
+                                 "ambient light readings are 12-bit: 0 to 4095")
                 ok = False
                 continue
             conditions.append((index, arg.op, int(q.value)))
         if not ok:
             return None
-        return ResolvedEvent("standard", "sensor", {}, tuple(sorted(conditions)), node=call)
+        return ResolvedEvent("standard", event, {}, tuple(sorted(conditions)), node=call)
 
     # -- whole-program warnings --
 

@@ -80,6 +80,7 @@ class CRegistration:
     event_label: str
     repeat: bool
     rule_id_var: Optional[str]     # file-scope id for `cancel RULE`
+    extensions: list = field(default_factory=list)   # set_event_priority(...); and the like
 
 
 @dataclass
@@ -104,6 +105,8 @@ class CProgram:
     actions_needed: int = 0
     events_needed: int = 0
     geometry: Optional[str] = None   # set_robot_geometry arguments, for a robot block
+    modes: list = field(default_factory=list)       # (id, C string of its name)
+    initial_mode: Optional[tuple] = None            # (id, name)
 
 
 # ---- C text helpers ------------------------------------------------------------
@@ -154,6 +157,8 @@ class _Lowerer:
         self.owner_counts: dict = {}     # owner -> structs made so far
         self.flat: dict = {}             # named action -> flattened steps
         self.rule_ids: dict = {}         # rule name -> file-scope id variable
+        self.mode_ids = {name: i for i, name in enumerate(program.modes, 1)}
+        self.rule_modes = {r.name: r.mode for r in program.rules if r.name is not None}
 
     def text_of(self, node) -> str:
         """The source text of a node, from its span, on one line and without
@@ -178,8 +183,25 @@ class _Lowerer:
         text = self.text_of(call.node)
         if call.kind == "cancel":
             var = self.rule_ids[call.name]
-            return _Primitive(None, "", f"cancel_event({var});", text)
-        function = STANDARD_ACTIONS[call.name].runtime if call.kind == "standard" else call.name
+            # a rule of a mode is disarmed until its mode is entered again
+            function = "disarm_event" if self.rule_modes.get(call.name) else "cancel_event"
+            return _Primitive(None, "", f"{function}({var});", text)
+        if call.kind == "enter":
+            function = "action_enter_mode"
+        elif call.kind == "standard":
+            function = STANDARD_ACTIONS[call.name].runtime
+        else:
+            function = call.name
+        if call.kind == "enter":
+            key = ("enter", call.name)
+            if key not in self.params:
+                name = f"enter_{call.name}"
+                self.out.structs.append(CStruct("param_enter_mode", name,
+                                                f"{{{self.mode_ids[call.name]}}}",
+                                                c_comment(f"mode {call.name}")))
+                self.params[key] = f"&{name}"
+            param = self.params[key]
+            return _Primitive(function, param, f"{function}({param});", text)
         if not call.values:       # stop_motor, exit_main, an extern without parameters...
             return _Primitive(function, "NULL", f"{function}(NULL);", text)
         key = id(call)
@@ -209,6 +231,10 @@ class _Lowerer:
                     f"{{{v['radius']}, {v['degrees']}, {v['speed']}, {v['outer_steps']}, {v['inner_speed']}}}",
                     f"outer wheel {v['speed']} steps/s for {v['outer_steps']} steps, "
                     f"inner {v['inner_speed']} steps/s")
+        if call.kind == "standard":
+            spec = STANDARD_ACTIONS[call.name]
+            return (spec.runtime_param, "{" + ", ".join(f.format(**v) for f in spec.fields) + "}",
+                    "")
         info = self.program.externs[call.name]
         return (f"param_{call.name}", self.extern_init(info.params, v), "")
 
@@ -305,8 +331,14 @@ class _Lowerer:
                                             self.extern_init(info.params, ev.values), comment))
             return ev.name, f"&when_{owner}"
         spec = STANDARD_EVENTS[ev.name]
-        if spec.runtime_param is None:      # immediate, stop_motor
+        if spec.runtime_param is None:      # immediate, stop_motor, enter
             return spec.runtime, "NULL"
+        if spec.fields:
+            self.out.structs.append(CStruct(spec.runtime_param, f"when_{owner}",
+                                            "{" + ", ".join(f.format(**ev.values)
+                                                            for f in spec.fields) + "}",
+                                            comment))
+            return spec.runtime, f"&when_{owner}"
         if ev.name == "timer":
             self.out.structs.append(CStruct(spec.runtime_param, f"when_{owner}",
                                             f"{{{ev.values['time']}L}}", comment))
@@ -359,6 +391,12 @@ class _Lowerer:
             event_var = f"e{index}"
             out.event_vars.append(event_var)
             head = f"rule {rule.name}: " if rule.name else ""
+            extensions = []
+            if rule.priority:
+                extensions.append(f"set_event_priority({event_var}, {rule.priority});")
+            if rule.mode is not None:
+                extensions.append(f"set_event_mode({event_var}, {self.mode_ids[rule.mode]});"
+                                  f"  /* mode {rule.mode} */")
             out.registrations.append(CRegistration(
                 comment=c_comment(f"{self.where(rule.node)}: {self.text_of(rule.node)}"),
                 action_var=action_var, new_action=new_action,
@@ -366,8 +404,14 @@ class _Lowerer:
                 event_var=event_var, event_function=event_function, event_param=event_param,
                 event_label=c_string(_shorten(f"{self.where(rule.node)} {head}on "
                                               f"{self.text_of(rule.node.event)}"
-                                              + (" repeat" if rule.repeat else ""))),
-                repeat=rule.repeat, rule_id_var=self.rule_ids.get(rule.name)))
+                                              + (" repeat" if rule.repeat else "")
+                                              + (f" priority {rule.priority}" if rule.priority
+                                                 else ""))),
+                repeat=rule.repeat, rule_id_var=self.rule_ids.get(rule.name),
+                extensions=extensions))
+        out.modes = [(i, c_string(name)) for name, i in self.mode_ids.items()]
+        if self.program.initial_mode is not None:
+            out.initial_mode = (self.mode_ids[self.program.initial_mode], self.program.initial_mode)
         out.actions_needed, out.events_needed = count_registrations(self.program)
         if self.program.robot_given:
             geo = self.program.geometry

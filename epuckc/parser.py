@@ -6,11 +6,12 @@ and the rest of the file is still checked.
 """
 from __future__ import annotations
 
+from dataclasses import replace
 from functools import lru_cache
 
 from . import ast
 from . import lalr
-from .diagnostics import Collector
+from .diagnostics import Collector, Note
 from .lexer import KEYWORDS, STATEMENT_STARTS, iter_statements, iter_tokens
 from .resources import grammar_path
 from .source import SourceFile, Span
@@ -30,7 +31,7 @@ _FRIENDLY = {
     "_LPAR": "`(`", "_RPAR": "`)`", "_LBRACE": "`{`", "_RBRACE": "`}`", "_COMMA": "`,`",
     "_COLON": "`:`", "_EQUAL": "`=`", "_SLASH": "`/`",
 }
-_STATEMENT_LIST = "a statement (`on`, `rule`, `action`, `const`, `extern` or `robot`)"
+_STATEMENT_LIST = "a statement (`on`, `rule`, `action`, `const`, `extern`, `robot` or `mode`)"
 
 
 def _friendly(term: str) -> str:
@@ -185,13 +186,33 @@ class _ToAst:
         return True
 
     def rule_def(self, meta, children):
-        name, event, repeat, body = children
+        name, event, repeat, priority, body = children
         return ast.Rule(_ident(name) if name is not None else None, event,
-                        bool(repeat), body, _span(meta))
+                        bool(repeat), body, _span(meta), priority=priority)
+
+    def priority(self, meta, children):
+        return children[0]
 
     def event_ref(self, meta, children):
         name, args = children
         return ast.Call(_ident(name), args, _span(meta))
+
+    def enter_event(self, meta, children):
+        return ast.Call(ast.Ident("enter", _span(meta)), None, _span(meta))
+
+    def enter_call(self, meta, children):
+        (name,) = children
+        return ast.EnterCall(_ident(name), _span(meta))
+
+    def initial(self, meta, children):
+        return True
+
+    def mode_open(self, meta, children):
+        initial, name = children
+        return ast.ModeOpen(_ident(name), bool(initial), _span(meta))
+
+    def mode_close(self, meta, children):
+        return ast.ModeClose(_span(meta))
 
     def action_body(self, meta, children):
         return ast.ActionBody(tuple(children), _span(meta))
@@ -249,6 +270,7 @@ def parse(source: SourceFile, diags: Collector) -> ast.Program:
     # tokens at once; `following` is the next statement's first token.
     chunks = iter_statements(iter_tokens(source, diags))
     chunk = next(chunks, None)
+    mode = None         # the ModeOpen of the mode block we are in
     while chunk is not None:
         following_chunk = next(chunks, None)
         following = following_chunk[0] if following_chunk is not None else None
@@ -257,6 +279,40 @@ def parse(source: SourceFile, diags: Collector) -> ast.Program:
         except lalr.ParseError as exc:
             _syntax_error(exc, chunk, following, source, diags)
         else:
-            program.statements.append(statement)
+            mode = _place(statement, mode, program, diags)
         chunk = following_chunk
+    if mode is not None:
+        diags.error("E001", mode.span, f"mode `{mode.name.name}` is not closed",
+                    help="end the mode's rules with `}`")
     return program
+
+
+def _place(statement, mode, program: ast.Program, diags: Collector):
+    """Add a statement to the program, minding mode blocks; returns the mode
+    block open after it."""
+    if isinstance(statement, ast.ModeOpen):
+        if mode is not None:
+            diags.error("E001", statement.span,
+                        f"mode `{statement.name.name}` starts inside mode `{mode.name.name}`",
+                        help="modes do not nest: close the first with `}` before this one",
+                        notes=[Note(f"mode `{mode.name.name}` starts here", mode.span)])
+        program.statements.append(ast.ModeDef(statement.name, statement.initial, statement.span))
+        return statement
+    if isinstance(statement, ast.ModeClose):
+        if mode is None:
+            diags.error("E001", statement.span, "this `}` closes no mode",
+                        help="remove it, or open a mode with `mode NAME {`")
+        return None
+    if mode is not None and not isinstance(statement, ast.Rule):
+        what = {ast.ConstDef: "a constant", ast.ActionDef: "an action",
+                ast.ExternDef: "an extern", ast.RobotBlock: "the robot block"}[type(statement)]
+        diags.error("E001", statement.span,
+                    f"{what} cannot be defined inside mode `{mode.name.name}`",
+                    help="only rules go in a mode; define it before the mode (names are "
+                         "visible everywhere)",
+                    notes=[Note(f"mode `{mode.name.name}` starts here", mode.span)])
+        return mode
+    if mode is not None:
+        statement = replace(statement, mode=mode.name)
+    program.statements.append(statement)
+    return mode

@@ -678,7 +678,7 @@ void rt_trace_suppressed(int event_id, int priority, int owner_event_id,
     snprintf(extra + used, sizeof extra - used, "\", \"owner_priority\": %d", owner_priority);
     record_extra("suppressed", name, event_id, -1, 0, extra);
     if (!quiet)
-        printf("[%6ld ms] suppressed %s of #%d %s (priority %d): the motors are #%d %s's "
+        printf("[%6ld ms] suppressed %s of #%d %s (priority %d); motors owned by #%d %s "
                "(priority %d)\n", now_ms, command, event_id, name, priority, owner_event_id,
                get_name(&event_names, owner_event_id, "event", owner_buf, sizeof owner_buf),
                owner_priority);

@@ -1,0 +1,114 @@
+"""Whole-program arbitration check [W009]: two rules of the same priority
+that can fire in the same poll and both command the motors.
+
+Within a poll the runtime runs the actions of the events that occurred
+highest priority first, then in file order (docs/runtime.md). Between two
+rules of one priority nothing arbitrates: both run, and the motor command
+of the later one replaces the earlier one's, silently. That is the bug
+priorities exist to prevent, so the checker names both rules and the one
+that wins.
+
+"Can fire in the same poll" is decided from the events alone, and errs on
+the side of warning; two rules are known not to, when:
+- they belong to two different modes (one mode is current at a time, and
+  after `enter` no mode's rule fires in the rest of that poll);
+- one is a one-shot `immediate` outside any mode (it fires at the first
+  poll only) and the other waits for a `stop_motor` or a `timer`, which
+  cannot occur at the first poll (nothing ran before it);
+- both are `timer` rules outside modes whose firings (one-shot: at T;
+  repeat: at every multiple of T, of one and the same timer) never meet.
+A rule "commands the motors" when its action, through the named actions it
+uses, calls `start_straight`, `start_curve` or `stop_motor`; extern
+actions are not looked into.
+"""
+from __future__ import annotations
+
+from .stdlib import MOTOR_ACTIONS
+
+# Beyond this many reports the rest are summed up in one: a file of
+# thousands of racing rules needs one fix, not thousands of warnings.
+MAX_REPORTS = 10
+
+
+def _code(text: str) -> str:
+    return f"`{text}`"
+
+
+def _commands_motors(checker, steps, seen=None) -> bool:
+    seen = set() if seen is None else seen
+    for step in steps:
+        for call in step:
+            if call.kind == "standard" and call.name in MOTOR_ACTIONS:
+                return True
+            if call.kind == "named" and call.name not in seen:
+                seen.add(call.name)
+                if _commands_motors(checker, checker._resolved_actions.get(call.name, []), seen):
+                    return True
+    return False
+
+
+def _timer_meets(a, b) -> bool:
+    """Whether timer rules a, b (outside modes) can fire at the same time."""
+    ta, tb = a.event.values["time"], b.event.values["time"]
+    if a.repeat and b.repeat:
+        return True                     # at the least common multiple
+    if not a.repeat and not b.repeat:
+        return ta == tb
+    every, once = (ta, tb) if a.repeat else (tb, ta)
+    return once % every == 0
+
+
+def can_fire_together(a, b) -> bool:
+    if a.mode is not None and b.mode is not None and a.mode != b.mode:
+        return False
+    ea, eb = a.event, b.event
+    if ea.kind != "standard" or eb.kind != "standard":
+        return True
+    for first, second in ((a, b), (b, a)):
+        if first.event.name == "immediate" and not first.repeat and first.mode is None \
+                and second.event.name in ("stop_motor", "timer"):
+            return False
+    if ea.name == "timer" and eb.name == "timer" and a.mode is None and b.mode is None:
+        return _timer_meets(a, b)
+    return True
+
+
+def describe(rule) -> str:
+    """`avoid`, or the `sensor` rule on line 7."""
+    if rule.name is not None:
+        return f"rule {_code(rule.name)}"
+    return f"the {_code(rule.event.node.name.name)} rule on line {rule.node.span.line}"
+
+
+def check_program(checker, out) -> None:
+    motor_rules = [r for r in out.rules if _commands_motors(checker, r.body)]
+    reported = 0
+    more = 0
+    for i, loser in enumerate(motor_rules):
+        for winner in motor_rules[i + 1:]:
+            if winner.priority != loser.priority or not can_fire_together(loser, winner):
+                continue
+            if reported == MAX_REPORTS:
+                more += 1
+                break
+            reported += 1
+            checker.diags.warning(
+                "W009", loser.node.event.span,
+                f"{describe(loser)} and {describe(winner)} can fire in the same poll, both command "
+                f"the motors and have the same priority ({loser.priority}): "
+                f"{describe(winner)} runs later and wins",
+                help=f"give the rule that should win a higher priority "
+                     f"(`on ... priority {loser.priority + 1} do ...`)",
+                notes=[_note(winner)])
+            break
+    if more:
+        checker.diags.warning(
+            "W009", motor_rules[-1].node.event.span,
+            f"{more} more rule{'s' if more > 1 else ''} race for the motors with a later rule of "
+            "the same priority (not listed one by one)",
+            help="give the rules that should win higher priorities")
+
+
+def _note(rule):
+    from .diagnostics import Note
+    return Note(f"{describe(rule)} is here", rule.node.span)
