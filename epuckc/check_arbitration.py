@@ -16,18 +16,27 @@ the side of warning; two rules are known not to, when:
   poll only) and the other waits for a `stop_motor` or a `timer`, which
   cannot occur at the first poll (nothing ran before it);
 - both are `timer` rules outside modes whose firings (one-shot: at T;
-  repeat: at every multiple of T, of one and the same timer) never meet.
+  repeat: at every multiple of T, of one and the same timer) never meet;
+- in one mode, its `on enter` rule (first poll after the entry) and a
+  `stop_motor` rule: entering stops the motion of the mode left without a
+  `stop_motor` event, so one could only come from a motion of a rule outside
+  the mode ending at that very poll -- a deliberate blind spot, since the
+  pattern `on enter do ... start_straight` + `on stop_motor repeat` is
+  the usual way to write a behaviour;
+- in one mode, an `on enter` rule whose first step runs `set_timer` and a
+  later `timer` rule: polled after the timer restarted in the same poll,
+  the timer rule cannot fire there.
 A rule "commands the motors" when its action, through the named actions it
 uses, calls `start_straight`, `start_curve` or `stop_motor`; extern
 actions are not looked into.
 """
 from __future__ import annotations
 
-from .stdlib import MOTOR_ACTIONS
+from .stdlib import MOTION_ACTIONS, MOTOR_ACTIONS
 
 # Beyond this many reports the rest are summed up in one: a file of
 # thousands of racing rules needs one fix, not thousands of warnings.
-MAX_REPORTS = 10
+MAX_REPORTS = 5
 
 
 def _code(text: str) -> str:
@@ -70,7 +79,21 @@ def can_fire_together(a, b) -> bool:
             return False
     if ea.name == "timer" and eb.name == "timer" and a.mode is None and b.mode is None:
         return _timer_meets(a, b)
+    if a.mode is not None and a.mode == b.mode:
+        for first, second in ((a, b), (b, a)):
+            if first.event.name != "enter":
+                continue
+            if second.event.name == "stop_motor":
+                return False
+            if second.event.name == "timer" and second is b and _sets_timer_first(first):
+                return False
     return True
+
+
+def _sets_timer_first(rule) -> bool:
+    """The rule's first step runs `set_timer` itself."""
+    return any(c.kind == "standard" and c.name == "set_timer" for c in rule.body[0]) \
+        if rule.body else False
 
 
 def describe(rule) -> str:
@@ -80,8 +103,24 @@ def describe(rule) -> str:
     return f"the {_code(rule.event.node.name.name)} rule on line {rule.node.span.line}"
 
 
+def _never_fires(checker, rule) -> bool:
+    """The rules W001..W003 report: they race with nothing."""
+    event = rule.event
+    if event.kind != "standard":
+        return False
+    if event.name == "sensor":
+        return "start_sensor" not in checker.called
+    if event.name == "timer":
+        return "set_timer" not in checker.called
+    if event.name == "stop_motor":
+        return not (checker.called & MOTION_ACTIONS) and not any(
+            e.kind == "action" for e in checker.externs.values())
+    return False
+
+
 def check_program(checker, out) -> None:
-    motor_rules = [r for r in out.rules if _commands_motors(checker, r.body)]
+    motor_rules = [r for r in out.rules
+                   if _commands_motors(checker, r.body) and not _never_fires(checker, r)]
     reported = 0
     more = 0
     for i, loser in enumerate(motor_rules):

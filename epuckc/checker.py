@@ -678,7 +678,8 @@ class Checker:
                 return None
         if choices.numbers is None:
             self.diags.error("E041", value.span,
-                             f"{_code(p.name)} names a {choices.what}, not a number",
+                             f"{_code(p.name)} names {_article(choices.what)} {choices.what}, "
+                             "not a number",
                              help=f"write one of {choices.describe()}")
             return None
         q = self._value(value, INT, p.name)
@@ -999,6 +1000,10 @@ _ROBOT_EXAMPLE = {"wheel_diameter": "41 mm", "wheel_circumference": "128.8 mm",
 
 def _clip(text: str, limit: int = 24) -> str:
     return text if len(text) <= limit else text[:limit] + "..."
+
+
+def _article(word: str) -> str:
+    return "an" if word[:1] in "aeiouAEIOU" or word == "LED" else "a"
 
 
 def _either(names) -> str:

@@ -190,8 +190,13 @@ class _ToAst:
         return ast.Rule(_ident(name) if name is not None else None, event,
                         bool(repeat), body, _span(meta), priority=priority)
 
-    def priority(self, meta, children):
-        return children[0]
+    def priority_number(self, meta, children):
+        (number,) = children
+        return ast.Number(float(str(number)), str(number), None, None, _tok_span(number))
+
+    def priority_const(self, meta, children):
+        (name,) = children
+        return ast.ConstRef(_ident(name), False, _tok_span(name))
 
     def event_ref(self, meta, children):
         name, args = children
@@ -270,7 +275,7 @@ def parse(source: SourceFile, diags: Collector) -> ast.Program:
     # tokens at once; `following` is the next statement's first token.
     chunks = iter_statements(iter_tokens(source, diags))
     chunk = next(chunks, None)
-    mode = None         # the ModeOpen of the mode block we are in
+    modes: list = []        # the ModeOpens of the mode blocks we are in
     while chunk is not None:
         following_chunk = next(chunks, None)
         following = following_chunk[0] if following_chunk is not None else None
@@ -279,17 +284,18 @@ def parse(source: SourceFile, diags: Collector) -> ast.Program:
         except lalr.ParseError as exc:
             _syntax_error(exc, chunk, following, source, diags)
         else:
-            mode = _place(statement, mode, program, diags)
+            _place(statement, modes, program, diags)
         chunk = following_chunk
-    if mode is not None:
+    for mode in modes:
         diags.error("E001", mode.span, f"mode `{mode.name.name}` is not closed",
                     help="end the mode's rules with `}`")
     return program
 
 
-def _place(statement, mode, program: ast.Program, diags: Collector):
-    """Add a statement to the program, minding mode blocks; returns the mode
-    block open after it."""
+def _place(statement, modes: list, program: ast.Program, diags: Collector) -> None:
+    """Add a statement to the program, minding mode blocks (`modes`: those
+    open, innermost last; updated)."""
+    mode = modes[-1] if modes else None
     if isinstance(statement, ast.ModeOpen):
         if mode is not None:
             diags.error("E001", statement.span,
@@ -297,12 +303,15 @@ def _place(statement, mode, program: ast.Program, diags: Collector):
                         help="modes do not nest: close the first with `}` before this one",
                         notes=[Note(f"mode `{mode.name.name}` starts here", mode.span)])
         program.statements.append(ast.ModeDef(statement.name, statement.initial, statement.span))
-        return statement
+        modes.append(statement)
+        return
     if isinstance(statement, ast.ModeClose):
         if mode is None:
             diags.error("E001", statement.span, "this `}` closes no mode",
                         help="remove it, or open a mode with `mode NAME {`")
-        return None
+        else:
+            modes.pop()
+        return
     if mode is not None and not isinstance(statement, ast.Rule):
         what = {ast.ConstDef: "a constant", ast.ActionDef: "an action",
                 ast.ExternDef: "an extern", ast.RobotBlock: "the robot block"}[type(statement)]
@@ -311,8 +320,7 @@ def _place(statement, mode, program: ast.Program, diags: Collector):
                     help="only rules go in a mode; define it before the mode (names are "
                          "visible everywhere)",
                     notes=[Note(f"mode `{mode.name.name}` starts here", mode.span)])
-        return mode
-    if mode is not None:
+    elif mode is not None:
         statement = replace(statement, mode=mode.name)
+    # a definition misplaced in a mode still defines its name: no follow-up errors
     program.statements.append(statement)
-    return mode

@@ -678,7 +678,11 @@ void enter_mode(int mode)
         seq_waiting = 0;
     }
     if (motion.active && motion.owner >= 0 && event_ext[motion.owner].mode == left) {
+        /* stopped without a stop_motor event: the motion did not end, its
+         * mode did (the new mode's stop_motor rules must not take it for
+         * the end of a motion of theirs) */
         motion.active = 0;
+        seen_moving = 0;
         wheels(0, 0);
     }
 }

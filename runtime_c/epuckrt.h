@@ -179,7 +179,8 @@ void set_event_mode(int event_id, int mode);
  * state reset as at registration (one-shot ones that fired and disarmed
  * ones included; not those cancelled with cancel_event); no event of any
  * mode fires in the rest of this poll.  A sequence started by an event of
- * the mode left is abandoned and a motion it owns stopped.  Before
+ * the mode left is abandoned and a motion it owns stopped (without a
+ * stop_motor event).  Before
  * mainloop: sets the initial mode (traced when mainloop starts). */
 void enter_mode(int mode);
 /* Disarms an event until its mode is entered again (cancel_event is

@@ -150,7 +150,7 @@ def test_human_summary_counts_all_files(work, capsys):
 
 
 def test_capacity_options(work, capsys):
-    rules = "".join(f"rule r{i}: on immediate do start_straight(300, {i + 1} mm)\n"
+    rules = "".join(f"rule r{i}: on immediate do led_on(led{i})\n"
                     for i in range(5))
     (work / "five.epk").write_text(rules, encoding="utf-8")
     assert run_cli(["check", "five.epk"], capsys)[0] == 0
