@@ -71,7 +71,7 @@ SANITIZED = {
     "registry.c": {}, "capacity.c": {"defines": ["MAX_ACTIONS=3", "MAX_EVENTS=4"]},
     "sensor_edge.c": {}, "sensor_off.c": {}, "timer_periodic.c": {},
     "timer_reset.c": {"time_limit": 500}, "stop_action.c": {}, "stop_restart.c": {},
-    "zero_motion.c": {},
+    "zero_motion.c": {}, "priority.c": {}, "modes.c": {}, "devices.c": {},
 }
 
 
