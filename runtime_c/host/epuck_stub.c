@@ -405,7 +405,7 @@ void e_set_led(unsigned int led_number, unsigned int value)
     unsigned int n;
 
     if (led_number > 8)
-        return;
+        led_number = 8;     /* the library sets all eight for any other number */
     for (n = 0; n < 8; n++)
         if (n == led_number || led_number == 8)
             ring[n] = led_value(ring[n], value);

@@ -43,10 +43,12 @@ def test_dspic_project_compiles_on_the_host_against_the_library_declarations(tmp
                         "-o", str(tmp_path / "x.o")], check=True)
 
 
-def test_dspic_project_compiles_with_16_bit_int(tmp_path):
-    out, _ = dspic_project(tmp_path, example="square.epk")
+@pytest.mark.parametrize("example", ["square.epk", "explorer.epk", "two_phase.epk",
+                                     "selector_menu.epk"])
+def test_dspic_project_compiles_with_16_bit_int(tmp_path, example):
+    out, _ = dspic_project(tmp_path, example=example)
     avr = require_tool("avr-gcc")
-    for source in ("square.c", "epuckrt.c", "platform_robot.c"):
+    for source in (example.replace(".epk", ".c"), "epuckrt.c", "platform_robot.c"):
         subprocess.run([avr, "-mmcu=atmega128", *WARN, "-Os", f"-I{out}", f"-I{EPUCK_API}",
                         "-c", str(out / source), "-o", str(tmp_path / "x.o")], check=True)
 
@@ -77,7 +79,10 @@ def _fake_library(root: Path) -> Path:
     for rel in ("motor_led/e_init_port.c", "motor_led/advance_one_timer/e_motors.c",
                 "motor_led/advance_one_timer/e_agenda.c", "motor_led/advance_one_timer/e_led.c",
                 "a_d/advance_ad_scan/e_ad_conv.c", "a_d/advance_ad_scan/e_prox.c",
-                "a_d/advance_ad_scan/e_acc.c", "a_d/advance_ad_scan/e_micro.c"):
+                "a_d/advance_ad_scan/e_acc.c", "a_d/advance_ad_scan/e_micro.c",
+                "motor_led/advance_one_timer/e_remote_control.c", "codec/e_sound.c",
+                "utility/utility.c", "codec/e_const_sound.s", "codec/e_init_codec_slave.s",
+                "codec/e_init_dci_master.s", "codec/e_isr_dci.s", "codec/e_sub_dci_kickoff.s"):
         (lib / "library" / rel).parent.mkdir(parents=True, exist_ok=True)
         (lib / "library" / rel).write_text("/* stand-in */\n")
     return lib
@@ -106,7 +111,8 @@ def test_dspic_build_runs_make_with_xc16_from_xc16_dir(tmp_path):
     assert (out / "extern_spin.hex").is_file()
     calls = log.read_text().splitlines()
     compiles = [c for c in calls if " -c " in c]
-    assert len(compiles) == 3 + 8          # program, runtime, robot layer + library
+    # program, runtime, robot layer + the library's 11 C and 5 assembly files
+    assert len(compiles) == 3 + 11 + 5
     assert all("-mcpu=30F6014A" in c for c in calls if c.startswith("xc16-gcc"))
     assert calls[-1] == "xc16-bin2hex extern_spin.elf"
 
