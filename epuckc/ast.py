@@ -171,7 +171,14 @@ class ModeClose:
     span: Span
 
 
-Statement = Union[RobotBlock, ConstDef, ActionDef, ExternDef, Rule, ModeDef]
+@dataclass(frozen=True)
+class ModeEnd:
+    """The `}` that closes a mode block: kept in the statements so that they
+    match the lexer's statement chunks one to one (the formatter needs it)."""
+    span: Span
+
+
+Statement = Union[RobotBlock, ConstDef, ActionDef, ExternDef, Rule, ModeDef, ModeEnd]
 
 
 @dataclass

@@ -97,10 +97,28 @@ def _sets_timer_first(rule) -> bool:
 
 
 def describe(rule) -> str:
-    """`avoid`, or the `sensor` rule on line 7."""
+    """rule `avoid`, or the rule `on sensor(ir0 > 300)`: words that do not
+    depend on the layout (the note gives the position)."""
     if rule.name is not None:
         return f"rule {_code(rule.name)}"
-    return f"the {_code(rule.event.node.name.name)} rule on line {rule.node.span.line}"
+    return f"the rule {_code('on ' + event_text(rule.event.node))}"
+
+
+def event_text(call) -> str:
+    """An event as written, in the formatter's layout."""
+    from . import ast
+    from .checker import _shown
+    if call.args is None:
+        return call.name.name
+    args = []
+    for arg in call.args:
+        if isinstance(arg, ast.NamedArg):
+            args.append(f"{arg.name.name}: {_shown(arg.value)}")
+        elif isinstance(arg, ast.ConditionArg):
+            args.append(f"{arg.sensor.name} {arg.op} {_shown(arg.value)}")
+        else:
+            args.append(_shown(arg.value))
+    return f"{call.name.name}({', '.join(args)})"
 
 
 def _never_fires(checker, rule) -> bool:
@@ -133,8 +151,8 @@ def check_program(checker, out) -> None:
             reported += 1
             checker.diags.warning(
                 "W009", loser.node.event.span,
-                f"{describe(loser)} and {describe(winner)} can fire in the same poll, both command "
-                f"the motors and have the same priority ({loser.priority}): "
+                f"{describe(loser)} and {describe(winner)} can fire in the same poll, both "
+                f"command the motors and have the same priority ({loser.priority}): "
                 f"{describe(winner)} runs later and wins",
                 help=f"give the rule that should win a higher priority "
                      f"(`on ... priority {loser.priority + 1} do ...`)",

@@ -1018,7 +1018,11 @@ def _count(n: int) -> str:
 def _signature_help(name: str, params) -> str:
     if not params:
         return f"write `{name}` with no arguments"
-    return f"write `{name}({', '.join(f'{p.name}: {_example(p.kind)}' for p in params)})`"
+    return f"write `{name}({', '.join(f'{p.name}: {_example_of(p)}' for p in params)})`"
+
+
+def _example_of(p: Param) -> str:
+    return p.choices.values[0].name if p.choices is not None else _example(p.kind)
 
 
 def _example(kind: str) -> str:

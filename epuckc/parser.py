@@ -311,6 +311,7 @@ def _place(statement, modes: list, program: ast.Program, diags: Collector) -> No
                         help="remove it, or open a mode with `mode NAME {`")
         else:
             modes.pop()
+            program.statements.append(ast.ModeEnd(statement.span))
         return
     if mode is not None and not isinstance(statement, ast.Rule):
         what = {ast.ConstDef: "a constant", ast.ActionDef: "an action",
