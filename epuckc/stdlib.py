@@ -94,6 +94,7 @@ class EventSpec:
     runtime_param: Optional[str] = None   # its parameter struct, if any
     fields: tuple = ()        # as ActionSpec.fields, for the structs not the paper's
     in_mode: bool = False     # only inside a mode (`enter`)
+    conditions_doc: str = ""  # for params None: its conditions, when not the sensor's
 
     @property
     def signature(self) -> str:
@@ -131,6 +132,7 @@ KEYS = Choices("key", (
 ), numbers=(0, 9))
 CHOICES = (LEDS, SOUNDS, KEYS)
 
+SENSOR_NAMES_DOC = ("ir0", f"ir{SENSOR_COUNT - 1}")
 _LED = Param("led", CHOICE, "which LED", "one of " + LEDS.describe() + " [E041]", choices=LEDS)
 _READING_RANGE = f"a whole number 0..{THRESHOLD_MAX} [E032]"
 
@@ -219,7 +221,9 @@ EVENTS = (
     EventSpec("ambient", None,
               "when some listed sensor's ambient light reading (`e_get_ambient_light`) passes "
               "its threshold; needs no `start_sensor`",
-              "event_ambient", "param_event_sensor"),
+              "event_ambient", "param_event_sensor",
+              conditions_doc=f"`{SENSOR_NAMES_DOC[0]}`..`{SENSOR_NAMES_DOC[1]}` `>` or `<` a "
+              f"whole threshold in 0..{THRESHOLD_MAX} [E032] (raw ambient light readings)"),
 )
 
 STANDARD_ACTIONS = {spec.name: spec for spec in ACTIONS}
@@ -269,7 +273,7 @@ def reference_markdown() -> str:
         lines.append(f"| `{a.name}` | {params} | {a.doc} |")
     lines += ["", "### 3.2 Events", "", "| event | parameters | occurs |", "|---|---|---|"]
     for e in EVENTS:
-        params = ("conditions: " + SENSOR_CONDITION_DOC if e.params is None
+        params = ("conditions: " + (e.conditions_doc or SENSOR_CONDITION_DOC) if e.params is None
                   else ", ".join(describe_param(p) for p in e.params) or "-")
         lines.append(f"| `{e.name}` | {params} | {e.doc} |")
     for choices in CHOICES:

@@ -505,6 +505,23 @@ static void sequence_outside_command(void)
     }
 }
 
+/* Motor arbitration of run_sequence: a sequence in progress belongs to the
+ * event that started it; one of lower priority may not replace it (1: the
+ * new sequence is suppressed and traced).  Otherwise the new sequence runs,
+ * and each of its steps' motor commands is arbitrated on its own. */
+static int sequence_refused(void)
+{
+    int owner = seq_event_id, me = current_event_id;
+
+    if (seq == NULL || owner < 0 || me < 0 || owner == me)
+        return 0;
+    if (event_ext[me].priority >= event_ext[owner].priority)
+        return 0;
+    rt_trace_suppressed(me, event_ext[me].priority, owner, event_ext[owner].priority,
+                        "run_sequence");
+    return 1;
+}
+
 /* Run steps from seq_next on, until one starts a motion (then wait for it
  * to end) or the sequence is over. */
 static void sequence_run_steps(void)
@@ -547,7 +564,7 @@ void action_run_sequence(void *param)
 {
     const param_sequence *p = (const param_sequence *)param;
 
-    if (motors_refused("run_sequence"))
+    if (sequence_refused())
         return;
     seq_generation++;
     seq = NULL;

@@ -168,9 +168,10 @@ void immediate(void *param, void *status);
  * polled and their actions run highest priority first, then in index
  * order.  The motors belong to the event whose action started the motion
  * in progress: while it runs, motor commands (start_straight, start_curve,
- * stop_motor, run_sequence) from the action of an event of lower priority
- * are suppressed (and traced).  All priorities equal: the paper's
- * behaviour.  Unknown ids ignored. */
+ * stop_motor) from the action of an event of lower priority are suppressed
+ * (and traced), and so is a run_sequence that would replace a sequence in
+ * progress of an event of higher priority.  All priorities equal: the
+ * paper's behaviour.  Unknown ids ignored. */
 void set_event_priority(int event_id, int priority);
 /* The mode an event belongs to: 0 (the default) none, always armed; a
  * positive number: polled only while that mode is the current one. */

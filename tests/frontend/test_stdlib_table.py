@@ -75,5 +75,4 @@ def test_every_motor_command_is_arbitrated_by_the_runtime():
     ones the runtime refuses when a rule of higher priority owns the motors."""
     source = (REPO / "runtime_c" / "epuckrt.c").read_text()
     refused = set(re.findall(r'motors_refused\("(\w+)"\)', source))
-    assert {stdlib.STANDARD_ACTIONS[n].runtime for n in stdlib.MOTOR_ACTIONS} | \
-        {"run_sequence"} == refused
+    assert {stdlib.STANDARD_ACTIONS[n].runtime for n in stdlib.MOTOR_ACTIONS} == refused

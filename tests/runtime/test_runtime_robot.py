@@ -18,16 +18,18 @@ def test_priorities_order_the_poll_and_own_the_motors(tmp_path):
         (1, "wander", "start_straight", 0, "escape", 2),
         (500, "low sequence", "run_sequence", 1, "escape", 2),   # priority 1 polled first
         (500, "low stop", "stop_motor", 0, "escape", 2),
+        (2500, "late sequence", "start_straight", 0, "guard", 3),
     ]
-    # escape's motion ran undisturbed: 500 steps at 500 steps/s
-    resume = r.records("event", "resume")[0]
-    assert resume["t_ms"] == 1001 and resume["left_steps"] == 500
-    # once escape's motion ended, a rule of priority 0 may drive and another
-    # rule of equal priority may stop it
+    # escape's sequence ran undisturbed: twice 500 steps at 500 steps/s
+    resume = r.records("event", "resume")
+    assert [x["t_ms"] for x in resume] == [2001, 2600] and resume[0]["left_steps"] == 1000
+    # the late sequence ran (its step is traced) though its motion was refused
+    assert [(a["t_ms"], a["step"]) for a in r.records("action") if "step" in a][-1] == (2500, 0)
+    # an event of equal priority may stop a motion
     end = r.records("event", "equal stop")[0]
-    assert end["left_steps"] > 500
-    assert r.trace[-1]["kind"] == "exit" and r.trace[-1]["left_steps"] == end["left_steps"]
-    assert r.trace[-1]["t_ms"] == 3000
+    assert r.trace[-1]["kind"] == "exit" and r.trace[-1]["t_ms"] == 3000
+    assert r.trace[-1]["left_steps"] == end["left_steps"]
+    assert r.records("action", "stop_motor")[-1]["t_ms"] == 3000
 
 
 def test_modes_arm_rearm_and_stop_what_they_leave(tmp_path):
