@@ -234,7 +234,8 @@ MOTION_ACTIONS = frozenset(spec.name for spec in ACTIONS if spec.motion)
 # The paper's long spellings are accepted too (`action_start_straight`,
 # `event_timer`), so that its tables can be copied as they are.
 ACTION_ALIASES = {f"action_{name}": name for name in STANDARD_ACTIONS}
-EVENT_ALIASES = {f"event_{name}": name for name in STANDARD_EVENTS}
+# (`enter` is written as its keyword only: it has no long spelling)
+EVENT_ALIASES = {f"event_{spec.name}": spec.name for spec in EVENTS if not spec.in_mode}
 
 SENSOR_NAMES = tuple(f"ir{i}" for i in range(SENSOR_COUNT))
 SENSOR_CONDITION_DOC = (f"`{SENSOR_NAMES[0]}`..`{SENSOR_NAMES[-1]}` `>` or `<` a whole "
