@@ -51,7 +51,8 @@ class ResolvedCall:
     """A call whose arguments are checked and converted.
 
     kind: "standard" | "extern" | "named" | "cancel" | "enter" (name: the mode)
-    values: parameter name -> integer in runtime units; for start_straight
+    values: parameter name -> integer in runtime units (for an enumerated
+    parameter, the C text of its value: `SET_LED_BODY`); for start_straight
     also `distance_mm`, for start_curve `outer_steps` and `inner_speed`.
     shown: parameter name -> the argument as the user wrote it.
     """
