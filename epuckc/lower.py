@@ -8,7 +8,7 @@ so the checker asks count_registrations() rather than guessing.
 
 Generated names never collide with each other, C keywords or the runtime:
 user names only ever appear after a prefix that the runtime does not use
-(`a_`, `rule_`), and derived names put their kind first
+(`a_`, `rule_`, `mode_`), and derived names put their kind first
 (`p2_a_go` is the second parameter struct of action `go`, `p1_r3` the first
 of rule 3's own action list).
 """
@@ -186,22 +186,17 @@ class _Lowerer:
             # a rule of a mode is disarmed until its mode is entered again
             function = "disarm_event" if self.rule_modes.get(call.name) else "cancel_event"
             return _Primitive(None, "", f"{function}({var});", text)
-        if call.kind == "enter":
-            function = "action_enter_mode"
-        elif call.kind == "standard":
-            function = STANDARD_ACTIONS[call.name].runtime
-        else:
-            function = call.name
-        if call.kind == "enter":
+        if call.kind == "enter":         # one param_enter_mode struct per mode entered
             key = ("enter", call.name)
             if key not in self.params:
-                name = f"enter_{call.name}"
+                name = f"mode_{call.name}"
                 self.out.structs.append(CStruct("param_enter_mode", name,
                                                 f"{{{self.mode_ids[call.name]}}}",
                                                 c_comment(f"mode {call.name}")))
                 self.params[key] = f"&{name}"
             param = self.params[key]
-            return _Primitive(function, param, f"{function}({param});", text)
+            return _Primitive("action_enter_mode", param, f"action_enter_mode({param});", text)
+        function = STANDARD_ACTIONS[call.name].runtime if call.kind == "standard" else call.name
         if not call.values:       # stop_motor, exit_main, an extern without parameters...
             return _Primitive(function, "NULL", f"{function}(NULL);", text)
         key = id(call)

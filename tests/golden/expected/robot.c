@@ -22,7 +22,7 @@ static param_start_straight p1_r4 = {-500, 50, 388};
 /* robot.epk:8: tap(600) */
 static param_event_accel when_r4 = {600};
 /* mode rest */
-static param_enter_mode enter_rest = {2};
+static param_enter_mode mode_rest = {2};
 /* robot.epk:9: timer(60 s) */
 static param_event_timer when_r5 = {60000L};
 /* robot.epk:12: led_off(all) */
@@ -32,7 +32,7 @@ static param_set_led p2_r6 = {SET_LED_BODY, SET_LED_ON};
 /* robot.epk:12: play_sound(wouaaaaaaaah) */
 static param_play_sound p3_r6 = {SOUND_WOUAAAAAAAAH};
 /* mode explore */
-static param_enter_mode enter_explore = {1};
+static param_enter_mode mode_explore = {1};
 /* robot.epk:13: remote(5) */
 static param_event_remote when_r7 = {5};
 /* robot.epk:14: remote(standby) */
@@ -113,7 +113,7 @@ int main(void)
     set_event_mode(e4, 1);  /* mode explore */
 
     /* robot.epk:9: on timer(60 s) do enter rest */
-    a5 = register_action(action_enter_mode, &enter_rest);
+    a5 = register_action(action_enter_mode, &mode_rest);
     name_action(a5, "enter rest");
     e5 = register_event(timer, &when_r5, a5);
     name_event(e5, "robot.epk:9 on timer(60 s)");
@@ -127,7 +127,7 @@ int main(void)
     set_event_mode(e6, 2);  /* mode rest */
 
     /* robot.epk:13: on remote(5) do enter explore */
-    a7 = register_action(action_enter_mode, &enter_explore);
+    a7 = register_action(action_enter_mode, &mode_explore);
     name_action(a7, "enter explore");
     e7 = register_event(event_remote, &when_r7, a7);
     name_event(e7, "robot.epk:13 on remote(5)");
