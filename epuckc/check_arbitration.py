@@ -32,6 +32,7 @@ actions are not looked into.
 """
 from __future__ import annotations
 
+from .check_modes import flat_steps
 from .stdlib import MOTION_ACTIONS, MOTOR_ACTIONS
 
 # Beyond this many reports the rest are summed up in one: a file of
@@ -43,17 +44,9 @@ def _code(text: str) -> str:
     return f"`{text}`"
 
 
-def _commands_motors(checker, steps, seen=None) -> bool:
-    seen = set() if seen is None else seen
-    for step in steps:
-        for call in step:
-            if call.kind == "standard" and call.name in MOTOR_ACTIONS:
-                return True
-            if call.kind == "named" and call.name not in seen:
-                seen.add(call.name)
-                if _commands_motors(checker, checker._resolved_actions.get(call.name, []), seen):
-                    return True
-    return False
+def _commands_motors(checker, steps) -> bool:
+    return any(call.kind == "standard" and call.name in MOTOR_ACTIONS
+               for step in flat_steps(checker, steps) for call in step)
 
 
 def _timer_meets(a, b) -> bool:

@@ -64,31 +64,26 @@ def check_rule(checker, rule: ast.Rule, event) -> None:
                                  "`on immediate` to run something at start")
 
 
-def _calls(checker, steps, seen=None):
-    """Every call of a body, through the named actions it uses, with the
-    step index of the rule's own body it belongs to."""
-    seen = set() if seen is None else seen
-    for index, step in enumerate(steps):
-        for call in step:
-            if call.kind == "named" and call.name not in seen:
-                seen.add(call.name)
-                for _, inner in _calls(checker, checker._resolved_actions.get(call.name, []), seen):
-                    yield index, inner
-            else:
-                yield index, call
+def flat_steps(checker, steps) -> list:
+    """A body's steps with its named actions spliced in, as lowering does:
+    used alone as a step a named action's steps replace it; inside a comma
+    list its first step runs in its place and its later steps follow the
+    list. Memoised per named action (on the checker), and walked on a stack
+    of our own: a chain of thousands of named actions is deeper than
+    Python's stack. (Resolved bodies hold no cycles: a call that would close
+    one is an error, E023, and left out.)"""
+    memo = checker._flat_actions
+    resolved = checker._resolved_actions
 
-
-def _steps_after_enter(steps, resolved_actions) -> Optional[object]:
-    """The first `enter` call of a body that a later step follows, or None.
-    Named actions are spliced in as lowering does: used in a step, their
-    first step runs in its place and their later steps follow it."""
-    def flatten(body, seen):
+    def walk(body):
         out = []
         for step in body:
             current, later = [], []
             for call in step:
-                if call.kind == "named" and call.name not in seen:
-                    inner = flatten(resolved_actions.get(call.name, []), seen | {call.name})
+                if call.kind == "named":
+                    inner = memo.get(call.name)
+                    if inner is None:
+                        inner = yield call.name
                     if inner:
                         current.extend(inner[0])
                         later.extend(inner[1:])
@@ -98,7 +93,27 @@ def _steps_after_enter(steps, resolved_actions) -> Optional[object]:
             out.extend(later)
         return out
 
-    for step in flatten(steps, frozenset())[:-1]:
+    stack = [(walk(steps), None)]
+    result = None
+    while True:
+        gen, name = stack[-1]
+        try:
+            needed = gen.send(result)
+        except StopIteration as done:
+            stack.pop()
+            if name is not None:
+                memo[name] = done.value
+            if not stack:
+                return done.value
+            result = done.value
+            continue
+        stack.append((walk(resolved.get(needed, [])), needed))
+        result = None
+
+
+def _steps_after_enter(checker, steps) -> Optional[object]:
+    """The first `enter` call of a body that a later step follows, or None."""
+    for step in flat_steps(checker, steps)[:-1]:
         for call in step:
             if call.kind == "enter":
                 return call
@@ -128,7 +143,7 @@ def check_program(checker, out, complete: bool = True) -> None:
     for rule in out.rules:
         if rule.mode is None:
             continue
-        for _, call in _calls(checker, rule.body):
+        for call in (c for step in flat_steps(checker, rule.body) for c in step):
             if call.kind == "cancel" and rule_mode.get(call.name) not in (None, rule.mode):
                 other = rule_mode[call.name]
                 diags.error("E045", call.node.span,
@@ -139,7 +154,7 @@ def check_program(checker, out, complete: bool = True) -> None:
                                  f"cancel it from a rule of mode {_code(other)}",
                             notes=[Note(f"{_code(call.name)} is defined here",
                                         checker.rule_names[call.name].span)])
-        enter = _steps_after_enter(rule.body, checker._resolved_actions)
+        enter = _steps_after_enter(checker, rule.body)
         if enter is not None:
             diags.warning("W011", enter.node.span,
                           f"the steps after `enter {enter.name}` never run",

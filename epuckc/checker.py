@@ -143,6 +143,7 @@ class Checker:
         self._const_reported: set = set()
         self._const_diagnostics: set = set()
         self._resolved_actions: dict = {}
+        self._flat_actions: dict = {}    # named action -> flattened steps (check_modes.flat_steps)
         self.modes: dict = {}            # name -> ModeDef
         self.initial_mode: Optional[str] = None
 
