@@ -15,7 +15,7 @@ from pathlib import Path
 from typing import Optional
 
 from . import ast, check_arbitration, check_modes
-from .diagnostics import Collector, Note
+from .diagnostics import Collector, Fix, Note
 from .source import Span
 from .stdlib import (ACTION_ALIASES, CHOICE, EVENT_ALIASES, EXTERN_TYPES, MOTION_ACTIONS,
                      SENSOR_NAMES, STANDARD_ACTIONS, STANDARD_EVENTS, THRESHOLD_MAX, Param)
@@ -105,9 +105,11 @@ class CheckedProgram:
     initial_mode: Optional[str] = None
 
 
-def did_you_mean(name: str, candidates) -> Optional[str]:
-    close = difflib.get_close_matches(name, sorted(candidates), n=1, cutoff=0.6)
-    return f"did you mean `{close[0]}`?" if close else None
+def did_you_mean(ident: ast.Ident, candidates) -> Optional[Fix]:
+    """The closest of `candidates` to a misspelt name, as a fix that
+    replaces the name (its help reads "did you mean `start_straight`?")."""
+    close = difflib.get_close_matches(ident.name, sorted(candidates), n=1, cutoff=0.6)
+    return Fix(ident.span, close[0], f"did you mean `{close[0]}`?") if close else None
 
 
 def _code(text: str) -> str:
@@ -155,20 +157,12 @@ class Checker:
         out = CheckedProgram(self.program.file, self.geo,
                              robot_given=bool(self.program.of_type(ast.RobotBlock)))
         out.externs = self.externs
-        self._resolve_named_actions()
-        for name, node in self.actions.items():
-            out.actions[name] = self._named_action(name)
-            out.action_nodes[name] = node
+        self._resolve_actions(out)
         out.modes, out.initial_mode = list(self.modes), self.initial_mode
         for rule in self.program.of_type(ast.Rule):
-            event = self._event(rule.event)
-            body = self._body(rule.body)
-            priority = self._priority(rule.priority)
-            check_modes.check_rule(self, rule, event)
-            if event is not None and priority is not None:
-                out.rules.append(ResolvedRule(rule.name.name if rule.name else None,
-                                              event, rule.repeat, body, rule, priority,
-                                              rule.mode.name if rule.mode else None))
+            resolved = self._rule(rule)
+            if resolved is not None:
+                out.rules.append(resolved)
         # Warnings that conclude from an absence ("no action runs set_timer",
         # "never used") are drawn only from a complete program: a statement
         # or call dropped by an error may be the very one that was missing,
@@ -181,6 +175,26 @@ class Checker:
         check_arbitration.check_program(self, out)
         self._capacity(out)
         return out
+
+    # Resolving the named actions and each rule are the steps that the
+    # language server's incremental checker (epuckc/incremental.py) reuses
+    # from one keystroke to the next.
+
+    def _resolve_actions(self, out: CheckedProgram):
+        self._resolve_named_actions()
+        for name, node in self.actions.items():
+            out.actions[name] = self._named_action(name)
+            out.action_nodes[name] = node
+
+    def _rule(self, rule: ast.Rule) -> Optional[ResolvedRule]:
+        event = self._event(rule.event)
+        body = self._body(rule.body)
+        priority = self._priority(rule.priority)
+        check_modes.check_rule(self, rule, event)
+        if event is None or priority is None:
+            return None
+        return ResolvedRule(rule.name.name if rule.name else None, event, rule.repeat, body, rule,
+                            priority, rule.mode.name if rule.mode else None)
 
     # -- declarations --
 
@@ -240,7 +254,7 @@ class Checker:
         for p in stmt.params:
             if p.type.name not in EXTERN_TYPES:
                 self.diags.error("E026", p.type.span, f"unknown type {_code(p.type.name)}",
-                                 help=did_you_mean(p.type.name, EXTERN_TYPES)
+                                 help=did_you_mean(p.type, EXTERN_TYPES)
                                  or "the types are " + ", ".join(map(_code, EXTERN_TYPES)))
                 ok = False
             if p.name.name in names:
@@ -294,9 +308,9 @@ class Checker:
             name = setting.name.name
             if name not in kinds:
                 settings = "the settings are " + ", ".join(map(_code, kinds))
-                guess = did_you_mean(name, kinds)
+                guess = did_you_mean(setting.name, kinds)
                 self.diags.error("E022", setting.name.span, f"unknown robot setting {_code(name)}",
-                                 help=f"{guess} {settings}" if guess else settings)
+                                 help=guess.then(settings) if guess else settings)
                 continue
             if name in given:
                 self.diags.error("E018", setting.name.span, f"{_code(name)} is given twice",
@@ -312,7 +326,8 @@ class Checker:
                 continue
             if q.value <= 0:
                 self.diags.error("E037", setting.value.span, f"{_code(name)} must be positive",
-                                 help=f"for the e-puck, write `{name}: {_ROBOT_EXAMPLE[name]}`")
+                                 help=Fix(setting.value.span, _ROBOT_EXAMPLE[name],
+                                          f"for the e-puck, write `{name}: {_ROBOT_EXAMPLE[name]}`"))
                 continue
             if kinds[name] == INT and not self._whole(setting.value, q.value):
                 continue
@@ -386,7 +401,8 @@ class Checker:
         if value.unit is not None:
             if value.unit not in UNITS:
                 all_units = sorted(UNITS)
-                hint = did_you_mean(value.unit, KIND_UNITS.get(kind, all_units)) or (
+                hint = did_you_mean(ast.Ident(value.unit, value.unit_span),
+                                    KIND_UNITS.get(kind, all_units)) or (
                     f"`{param}` is {ARTICLE[kind]}: write it in "
                     + _either(KIND_UNITS[kind]) if kind != INT
                     else f"`{param}` takes a plain number, without a unit")
@@ -404,7 +420,9 @@ class Checker:
             n = value.text.lstrip("-")
             self.diags.warning("W008", value.span,
                                f"`{n}` without a unit is {n} ms: did you mean {n} s?",
-                               help=f"write `{n} s`, or `{n} ms` if milliseconds are meant")
+                               help=Fix(Span(value.span.end_line, value.span.end_column,
+                                             value.span.end_line, value.span.end_column),
+                                        " s", f"write `{n} s`, or `{n} ms` if milliseconds are meant"))
         return quantity(value.value, value.unit, kind)
 
     @staticmethod
@@ -467,7 +485,7 @@ class Checker:
         name = ref.name.name
         if name not in self.consts:
             self.diags.error("E013", ref.name.span, f"unknown constant {_code(name)}",
-                             help=did_you_mean(name, self.consts) or
+                             help=did_you_mean(ref.name, self.consts) or
                              f"define it first: `const {name} = VALUE`")
             return None
         number, negated, problem = self._const_chain(name)
@@ -476,7 +494,8 @@ class Checker:
             if what == "unknown":
                 missing = at.name.name
                 diag_args = ("E013", at.name.span, f"unknown constant {_code(missing)}")
-                help = did_you_mean(missing, self.consts) or f"define it first: `const {missing} = VALUE`"
+                help = (did_you_mean(at.name, self.consts)
+                        or f"define it first: `const {missing} = VALUE`")
             else:
                 diag_args = ("E023", at.span,
                              f"constant {_code(at.name.name)} is defined in terms of itself")
@@ -516,8 +535,11 @@ class Checker:
 
     def _whole(self, node, value: float) -> bool:
         if value != int(value):
+            whole = round_nearest(value)
             self.diags.error("E038", node.span, f"`{_shown(node)}` is not a whole number",
-                             help=f"write {round_nearest(value)}")
+                             help=Fix(node.span, f"{whole} {node.unit}" if node.unit else str(whole),
+                                      f"write {whole}") if isinstance(node, ast.Number)
+                             else f"write {whole}")
             return False
         return True
 
@@ -548,7 +570,7 @@ class Checker:
                     names = [p.name for p in params]
                     self.diags.error("E014", arg.name.span,
                                      f"{what} {_code(call_name.name)} has no parameter {_code(pname)}",
-                                     help=did_you_mean(pname, names) or (
+                                     help=did_you_mean(arg.name, names) or (
                                          "its parameters are " + ", ".join(map(_code, names))
                                          if names else "it takes no arguments"))
                     ok = False
@@ -768,7 +790,7 @@ class Checker:
             name = call.rule.name
             if name not in self.rule_names:
                 self.diags.error("E012", call.rule.span, f"unknown rule {_code(name)}",
-                                 help=did_you_mean(name, self.rule_names) or
+                                 help=did_you_mean(call.rule, self.rule_names) or
                                  f"name the rule to cancel: `rule {name}: on ...`")
                 return None
             return ResolvedCall("cancel", name, {}, {}, call)
@@ -789,7 +811,8 @@ class Checker:
             self.used_actions.add(name)
             if call.args:
                 self.diags.error("E016", call.span, f"action {_code(name)} takes no arguments",
-                                 help=f"write `{name}` alone; named actions have no parameters",
+                                 help=Fix(call.span, name, f"write `{name}` alone; named actions "
+                                                           "have no parameters"),
                                  notes=[Note(f"{_code(name)} is defined here", self.actions[name].span)])
                 return None
             if id(call) in self._cycle_calls:
@@ -808,7 +831,7 @@ class Checker:
         candidates = set(STANDARD_ACTIONS) | set(self.actions) | {
             n for n, e in self.externs.items() if e.kind == "action"}
         self.diags.error("E011", call.name.span, f"unknown action {_code(name)}",
-                         help=did_you_mean(name, candidates) or
+                         help=did_you_mean(call.name, candidates) or
                          f"define it with `action {name} = ...` or declare it with "
                          f"`extern action {name}(...) from \"{name}.c\"`")
         return None
@@ -883,7 +906,7 @@ class Checker:
             return None
         candidates = set(STANDARD_EVENTS) | {n for n, e in self.externs.items() if e.kind == "event"}
         self.diags.error("E010", call.name.span, f"unknown event {_code(name)}",
-                         help=did_you_mean(name, candidates) or
+                         help=did_you_mean(call.name, candidates) or
                          f"the standard events are {', '.join(map(_code, STANDARD_EVENTS))}; "
                          f"declare others with `extern event {name}(...) from \"{name}.c\"`")
         return None
@@ -905,9 +928,8 @@ class Checker:
             sensor = arg.sensor.name
             if sensor not in sensors:
                 self.diags.error("E031", arg.sensor.span, f"unknown sensor {_code(sensor)}",
-                                 help=(did_you_mean(sensor, sensors) or "") +
-                                 (" " if did_you_mean(sensor, sensors) else "") +
-                                 "the e-puck's proximity sensors are ir0..ir7")
+                                 help=_then(did_you_mean(arg.sensor, sensors),
+                                            "the e-puck's proximity sensors are ir0..ir7"))
                 ok = False
                 continue
             index = int(sensor[2:])
@@ -1006,6 +1028,11 @@ def _clip(text: str, limit: int = 24) -> str:
 
 def _article(word: str) -> str:
     return "an" if word[:1] in "aeiouAEIOU" or word == "LED" else "a"
+
+
+def _then(fix: Optional[Fix], more: str):
+    """A fix followed by more help, or the help alone."""
+    return fix.then(more) if fix is not None else more
 
 
 def _either(names) -> str:

@@ -102,6 +102,17 @@ def cmd_fmt(args) -> int:
                colour=_colour_wanted(sys.stderr))
 
 
+def cmd_lsp(args) -> int:
+    # pygls and lsprotocol are imported here only: the other commands never load them.
+    try:
+        from .lsp import main as serve
+    except ImportError as exc:
+        _error(f"`epuckc lsp` needs pygls 2 and lsprotocol ({exc}); "
+               "install them with: pip install 'pygls>=2' lsprotocol")
+        return EXIT_USAGE
+    return serve()
+
+
 def _error(message: str):
     print(f"epuckc: error: {message}", file=sys.stderr)
 
@@ -312,6 +323,14 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--diff", action="store_true",
                    help="write nothing; print a unified diff of the changes")
     p.set_defaults(run=cmd_fmt)
+
+    p = sub.add_parser("lsp", help="run the language server on standard input/output",
+                       description="The language server for editors (LSP over stdio): "
+                                   "diagnostics as you type, hover, completion, go to "
+                                   "definition, references, outline, rename, quick fixes, "
+                                   "formatting. See docs/language-server.md and "
+                                   "editors/README.md.")
+    p.set_defaults(run=cmd_lsp)
 
     p = sub.add_parser("compile", help="compile a rule file to C",
                        description="Compile a rule file to one C file for the runtime. Nothing is "

@@ -77,9 +77,16 @@ def normalise(code: str) -> str:
     return code
 
 
-def explanation(code: str) -> str | None:
+def explanation_path(code: str) -> Path | None:
+    """The shipped Markdown file that explains a code (what `epuckc
+    explain` prints; the language server links diagnostics to it)."""
     code = normalise(code)
     if code not in CODES:
         return None
     path = _EXPLANATIONS / f"{code}.md"
-    return path.read_text(encoding="utf-8") if path.is_file() else None
+    return path if path.is_file() else None
+
+
+def explanation(code: str) -> str | None:
+    path = explanation_path(code)
+    return path.read_text(encoding="utf-8") if path is not None else None

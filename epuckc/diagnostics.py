@@ -25,6 +25,22 @@ class Note:
 
 
 @dataclass(frozen=True)
+class Fix:
+    """A suggestion a tool can apply: replace the text at `span` with `text`
+    (an empty span inserts, an empty text deletes). `help` is the sentence
+    that proposes it ("did you mean `start_straight`?"); the help line of
+    the diagnostic is made from it, so that what the command line says and
+    what an editor's quick fix does cannot disagree."""
+    span: Span
+    text: str
+    help: str
+
+    def then(self, more: str) -> "Fix":
+        """The same edit, with more help after the suggestion."""
+        return Fix(self.span, self.text, f"{self.help} {more}")
+
+
+@dataclass(frozen=True)
 class Diagnostic:
     code: str
     severity: str
@@ -33,6 +49,7 @@ class Diagnostic:
     span: Span
     help: Optional[str] = None
     notes: tuple = ()
+    fixes: tuple = ()       # Fix, machine-applicable suggestions
 
     def sort_key(self):
         return (self.file, self.span.line, self.span.column, self.code)
@@ -67,14 +84,18 @@ class Collector:
         self.items: list = []
 
     def error(self, code, span, message, help=None, notes=()):
+        """`help` is a sentence, or a Fix whose help sentence is shown."""
         self._add(code, ERROR, span, message, help, notes)
 
     def warning(self, code, span, message, help=None, notes=()):
         self._add(code, WARNING, span, message, help, notes)
 
     def _add(self, code, severity, span, message, help, notes):
+        fixes = ()
+        if isinstance(help, Fix):
+            help, fixes = help.help, (help,)
         self.items.append(Diagnostic(code, severity, message, self.source.name,
-                                     span, help, tuple(notes)))
+                                     span, help, tuple(notes), fixes))
 
     @property
     def has_errors(self) -> bool:

@@ -11,7 +11,7 @@ from functools import lru_cache
 
 from . import ast
 from . import lalr
-from .diagnostics import Collector, Note
+from .diagnostics import Collector, Fix, Note
 from .lexer import KEYWORDS, STATEMENT_STARTS, iter_statements, iter_tokens
 from .resources import grammar_path
 from .source import SourceFile, Span
@@ -109,16 +109,51 @@ def _syntax_error(exc: lalr.ParseError, chunk: list, following, source: SourceFi
     if tok.type == "_EQUAL" and "_COLON" in expected and prev is not None:
         # `start_straight(speed = 300, ...)`: arguments are named with `:`
         diags.error("E001", span, f"expected `:` after `{prev.value}`, found `=`",
-                    help=f"arguments are named with `:`: write `{prev.value}: ...`")
+                    help=_fix(tok, prev, expected,
+                              f"arguments are named with `:`: write `{prev.value}: ...`"))
         return
     keyword = KEYWORDS.get(tok.value.lower()) if tok.type == "NAME" else None
     if keyword is not None and (keyword in expected
                                 or (prev is None and keyword in STATEMENT_STARTS)):
         diags.error("E001", span, f"expected {wanted}{after}, found `{tok.value}`",
-                    help=f"keywords are lower case: write `{tok.value.lower()}`, "
-                         f"not `{tok.value}`")
+                    help=Fix(span, tok.value.lower(),
+                             f"keywords are lower case: write `{tok.value.lower()}`, "
+                             f"not `{tok.value}`"))
         return
-    diags.error("E001", span, f"expected {wanted}{after}, found {found}", help=hint)
+    diags.error("E001", span, f"expected {wanted}{after}, found {found}",
+                help=_fix(tok, prev, expected, hint))
+
+
+_CLOSERS = {"is a `)` missing?": ")", "is a `}` missing?": "}"}
+
+# One punctuation mark mistaken for the other: `speed = 300`, `const X: 5`.
+_SWAPS = {("_EQUAL", "_COLON"): ":", ("_COLON", "_EQUAL"): "="}
+
+
+def _fix(tok, prev, expected: set, hint: str):
+    """A machine-applicable fix for the likeliest mistake, with `hint` as
+    its sentence; or the hint alone."""
+    span = Span(tok.line, tok.column, tok.end_line, tok.end_column)
+    for (found, wanted), mark in _SWAPS.items():
+        if tok.type == found and wanted in expected:
+            # in the usual layout: `speed: 300`, `const X = 5`
+            text = mark
+            if prev is not None and prev.end_line == tok.line:
+                if mark == ":":
+                    span = Span(prev.end_line, prev.end_column, tok.end_line, tok.end_column)
+                elif prev.end_column == tok.column:
+                    text = " ="
+            return Fix(span, text, hint or f"write `{mark}` here, not `{tok.value}`")
+    if hint in _CLOSERS and prev is not None:
+        # `start_straight(300, 2 m do ...`: close it after the last token
+        return Fix(Span(prev.end_line, prev.end_column, prev.end_line, prev.end_column),
+                   _CLOSERS[hint], hint)
+    if tok.type == "$END":
+        return hint
+    if "_DO" in expected and tok.type in ("NAME", "_CANCEL"):
+        # `on immediate start_sensor`: the `do` is missing before the action
+        return Fix(Span(tok.line, tok.column, tok.line, tok.column), "do ", hint)
+    return hint
 
 
 # ---- tree -> AST --------------------------------------------------------------
@@ -275,53 +310,77 @@ def parse(source: SourceFile, diags: Collector) -> ast.Program:
     # tokens at once; `following` is the next statement's first token.
     chunks = iter_statements(iter_tokens(source, diags))
     chunk = next(chunks, None)
-    modes: list = []        # the ModeOpens of the mode blocks we are in
+    placer = ModePlacer(program, diags)
     while chunk is not None:
         following_chunk = next(chunks, None)
         following = following_chunk[0] if following_chunk is not None else None
-        try:
-            statement = lalr.parse(tables, chunk, _CALLBACKS, meta=Span)
-        except lalr.ParseError as exc:
-            _syntax_error(exc, chunk, following, source, diags)
-        else:
-            _place(statement, modes, program, diags)
+        statement = parse_statement(chunk, following, source, diags, tables)
+        if statement is not None:
+            placer.add(statement)
         chunk = following_chunk
-    for mode in modes:
-        diags.error("E001", mode.span, f"mode `{mode.name.name}` is not closed",
-                    help="end the mode's rules with `}`")
+    placer.finish()
     return program
 
 
-def _place(statement, modes: list, program: ast.Program, diags: Collector) -> None:
-    """Add a statement to the program, minding mode blocks (`modes`: those
-    open, innermost last; updated)."""
-    mode = modes[-1] if modes else None
-    if isinstance(statement, ast.ModeOpen):
-        if mode is not None:
+def parse_statement(chunk: list, following, source: SourceFile, diags: Collector,
+                    tables=None):
+    """One statement's AST from its tokens, or None after reporting why not.
+    `following` is the next statement's first token (None at the end)."""
+    try:
+        return lalr.parse(tables or _tables(), chunk, _CALLBACKS, meta=Span)
+    except lalr.ParseError as exc:
+        _syntax_error(exc, chunk, following, source, diags)
+        return None
+
+
+class ModePlacer:
+    """Builds a program's statements from the parsed ones, minding mode
+    blocks: a mode's head becomes a ModeDef, its `}` a ModeEnd, and each
+    rule between them gets its `mode`. Used by `parse` and by the language
+    server's incremental analysis (incremental.py), which parses statements
+    on its own."""
+
+    def __init__(self, program: ast.Program, diags: Collector):
+        self.program = program
+        self.diags = diags
+        self.modes: list = []       # the ModeOpens of the blocks open, innermost last
+
+    def add(self, statement) -> None:
+        program, diags = self.program, self.diags
+        mode = self.modes[-1] if self.modes else None
+        if isinstance(statement, ast.ModeOpen):
+            if mode is not None:
+                diags.error("E001", statement.span,
+                            f"mode `{statement.name.name}` starts inside mode `{mode.name.name}`",
+                            help="modes do not nest: close the first with `}` before this one",
+                            notes=[Note(f"mode `{mode.name.name}` starts here", mode.span)])
+            program.statements.append(ast.ModeDef(statement.name, statement.initial,
+                                                  statement.span))
+            self.modes.append(statement)
+            return
+        if isinstance(statement, ast.ModeClose):
+            if mode is None:
+                diags.error("E001", statement.span, "this `}` closes no mode",
+                            help="remove it, or open a mode with `mode NAME {`")
+            else:
+                self.modes.pop()
+                program.statements.append(ast.ModeEnd(statement.span))
+            return
+        if mode is not None and not isinstance(statement, ast.Rule):
+            what = {ast.ConstDef: "a constant", ast.ActionDef: "an action",
+                    ast.ExternDef: "an extern", ast.RobotBlock: "the robot block"}[type(statement)]
             diags.error("E001", statement.span,
-                        f"mode `{statement.name.name}` starts inside mode `{mode.name.name}`",
-                        help="modes do not nest: close the first with `}` before this one",
+                        f"{what} cannot be defined inside mode `{mode.name.name}`",
+                        help="only rules go in a mode; define it before the mode (names are "
+                             "visible everywhere)",
                         notes=[Note(f"mode `{mode.name.name}` starts here", mode.span)])
-        program.statements.append(ast.ModeDef(statement.name, statement.initial, statement.span))
-        modes.append(statement)
-        return
-    if isinstance(statement, ast.ModeClose):
-        if mode is None:
-            diags.error("E001", statement.span, "this `}` closes no mode",
-                        help="remove it, or open a mode with `mode NAME {`")
-        else:
-            modes.pop()
-            program.statements.append(ast.ModeEnd(statement.span))
-        return
-    if mode is not None and not isinstance(statement, ast.Rule):
-        what = {ast.ConstDef: "a constant", ast.ActionDef: "an action",
-                ast.ExternDef: "an extern", ast.RobotBlock: "the robot block"}[type(statement)]
-        diags.error("E001", statement.span,
-                    f"{what} cannot be defined inside mode `{mode.name.name}`",
-                    help="only rules go in a mode; define it before the mode (names are "
-                         "visible everywhere)",
-                    notes=[Note(f"mode `{mode.name.name}` starts here", mode.span)])
-    elif mode is not None:
-        statement = replace(statement, mode=mode.name)
-    # a definition misplaced in a mode still defines its name: no follow-up errors
-    program.statements.append(statement)
+        elif mode is not None:
+            statement = replace(statement, mode=mode.name)
+        # a definition misplaced in a mode still defines its name: no follow-up errors
+        program.statements.append(statement)
+
+    def finish(self) -> None:
+        for mode in self.modes:
+            self.diags.error("E001", mode.span, f"mode `{mode.name.name}` is not closed",
+                             help="end the mode's rules with `}`")
+        self.modes = []
