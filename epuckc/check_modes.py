@@ -45,7 +45,7 @@ def enter_call(checker, call: ast.EnterCall):
     name = call.mode.name
     if name not in checker.modes:
         if checker.modes:
-            help_text = did_you_mean(name, checker.modes) or (
+            help_text = did_you_mean(call.mode, checker.modes) or (
                 "the modes are " + ", ".join(map(_code, checker.modes)))
         else:
             help_text = f"declare it: `mode {name} {{ on enter do ... }}`"

@@ -696,9 +696,8 @@ class Checker:
                 names = choices.names()
                 self.diags.error("E041", value.name.span,
                                  f"unknown {choices.what} {_code(value.name.name)}",
-                                 help=(did_you_mean(value.name.name, names) or "")
-                                 + (" " if did_you_mean(value.name.name, names) else "")
-                                 + f"{_code(p.name)} is one of {choices.describe()}")
+                                 help=_then(did_you_mean(value.name, names),
+                                            f"{_code(p.name)} is one of {choices.describe()}"))
                 return None
         if choices.numbers is None:
             self.diags.error("E041", value.span,

@@ -554,7 +554,9 @@ def _action_items(analysis: Analysis) -> list:
 
 
 def _event_items(analysis: Analysis) -> list:
-    items = [Completion(e.name, "event", e.signature, doc=e.doc) for e in STANDARD_EVENTS.values()]
+    # (`enter` is offered as the keyword it is)
+    items = [Completion(e.name, "event", e.signature, doc=e.doc) for e in STANDARD_EVENTS.values()
+             if e.name not in KEYWORDS]
     for name, info in analysis.checker.externs.items():
         if info.kind == "event":
             items.append(Completion(name, "event", f'extern event from "{info.file}"'))

@@ -180,19 +180,20 @@ def iter_statements(tokens):
     `rule NAME: on ...`, belong to the statement already under way.
 
     A mode block `[initial] mode NAME { rules }` holds statements: its head
-    up to `{` is a statement of its own, and so is the `}` that closes it
-    (a `}` that closes no `{` of the statement under way, while a mode is
-    open). Yields each statement's token list."""
+    up to `{` is a statement of its own, and so is a `}` that closes no `{`
+    of the statement under way (the parser pairs it with a mode, or says
+    it closes none). Both are decided from the statement under way alone,
+    so that any part of a file splits as the whole does (the language
+    server splits again only what an edit touched). Yields each
+    statement's token list."""
     current: list = []
     seen_on = False
-    open_modes = 0          # mode heads seen whose `}` has not come yet
     depth = 0               # `{` of the statement under way not yet closed
     for tok in tokens:
-        if tok.type == "_RBRACE" and depth == 0 and open_modes:
+        if tok.type == "_RBRACE" and depth == 0:
             if current:
                 yield current
             yield [tok]
-            open_modes -= 1
             current, seen_on = [], False
             continue
         starts = tok.type in STATEMENT_STARTS and current
@@ -212,7 +213,6 @@ def iter_statements(tokens):
         if tok.type == "_LBRACE":
             if current[0].type in MODE_STARTS:
                 yield current
-                open_modes += 1
                 current, seen_on, depth = [], False, 0
             else:
                 depth += 1
