@@ -8,23 +8,22 @@ JSON for tools, and SARIF 2.1.0 for code scanning (sarif.py).
 """
 from __future__ import annotations
 
-import json
-from dataclasses import dataclass, field
 from typing import Iterable, Optional
 
+from .records import field, record
 from .source import SourceFile, Span
 
 ERROR = "error"
 WARNING = "warning"
 
 
-@dataclass(frozen=True)
+@record(frozen=True)
 class Note:
     message: str
     span: Optional[Span] = None     # shown as file:line:col when given
 
 
-@dataclass(frozen=True)
+@record(frozen=True)
 class Fix:
     """A suggestion a tool can apply: replace the text at `span` with `text`
     (an empty span inserts, an empty text deletes). `help` is the sentence
@@ -40,7 +39,7 @@ class Fix:
         return Fix(self.span, self.text, f"{self.help} {more}")
 
 
-@dataclass(frozen=True)
+@record(frozen=True)
 class Diagnostic:
     code: str
     severity: str
@@ -55,7 +54,7 @@ class Diagnostic:
         return (self.file, self.span.line, self.span.column, self.code)
 
 
-@dataclass
+@record
 class Report:
     """The diagnostics of one run, and the sources they point into."""
     diagnostics: list = field(default_factory=list)
@@ -205,6 +204,7 @@ def render_report(report: Report, fmt: str, colour: bool = False) -> str:
         return render_sarif(report)
     diags = report.sorted()
     if fmt == "json":
+        import json         # only here: `check` starts faster without it
         return json.dumps([to_json_object(d) for d in diags], indent=2) + "\n"
     if fmt == "gcc":
         return "".join(render_gcc(d) + "\n" for d in diags)

@@ -3,8 +3,6 @@ from __future__ import annotations
 
 import os
 import re
-import subprocess
-import sys
 from pathlib import Path
 from typing import Optional
 
@@ -12,6 +10,7 @@ from .build import (EXIT_NO_TOOLCHAIN, BuildError, Program, build_host, find_xc1
                     host_executable, run_make, write_dspic_project)
 from .diagnostics import Report
 from .frontend import InputError, check_file, read_error
+from .harness import run_executable
 
 
 def _program_name(path: Path) -> str:
@@ -68,26 +67,13 @@ def build(program: Program, target: str, out_dir: Optional[Path]) -> str:
 
 
 def run_host(program: Program, scenario: Optional[str], time_limit_ms: int,
-             trace: Optional[str], pose_ms: Optional[int] = None) -> int:
-    env = dict(os.environ)
-    env["EPUCK_TIME_LIMIT_MS"] = str(time_limit_ms)
-    for setting in ("EPUCK_SCENARIO", "EPUCK_TRACE", "EPUCK_POSE_MS"):
-        env.pop(setting, None)
-    if pose_ms:
-        env["EPUCK_POSE_MS"] = str(pose_ms)
-    # The harness names the options typed here in its messages, not its
-    # environment variables.
-    env["EPUCK_FRONTEND"] = "epuckc"
-    if scenario:
-        env["EPUCK_SCENARIO"] = scenario     # as typed: the messages show it
-    if trace == "-":            # JSON lines on stdout, instead of the readable trace
-        env["EPUCK_TRACE"] = "/dev/stdout"
-        env["EPUCK_QUIET"] = "1"
-    elif trace:
-        env["EPUCK_TRACE"] = trace
+             trace: Optional[str], pose_ms: Optional[int] = None, on_built=None) -> int:
+    """Build for the host (cached) and run; `on_built(exe)` is told where
+    the executable is before it runs."""
     with host_executable(program) as exe:
-        sys.stdout.flush()
+        if on_built is not None:
+            on_built(exe)
         try:
-            return subprocess.run([str(exe)], env=env).returncode
+            return run_executable(exe, scenario, time_limit_ms, trace, pose_ms)
         except OSError as exc:
             raise BuildError(f"cannot run {exe}: {exc.strerror or exc}") from None

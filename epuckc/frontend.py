@@ -3,7 +3,6 @@ from __future__ import annotations
 
 import gc
 import re
-from dataclasses import dataclass
 from functools import lru_cache
 from pathlib import Path
 from typing import Optional
@@ -11,6 +10,7 @@ from typing import Optional
 from .checker import CheckedProgram, check
 from .diagnostics import ERROR, Collector, Diagnostic, Report
 from .parser import parse
+from .records import record
 from .resources import runtime_dir
 from .source import SourceFile, Span
 
@@ -24,7 +24,7 @@ def runtime_capacity() -> tuple[int, int]:
     return int(found["MAX_ACTIONS"]), int(found["MAX_EVENTS"])
 
 
-@dataclass
+@record
 class FrontEndResult:
     source: Optional[SourceFile]
     checked: Optional[CheckedProgram]      # None when there are errors

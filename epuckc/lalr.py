@@ -11,16 +11,17 @@ from its first to its last token, dropped tokens included. Instead of
 building a tree and transforming it afterwards, each reduction calls the
 transformer's method for the rule at once: callback(meta, children).
 
-The cache key hashes the grammar text and the Lark, Python and format
+The cache file is keyed on the grammar text and the Lark, Python and format
 versions, so an edited grammar is honoured on the next run. When no cache
 folder is writable the tables are built in memory each time.
 """
 from __future__ import annotations
 
-import hashlib
 import marshal
 import os
 import sys
+import zlib
+from operator import itemgetter
 
 from .resources import cache_dir
 
@@ -55,7 +56,7 @@ class Tables:
 
     def __init__(self, data):
         self.states, self.start, self.end, self.rules = data
-        self.bound = {}     # id(callbacks) -> the rules' callbacks as a list
+        self.bound = {}     # id(callbacks) -> (callbacks, _plan(rules, callbacks))
 
 
 # ---- building the tables with Lark ------------------------------------------------
@@ -140,9 +141,12 @@ def load_tables(grammar: str, start: str) -> Tables:
     """The tables for `grammar`, from the cache when it holds them."""
     if os.environ.get("EPUCKC_NO_CACHE"):
         return Tables(build_tables(grammar, start))
-    key = hashlib.sha256("\0".join((grammar, start, str(FORMAT), _lark_version(),
-                                    sys.version)).encode("utf-8")).hexdigest()[:24]
-    path = cache_dir() / f"tables-{key}.marshal"
+    # The file is named by a checksum of everything the tables depend on and
+    # holds that text itself, compared whole on loading: no hash collision
+    # can hand back another grammar's tables (and hashlib, which takes ~3 ms
+    # to import, is not needed).
+    key = "\0".join((grammar, start, str(FORMAT), _lark_version(), sys.version))
+    path = cache_dir() / f"tables-{zlib.crc32(key.encode('utf-8')):08x}.marshal"
     try:
         with open(path, "rb") as f:
             data = marshal.load(f)
@@ -160,11 +164,6 @@ def load_tables(grammar: str, start: str) -> Tables:
 
 
 # ---- parsing --------------------------------------------------------------------------
-
-class _Spliced(list):
-    """The children of a `_rule`, to be spliced into its parent."""
-    __slots__ = ()
-
 
 class EndToken:
     """The `$END` token, placed where the last token ends."""
@@ -209,78 +208,122 @@ def expected(tables: Tables, stack: list) -> set:
     return {t for t in row if t.isupper() and _accepts(tables, stack, t)}
 
 
+PICK, ONE, NONE, GROW, GENERAL = range(5)
+
+
+def _plan(rules, callbacks) -> list:
+    """How to make each rule's value from the stack, decided once per table
+    and set of callbacks: (origin, size, callback or None for a spliced
+    `_rule`, how, arg, Nones after), where
+    `how` says how the kept children are gathered:
+      PICK    arg(values) with arg an itemgetter over offsets from the top
+              of the stack, offset 0 being the None at its bottom (a
+              missing `[optional]`); a tuple of two or more children
+      ONE     the one child at offset arg, or None when arg is 0
+      NONE    no child at all
+      GROW    `_rule: _rule SEP item` (left recursion): the item at offset
+              arg is appended to the list that is the first child, in place
+      GENERAL anything else (a `_rule` spliced among other children)."""
+    plan = []
+    for origin, callback, size, include, after in rules:
+        func = callbacks[callback] if callback is not None else None
+        splices = any(splice for _, splice, _ in include)
+        if not splices:
+            layout = []
+            for i, _, nones in include:
+                layout += [0] * nones + [i - size]
+            layout += [0] * after
+            if len(layout) >= 2:
+                how, arg = PICK, itemgetter(*layout)
+            elif len(layout) == 1:
+                how, arg = ONE, layout[0]
+            else:
+                how, arg = NONE, None
+        elif (callback is None and after == 0 and len(include) == 2 and include[0][:2] == (0, True)
+              and not include[1][1] and include[0][2] == include[1][2] == 0):
+            how, arg = GROW, include[1][0] - size
+        else:
+            how, arg = GENERAL, include
+        plan.append((origin, size, func, how, arg, after))
+    return plan
+
+
 def parse(tables: Tables, tokens, callbacks, meta=Meta) -> object:
     """Parse a list of tokens (with .type, .line, .column, .end_line,
     .end_column); `callbacks` maps a rule's name or alias to f(meta, children),
-    where meta = meta(line, column, end_line, end_column) is the rule's span."""
-    states, rules = tables.states, tables.rules
+    where meta = meta(line, column, end_line, end_column) is the rule's span
+    and children a sequence shaped as Lark's tree builder shapes them."""
+    states = tables.states
+    plan = tables.bound.get(id(callbacks))
+    if plan is None or plan[0] is not callbacks:
+        plan = tables.bound[id(callbacks)] = (callbacks, _plan(tables.rules, callbacks))
+    plan = plan[1]
     end_state = tables.end
-    funcs = tables.bound.get(id(callbacks))
-    if funcs is None:
-        funcs = [callbacks[r[1]] if r[1] is not None else None for r in rules]
-        tables.bound[id(callbacks)] = funcs
-    state_stack = [tables.start]
-    # Three stacks in step: each value, and its first and last token (None
-    # for a rule that matched nothing), which give the value's span.
-    values, firsts, lasts = [], [], []
-    last = None
+    new_tuple = tuple.__new__
+    tuple_meta = issubclass(meta, tuple)
+    # Three stacks in step: the parser states, their values, and the index
+    # of the first token each value covers. The bottom of `values` is the
+    # None that stands for every missing `[optional]` (see _plan). A value's
+    # span runs from its first token to the last token shifted so far.
+    stack = [tables.start]
+    values = [None]
+    starts = [0]
     tokens = list(tokens)
-    tokens.append(None)
+    tokens.append(EndToken(tokens[-1] if tokens else None))
+    index = -1
     for token in tokens:
-        is_end = token is None
-        if is_end:
-            token = EndToken(last)
+        index += 1
         ttype = token.type
         while True:
-            code = states[state_stack[-1]].get(ttype)
+            code = states[stack[-1]].get(ttype)
             if code is None:
-                raise ParseError(token, expected(tables, state_stack))
+                raise ParseError(token, expected(tables, stack))
             if code >= 0:
-                state_stack.append(code)
+                stack.append(code)
                 values.append(token)
-                firsts.append(token)
-                lasts.append(token)
-                last = token
+                starts.append(index)
                 break
-            origin, callback, size, include, after = rules[-code - 1]
+            origin, size, func, how, arg, after = plan[-code - 1]
+            first = starts[-size] if size else index
+            if how == PICK:
+                kept = arg(values)
+            elif how == ONE:
+                kept = (values[arg],)
+            elif how == GROW:
+                kept = values[-size]
+                kept.append(values[arg])
+            elif how == NONE:
+                kept = ()
+            else:
+                kept = []
+                for i, splice, nones in arg:
+                    if nones:
+                        kept.extend([None] * nones)
+                    if splice:
+                        kept.extend(values[i - size])
+                    else:
+                        kept.append(values[i - size])
+                if after:
+                    kept.extend([None] * after)
             if size:
-                children = values[-size:]
-                first = firsts[-size]
-                final = lasts[-1]
-                if first is None or final is None:      # only after empty rules
-                    first = next((t for t in firsts[-size:] if t is not None), None)
-                    final = next((t for t in reversed(lasts[-size:]) if t is not None), None)
-                del state_stack[-size:]
+                del stack[-size:]
                 del values[-size:]
-                del firsts[-size:]
-                del lasts[-size:]
+                del starts[-size:]
+            if func is None:
+                value = kept if type(kept) is list else list(kept)
+            elif first == index:            # the rule matched no token
+                value = func(meta(1, 1, 1, 1), kept)
             else:
-                children = []
-                first = final = None
-            kept = _Spliced()
-            for i, splice, nones in include:
-                if nones:
-                    kept.extend([None] * nones)
-                if splice:
-                    if kept:
-                        kept.extend(children[i])
-                    else:   # left recursion (`a (, b)*`): grow the list in place, not O(n^2)
-                        kept = children[i]
+                head, tail = tokens[first], tokens[index - 1]
+                if tuple_meta:
+                    value = func(new_tuple(meta, (head.line, head.column,
+                                                  tail.end_line, tail.end_column)), kept)
                 else:
-                    kept.append(children[i])
-            if after:
-                kept.extend([None] * after)
-            if callback is None:
-                value = kept
-            elif first is None:
-                value = funcs[-code - 1](meta(1, 1, 1, 1), kept)
-            else:
-                value = funcs[-code - 1](meta(first.line, first.column,
-                                              final.end_line, final.end_column), kept)
-            state_stack.append(states[state_stack[-1]][origin])
+                    value = func(meta(head.line, head.column, tail.end_line, tail.end_column),
+                                 kept)
+            stack.append(states[stack[-1]][origin])
             values.append(value)
-            firsts.append(first)
-            lasts.append(final)
-            if is_end and state_stack[-1] == end_state:
+            starts.append(first)
+            if ttype == "$END" and stack[-1] == end_state:
                 return value
     raise ParseError(token, set())      # not reached with a sound table

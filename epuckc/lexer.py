@@ -56,23 +56,25 @@ MODE_STARTS = {"_MODE", "_INITIAL"}
 # rule file at all, and thousands of errors help nobody.
 MAX_LEXICAL_ERRORS = 20
 
+# One match per token: the blanks before a token are part of its match (a
+# match per blank run cost as much again); a run of blank lines is one
+# `space` match, and so is the end of the text.
 _TOKEN_RE = re.compile(r"""
-    (?P<space>[ \t\r\n\f\v]+)
+    [ \t\r\f\v]*
+    (?:
+    (?P<space>\n[ \t\r\n\f\v]*|\Z)
   | (?P<comment>\#[^\n]*)
-  | (?P<NAME>(?![0-9])\w+)
+  | (?P<NAME>(?![0-9])\w+)                   # any letters: `café` is one token, one E008
   | (?P<exponent>[0-9]+(?:\.[0-9]+)?[eE][+-]?[0-9]+)
   | (?P<NUMBER>[0-9]+(?:\.[0-9]+)?)
   | (?P<STRING>"(?:[^"\\\n]|\\.)*")
   | (?P<open_string>"(?:[^"\\\n]|\\.)*)
   | (?P<punct>[(){},:=/\-><])
-""", re.VERBOSE)
+    )""", re.VERBOSE)
+_BLANKS_RE = re.compile(r"[ \t\r\f\v]*")
 
 # A run of characters that start no token (every other character starts one).
 _BAD_RE = re.compile(r"""[^\w \t\r\n\f\v#"(){},:=/\-><]+""")
-
-# A NAME may hold any letters, so that `café` is one token and one error
-# (E008) rather than a bad character per accent.
-_ASCII_NAME_RE = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
 
 
 def iter_tokens(source: SourceFile, diags: Collector):
@@ -84,12 +86,14 @@ def iter_tokens(source: SourceFile, diags: Collector):
     match = _TOKEN_RE.match
     line, line_start = 1, 0         # where `pos` is, kept up to date by hand
     keywords, punctuation = KEYWORDS, PUNCTUATION
+    new = object.__new__
     after_bad = False
     not_ascii: set = set()
     while pos < n:
         m = match(text, pos)
         if m is None:
-            start = pos             # no token starts with a newline: same line
+            # no token starts with a newline: the bad run is on this line
+            start = pos = _BLANKS_RE.match(text, pos).end()
             pos = _BAD_RE.match(text, pos).end()
             errors += 1
             after_bad = True
@@ -107,37 +111,48 @@ def iter_tokens(source: SourceFile, diags: Collector):
             continue
         kind = m.lastgroup
         end = m.end()
-        if kind == "space":
-            newlines = text.count("\n", pos, end)
-            if newlines:
-                line += newlines
-                line_start = text.rindex("\n", pos, end) + 1
-            pos = end
-            continue
-        if kind == "comment":
-            pos = end
-            continue
-        value = m.group()
+        value = m.group(kind)
+        start = end - len(value)
         if kind == "NAME":
             kind = keywords.get(value, "NAME")
-            if kind == "NAME" and not _ASCII_NAME_RE.match(value) and value not in not_ascii:
+            # (an ASCII \w+ that starts with no digit is a valid name)
+            if kind == "NAME" and not value.isascii() and value not in not_ascii:
                 not_ascii.add(value)        # said once per name
-                _not_ascii(source, diags, pos, end, value)
+                _not_ascii(source, diags, start, end, value)
         elif kind == "exponent":
-            value = _exponent(source, diags, pos, end, value)
+            value = _exponent(source, diags, start, end, value)
             kind = "NUMBER"
         elif kind == "punct":
             kind = punctuation[value]
+        elif kind == "space":
+            newlines = value.count("\n")
+            if newlines:
+                line += newlines
+                line_start = start + value.rindex("\n") + 1
+            pos = end
+            continue
+        elif kind == "comment":
+            pos = end
+            continue
         elif kind == "open_string":
-            diags.error("E003", source.span(pos, end), "this string has no closing `\"`",
+            diags.error("E003", source.span(start, end),
+                        "this string has no closing `\"`",
                         help="close the string on the same line")
             kind = "STRING"
             value += '"'
-        # A token never spans a newline, so it ends on the line it starts on.
-        column = pos - line_start + 1
-        token = Token(kind, value, pos, line, column, line, column + (end - pos), end)
-        if after_bad:
-            token.after_bad, after_bad = True, False
+        # A token never spans a newline, so it ends on the line it starts on;
+        # it is made field by field, cheaper than a call to Token().
+        column = start - line_start + 1
+        token = new(Token)
+        token.type = kind
+        token.value = value
+        token.start_pos = start
+        token.line = token.end_line = line
+        token.column = column
+        token.end_column = column + (end - start)
+        token.end_pos = end
+        token.after_bad = after_bad
+        after_bad = False
         yield token
         pos = end
 

@@ -6,7 +6,6 @@ and the rest of the file is still checked.
 """
 from __future__ import annotations
 
-from dataclasses import replace
 from functools import lru_cache
 
 from . import ast
@@ -157,17 +156,37 @@ def _fix(tok, prev, expected: set, hint: str):
 
 
 # ---- tree -> AST --------------------------------------------------------------
+#
+# These run once per node of a file (some 20,000 for 1,000 rules), so they
+# build nodes the cheap way (see ast.builder): a node is made as its
+# builder, its fields set one by one, then it becomes the frozen node.
 
-def _span(meta) -> Span:
-    return meta         # lalr.parse makes the Spans itself (see parse below)
+_new = object.__new__
+_new_span = tuple.__new__
+_IDENT = ast.builder(ast.Ident)
+_NUMBER = ast.builder(ast.Number)
+_CALL = ast.builder(ast.Call)
+_POSITIONAL = ast.builder(ast.PositionalArg)
+_NAMED = ast.builder(ast.NamedArg)
+_CONDITION = ast.builder(ast.ConditionArg)
+_STEP = ast.builder(ast.Step)
+_BODY = ast.builder(ast.ActionBody)
+_RULE = ast.builder(ast.Rule)
+_Ident, _Number, _Call = ast.Ident, ast.Number, ast.Call
+_PositionalArg, _NamedArg, _ConditionArg = ast.PositionalArg, ast.NamedArg, ast.ConditionArg
+_Step, _ActionBody, _Rule = ast.Step, ast.ActionBody, ast.Rule
 
 
 def _tok_span(tok) -> Span:
-    return Span(tok.line, tok.column, tok.end_line, tok.end_column)
+    return _new_span(Span, (tok.line, tok.column, tok.end_line, tok.end_column))
 
 
 def _ident(tok) -> ast.Ident:
-    return ast.Ident(str(tok), _tok_span(tok))
+    node = _new(_IDENT)
+    node.name = tok.value
+    node.span = _new_span(Span, (tok.line, tok.column, tok.end_line, tok.end_column))
+    node.__class__ = _Ident
+    return node
 
 
 def _unescape(literal: str) -> str:
@@ -184,118 +203,161 @@ def _unescape(literal: str) -> str:
 class _ToAst:
     """Builds the AST while parsing: lalr.parse calls the method named after
     each grammar rule (or its `-> alias`) with its span and kept children."""
-    def statement(self, meta, children):
+    def statement(self, span, children):
         return children[0]
 
-    def robot_block(self, meta, children):
-        return ast.RobotBlock(tuple(c for c in children if c is not None), _span(meta))
+    def robot_block(self, span, children):
+        return ast.RobotBlock(tuple(c for c in children if c is not None), span)
 
-    def setting(self, meta, children):
+    def setting(self, span, children):
         name, value = children
-        return ast.Setting(_ident(name), value, _span(meta))
+        return ast.Setting(_ident(name), value, span)
 
-    def const_def(self, meta, children):
+    def const_def(self, span, children):
         name, value = children
-        return ast.ConstDef(_ident(name), value, _span(meta))
+        return ast.ConstDef(_ident(name), value, span)
 
-    def action_def(self, meta, children):
+    def action_def(self, span, children):
         name, body = children
-        return ast.ActionDef(_ident(name), body, _span(meta))
+        return ast.ActionDef(_ident(name), body, span)
 
-    def extern_action(self, meta, children):
+    def extern_action(self, span, children):
         return "action"
 
-    def extern_event(self, meta, children):
+    def extern_event(self, span, children):
         return "event"
 
-    def extern_def(self, meta, children):
+    def extern_def(self, span, children):
         kind, name, *params, file_tok = children
         return ast.ExternDef(kind, _ident(name), tuple(p for p in params if p is not None),
-                             _unescape(str(file_tok)), _tok_span(file_tok), _span(meta))
+                             _unescape(file_tok.value), _tok_span(file_tok), span)
 
-    def param_decl(self, meta, children):
+    def param_decl(self, span, children):
         name, type_ = children
-        return ast.ParamDecl(_ident(name), _ident(type_), _span(meta))
+        return ast.ParamDecl(_ident(name), _ident(type_), span)
 
-    def repeat(self, meta, children):
+    def repeat(self, span, children):
         return True
 
-    def rule_def(self, meta, children):
+    def rule_def(self, span, children):
         name, event, repeat, priority, body = children
-        return ast.Rule(_ident(name) if name is not None else None, event,
-                        bool(repeat), body, _span(meta), priority=priority)
+        node = _new(_RULE)
+        node.name = _ident(name) if name is not None else None
+        node.event = event
+        node.repeat = bool(repeat)
+        node.body = body
+        node.span = span
+        node.priority = priority
+        node.mode = None
+        node.__class__ = _Rule
+        return node
 
-    def priority_number(self, meta, children):
+    def priority_number(self, span, children):
         (number,) = children
         return ast.Number(float(str(number)), str(number), None, None, _tok_span(number))
 
-    def priority_const(self, meta, children):
+    def priority_const(self, span, children):
         (name,) = children
-        return ast.ConstRef(_ident(name), False, _tok_span(name))
+        ident = _ident(name)
+        return ast.ConstRef(ident, False, ident.span)
 
-    def event_ref(self, meta, children):
+    def event_ref(self, span, children):
         name, args = children
-        return ast.Call(_ident(name), args, _span(meta))
+        node = _new(_CALL)
+        node.name = _ident(name)
+        node.args = args
+        node.span = span
+        node.__class__ = _Call
+        return node
 
-    def enter_event(self, meta, children):
-        return ast.Call(ast.Ident("enter", _span(meta)), None, _span(meta))
+    def enter_event(self, span, children):
+        return ast.Call(ast.Ident("enter", span), None, span)
 
-    def enter_call(self, meta, children):
+    def enter_call(self, span, children):
         (name,) = children
-        return ast.EnterCall(_ident(name), _span(meta))
+        return ast.EnterCall(_ident(name), span)
 
-    def initial(self, meta, children):
+    def initial(self, span, children):
         return True
 
-    def mode_open(self, meta, children):
+    def mode_open(self, span, children):
         initial, name = children
-        return ast.ModeOpen(_ident(name), bool(initial), _span(meta))
+        return ast.ModeOpen(_ident(name), bool(initial), span)
 
-    def mode_close(self, meta, children):
-        return ast.ModeClose(_span(meta))
+    def mode_close(self, span, children):
+        return ast.ModeClose(span)
 
-    def action_body(self, meta, children):
-        return ast.ActionBody(tuple(children), _span(meta))
+    def action_body(self, span, children):
+        node = _new(_BODY)
+        node.steps = tuple(children)
+        node.span = span
+        node.__class__ = _ActionBody
+        return node
 
-    def step(self, meta, children):
-        return ast.Step(tuple(children), _span(meta))
+    def step(self, span, children):
+        node = _new(_STEP)
+        node.calls = tuple(children)
+        node.span = span
+        node.__class__ = _Step
+        return node
 
-    def plain_call(self, meta, children):
-        name, args = children
-        return ast.Call(_ident(name), args, _span(meta))
+    plain_call = event_ref
 
-    def cancel_call(self, meta, children):
+    def cancel_call(self, span, children):
         (name,) = children
-        return ast.CancelCall(_ident(name), _span(meta))
+        return ast.CancelCall(_ident(name), span)
 
-    def arg_list(self, meta, children):
+    def arg_list(self, span, children):
         return tuple(c for c in children if c is not None)
 
-    def named_arg(self, meta, children):
+    def named_arg(self, span, children):
         name, value = children
-        return ast.NamedArg(_ident(name), value, _span(meta))
+        node = _new(_NAMED)
+        node.name = _ident(name)
+        node.value = value
+        node.span = span
+        node.__class__ = _NamedArg
+        return node
 
-    def positional_arg(self, meta, children):
-        return ast.PositionalArg(children[0], _span(meta))
+    def positional_arg(self, span, children):
+        node = _new(_POSITIONAL)
+        node.value = children[0]
+        node.span = span
+        node.__class__ = _PositionalArg
+        return node
 
-    def condition_arg(self, meta, children):
+    def condition_arg(self, span, children):
         name, op, value = children
-        return ast.ConditionArg(_ident(name), str(op), value, _span(meta))
+        node = _new(_CONDITION)
+        node.sensor = _ident(name)
+        node.op = op.value
+        node.value = value
+        node.span = span
+        node.__class__ = _ConditionArg
+        return node
 
-    def number(self, meta, children):
+    def number(self, span, children):
         minus, number, unit = children
-        text = ("-" if minus is not None else "") + str(number)
-        unit_text, unit_span = unit if unit is not None else (None, None)
-        return ast.Number(float(text), text, unit_text, unit_span, _span(meta))
+        text = number.value if minus is None else "-" + number.value
+        node = _new(_NUMBER)
+        node.value = float(text)
+        node.text = text
+        if unit is None:
+            node.unit = node.unit_span = None
+        else:
+            node.unit, node.unit_span = unit
+        node.span = span
+        node.__class__ = _Number
+        return node
 
-    def const_ref(self, meta, children):
+    def const_ref(self, span, children):
         minus, name = children
-        return ast.ConstRef(_ident(name), minus is not None, _span(meta))
+        return ast.ConstRef(_ident(name), minus is not None, span)
 
-    def unit(self, meta, children):
+    def unit(self, span, children):
         first, second = children
-        text = str(first) if second is None else f"{first}/{second}"
-        return text, _span(meta)
+        text = first.value if second is None else f"{first.value}/{second.value}"
+        return text, span
 
 
 _TO_AST = _ToAst()
@@ -375,7 +437,7 @@ class ModePlacer:
                              "visible everywhere)",
                         notes=[Note(f"mode `{mode.name.name}` starts here", mode.span)])
         elif mode is not None:
-            statement = replace(statement, mode=mode.name)
+            statement = statement.in_mode(mode.name)
         # a definition misplaced in a mode still defines its name: no follow-up errors
         program.statements.append(statement)
 

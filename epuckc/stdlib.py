@@ -10,9 +10,9 @@ list of its own.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import Optional
 
+from .records import record
 from .units import ANGLE, DISTANCE, DURATION, INT, NATURAL_UNIT, SPEED
 
 SENSOR_COUNT = 8
@@ -20,7 +20,7 @@ THRESHOLD_MAX = 4095
 CHOICE = "choice"           # the kind of a parameter that names one of its Choices
 
 
-@dataclass(frozen=True)
+@record(frozen=True)
 class Choice:
     """One value of an enumerated parameter: its name in rule files, the C
     expression it becomes, and what it means."""
@@ -29,7 +29,7 @@ class Choice:
     doc: str
 
 
-@dataclass(frozen=True)
+@record(frozen=True)
 class Choices:
     """The values an enumerated parameter takes (an LED, a sound, a key).
     `numbers`: whole numbers lo..hi accepted as themselves as well (the
@@ -52,7 +52,7 @@ class Choices:
         return text
 
 
-@dataclass(frozen=True)
+@record(frozen=True)
 class Param:
     """A parameter: its name, its kind (units.py, or CHOICE), and for the
     standard ones a short description and the range the checker enforces,
@@ -69,7 +69,7 @@ class Param:
     range_code: str = "E042"
 
 
-@dataclass(frozen=True)
+@record(frozen=True)
 class ActionSpec:
     name: str
     params: tuple
@@ -85,7 +85,7 @@ class ActionSpec:
         return signature(self.name, self.params)
 
 
-@dataclass(frozen=True)
+@record(frozen=True)
 class EventSpec:
     name: str
     params: Optional[tuple]   # None: takes conditions (`sensor(ir0 > 300)`)

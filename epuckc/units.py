@@ -8,7 +8,8 @@ second, degrees and milliseconds, rounding to the nearest.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+
+from .records import record
 
 DISTANCE, SPEED, ANGLE, DURATION, INT = "distance", "speed", "angle", "duration", "int"
 KINDS = (INT, DISTANCE, SPEED, ANGLE, DURATION)
@@ -43,7 +44,7 @@ def round_nearest(x: float) -> int:
     return int(math.floor(abs(x) + 0.5)) * (1 if x >= 0 else -1)
 
 
-@dataclass(frozen=True)
+@record(frozen=True)
 class Geometry:
     wheel_circumference_mm: float = math.pi * 41.0
     axle_mm: float = 53.0
@@ -55,7 +56,7 @@ class Geometry:
         return self.wheel_circumference_mm / self.steps_per_rev
 
 
-@dataclass(frozen=True)
+@record(frozen=True)
 class Quantity:
     """A value of a kind in its reference unit: mm, mm/s, deg, ms, or a
     plain number; `in_steps` marks distances and speeds written in steps."""
