@@ -68,11 +68,18 @@ def _cflags(program: Program) -> list:
 
 
 def _capacity_defines(program: Program) -> list:
+    """The dynamic arrays' capacities.  A rule file's rules are tables: with
+    no user C nothing can register, so the arrays shrink to one entry each
+    (the least the runtime takes) unless asked; otherwise the runtime's
+    defaults or the options."""
+    max_actions, max_events = program.max_actions, program.max_events
+    if program.generated and not program.user_files:
+        max_actions, max_events = max_actions or 1, max_events or 1
     defines = []
-    if program.max_actions:
-        defines.append(f"-DMAX_ACTIONS={program.max_actions}")
-    if program.max_events:
-        defines.append(f"-DMAX_EVENTS={program.max_events}")
+    if max_actions:
+        defines.append(f"-DMAX_ACTIONS={max_actions}")
+    if max_events:
+        defines.append(f"-DMAX_EVENTS={max_events}")
     return defines
 
 
@@ -270,7 +277,8 @@ def write_dspic_project(program: Program, out_dir: Path, template_render) -> Non
     for rel in program.user_files:
         write_atomic(out_dir / rel, (program.base_dir / rel).read_bytes())
     sources = [f"{program.name}.c", "epuckrt.c", "platform_robot.c"]
-    defines = [d[2:] for d in _capacity_defines(program)]
+    # the robot has no trace: the name labels are not even stored
+    defines = [d[2:] for d in _capacity_defines(program)] + ["EPUCKRT_NO_NAMES"]
     write_atomic(out_dir / "Makefile", template_render("dspic.mk.j2", name=program.name,
                                                        sources=sources, defines=defines))
 

@@ -30,11 +30,11 @@ def _add_check_options(p: argparse.ArgumentParser):
 
 def _add_capacity_options(p: argparse.ArgumentParser):
     p.add_argument("--max-actions", type=_capacity, metavar="N",
-                   help="capacity of the runtime's action array, 1.."
-                        f"{MAX_CAPACITY} (default: the runtime's MAX_ACTIONS)")
+                   help="capacity of the runtime's array for register_action calls from C, 1.."
+                        f"{MAX_CAPACITY} (a rule file's own rules are tables and need none)")
     p.add_argument("--max-events", type=_capacity, metavar="N",
-                   help="capacity of the runtime's event array, 1.."
-                        f"{MAX_CAPACITY} (default: the runtime's MAX_EVENTS)")
+                   help="capacity of the runtime's array for register_event calls from C, 1.."
+                        f"{MAX_CAPACITY} (a rule file's own rules are tables and need none)")
 
 
 def display_name(name: str) -> str:

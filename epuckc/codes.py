@@ -44,7 +44,7 @@ CODES = {
     "E036": "negative radius",
     "E037": "impossible robot geometry",
     "E038": "whole number expected",
-    "E039": "more actions or events than the runtime holds",
+    "E039": "more actions or events than the runtime holds (no longer reported)",
     "E040": "extern source file not found",
     "E041": "unknown LED, sound or key",
     "E042": "value out of range",

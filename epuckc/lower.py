@@ -1,10 +1,14 @@
-"""Lowering: a CheckedProgram becomes the registrations of the paper's model
-(parameter structs, generated action functions, sequences, register_action /
-register_event calls) that templates/program.c.j2 lays out.
+"""Lowering: a CheckedProgram becomes the paper's model (parameter structs,
+generated action functions, sequences, actions and the events that trigger
+them) in the runtime's static registration form that templates/program.c.j2
+lays out: const tables of actions and events registered at once with
+register_program, the rules' sensor conditions compiled into one function
+the runtime calls once per poll, and only the state that changes in RAM.
 
 Every C name and initialiser is decided here; the template only prints.
-The same rules decide how many registrations the runtime's arrays must hold,
-so the checker asks count_registrations() rather than guessing.
+The checker asks count_registrations() how many entries of the runtime's
+dynamic arrays (MAX_ACTIONS, MAX_EVENTS) a program needs: none, since the
+rules are tables.
 
 Generated names never collide with each other, C keywords or the runtime:
 user names only ever appear after a prefix that the runtime does not use
@@ -36,16 +40,18 @@ def rule_action_key(index: int, rule) -> tuple:
 
 
 def count_registrations(program: CheckedProgram) -> tuple[int, int]:
-    """(actions, events) that the program registers with the runtime."""
-    actions = {rule_action_key(i, r) for i, r in enumerate(program.rules)}
-    return len(actions), len(program.rules)
+    """(actions, events) that the program registers in the runtime's dynamic
+    arrays: none, a rule file's rules are const tables (register_program),
+    however many there are.  Only the user's C can register more."""
+    return 0, 0
 
 
 # ---- the C-shaped program ------------------------------------------------------
 
 @dataclass
 class CStruct:
-    """A static parameter struct: `static TYPE NAME = INIT; /* COMMENT */`."""
+    """A parameter struct: `static const TYPE NAME = INIT; /* COMMENT */`
+    (const: XC16 keeps it in program memory)."""
     ctype: str
     name: str
     init: str
@@ -69,18 +75,40 @@ class CSequence:
 
 
 @dataclass
-class CRegistration:
+class CAction:
+    """An entry of the action table: `{function, param}`; its id is its index."""
+    function: str
+    param: str             # "&name" or "NULL"
     comment: str
-    action_var: str
-    new_action: Optional[tuple]    # (function, param expression) when registered here
-    action_label: str
-    event_var: str
-    event_function: str
-    event_param: str
+    action_label: str      # C string: its name in the host's trace
+
+
+@dataclass
+class CEvent:
+    """An entry of the event table; its id is its index."""
+    function: str          # "NULL": a compiled sensor condition
+    param: str
+    action: int            # index in the action table
+    flags: str             # "RT_REPEAT" or "0"
+    memory: str            # index in event_memory, or "RT_NO_MEMORY"
+    comment: str
     event_label: str
-    repeat: bool
-    rule_id_var: Optional[str]     # file-scope id for `cancel RULE`
-    extensions: list = field(default_factory=list)   # set_event_priority(...); and the like
+    priority: int = 0      # the rule's priority
+    mode: int = 0          # its mode's number, 0: none
+
+
+@dataclass
+class CCondition:
+    """`if (condition) c[word] |= bit;`, setting one event's bit."""
+    statement: str
+    comment: str
+
+
+@dataclass
+class CConditionWord:
+    """One word of the conditions function: `c[index]`, its CConditions."""
+    index: int
+    terms: list
 
 
 @dataclass
@@ -98,12 +126,13 @@ class CProgram:
     structs: list = field(default_factory=list)
     functions: list = field(default_factory=list)
     sequences: list = field(default_factory=list)
-    rule_id_vars: list = field(default_factory=list)
-    action_vars: list = field(default_factory=list)
-    event_vars: list = field(default_factory=list)
-    registrations: list = field(default_factory=list)
-    actions_needed: int = 0
-    events_needed: int = 0
+    rule_ids: list = field(default_factory=list)     # (C name, event id) for `cancel RULE`
+    actions: list = field(default_factory=list)      # CAction
+    events: list = field(default_factory=list)       # CEvent
+    conditions: list = field(default_factory=list)   # CConditionWord
+    sensors: str = "0x00"                             # the IRs the conditions read
+    watched: list = field(default_factory=list)       # ... as sensor numbers
+    memory_slots: int = 0                             # longs of event_memory
     geometry: Optional[str] = None   # set_robot_geometry arguments, for a robot block
     modes: list = field(default_factory=list)       # (id, C string of its name)
     initial_mode: Optional[tuple] = None            # (id, name)
@@ -128,6 +157,17 @@ def c_string(text: str) -> str:
 def c_comment(text: str) -> str:
     """Text safe inside /* */: one line, no comment terminator."""
     return " ".join(text.split()).replace("*/", "* /")
+
+
+def const_ref(param: str) -> str:
+    """A parameter for a const table entry (rt_action, rt_event)."""
+    return "NULL" if param == "NULL" else f"&{param}"
+
+
+def void_ref(param: str) -> str:
+    """A parameter passed where the paper's API takes `void *` (a call, a
+    sequence step): the const struct's address, cast; actions only read it."""
+    return "NULL" if param == "NULL" else f"(void *)&{param}"
 
 
 def _shorten(text: str, limit: int = 100) -> str:
@@ -156,7 +196,8 @@ class _Lowerer:
         self.params: dict = {}           # id(ResolvedCall) -> param expression
         self.owner_counts: dict = {}     # owner -> structs made so far
         self.flat: dict = {}             # named action -> flattened steps
-        self.rule_ids: dict = {}         # rule name -> file-scope id variable
+        self.rule_ids: dict = {}         # rule name -> C name of its event id
+        self.sensors: set = set()        # the IRs the compiled conditions read
         self.mode_ids = {name: i for i, name in enumerate(program.modes, 1)}
         self.rule_modes = {r.name: r.mode for r in program.rules if r.name is not None}
 
@@ -182,10 +223,10 @@ class _Lowerer:
     def primitive(self, call: ResolvedCall, owner: str) -> _Primitive:
         text = self.text_of(call.node)
         if call.kind == "cancel":
-            var = self.rule_ids[call.name]
+            name = self.rule_ids[call.name]
             # a rule of a mode is disarmed until its mode is entered again
             function = "disarm_event" if self.rule_modes.get(call.name) else "cancel_event"
-            return _Primitive(None, "", f"{function}({var});", text)
+            return _Primitive(None, "", f"{function}({name});", text)
         if call.kind == "enter":         # one param_enter_mode struct per mode entered
             key = ("enter", call.name)
             if key not in self.params:
@@ -193,9 +234,10 @@ class _Lowerer:
                 self.out.structs.append(CStruct("param_enter_mode", name,
                                                 f"{{{self.mode_ids[call.name]}}}",
                                                 c_comment(f"mode {call.name}")))
-                self.params[key] = f"&{name}"
+                self.params[key] = name
             param = self.params[key]
-            return _Primitive("action_enter_mode", param, f"action_enter_mode({param});", text)
+            return _Primitive("action_enter_mode", param,
+                              f"action_enter_mode({void_ref(param)});", text)
         function = STANDARD_ACTIONS[call.name].runtime if call.kind == "standard" else call.name
         if not call.values:       # stop_motor, exit_main, an extern without parameters...
             return _Primitive(function, "NULL", f"{function}(NULL);", text)
@@ -208,9 +250,9 @@ class _Lowerer:
             self.out.structs.append(CStruct(ctype, name, init,
                                             c_comment(f"{self.where(call.node)}: {text}"
                                                       + (f" ({comment})" if comment else ""))))
-            self.params[key] = f"&{name}"
+            self.params[key] = name
         param = self.params[key]
-        return _Primitive(function, param, f"{function}({param});", text)
+        return _Primitive(function, param, f"{function}({void_ref(param)});", text)
 
     def param_struct(self, call: ResolvedCall) -> tuple[str, str, str]:
         v = call.values
@@ -307,46 +349,53 @@ class _Lowerer:
         for k, prims in enumerate(steps, 1):
             text = ", ".join(p.text for p in prims)
             fn, param = self.step_action(prims, f"step{k}_{owner}", f"{comment} - step {k}: {text}")
-            entries.append(f"{{{fn}, {param}}}")
+            entries.append(f"{{{fn}, {void_ref(param)}}}")
         self.out.sequences.append(CSequence(f"steps_{owner}", f"seq_{owner}", entries,
                                             c_comment(comment)))
-        return "run_sequence", f"&seq_{owner}"
+        return "run_sequence", f"seq_{owner}"
 
     # -- events --
 
-    def event(self, rule, index: int) -> tuple[str, str]:
+    def event(self, rule, index: int) -> tuple:
+        """(function, param name or "NULL", memory?, condition): a sensor
+        event is a compiled condition (function "NULL", its C expression)."""
         ev = rule.event
         owner = f"r{index}"
         comment = c_comment(f"{self.where(rule.node)}: {self.text_of(rule.node.event)}")
         if ev.kind == "extern":
             info = self.program.externs[ev.name]
             if not info.params:
-                return ev.name, "NULL"
+                return ev.name, "NULL", True, None
             self.out.structs.append(CStruct(f"param_{ev.name}", f"when_{owner}",
                                             self.extern_init(info.params, ev.values), comment))
-            return ev.name, f"&when_{owner}"
+            return ev.name, f"when_{owner}", True, None
         spec = STANDARD_EVENTS[ev.name]
         if spec.runtime_param is None:      # immediate, stop_motor, enter
-            return spec.runtime, "NULL"
+            return spec.runtime, "NULL", spec.memory, None
         if spec.fields:
             self.out.structs.append(CStruct(spec.runtime_param, f"when_{owner}",
                                             "{" + ", ".join(f.format(**ev.values)
                                                             for f in spec.fields) + "}",
                                             comment))
-            return spec.runtime, f"&when_{owner}"
+            return spec.runtime, f"when_{owner}", spec.memory, None
+        if ev.name == "ambient":            # a function event: not the proximity sensors
+            thresholds = ["SENSOR_OFF"] * 8
+            below = 0
+            for sensor, op, value in ev.conditions:
+                thresholds[sensor] = str(value)
+                if op == "<":
+                    below |= 1 << sensor
+            self.out.structs.append(CStruct(spec.runtime_param, f"when_{owner}",
+                                            f"{{{{{', '.join(thresholds)}}}, 0x{below:02x}}}",
+                                            comment))
+            return spec.runtime, f"when_{owner}", spec.memory, None
         if ev.name == "timer":
             self.out.structs.append(CStruct(spec.runtime_param, f"when_{owner}",
                                             f"{{{ev.values['time']}L}}", comment))
-            return spec.runtime, f"&when_{owner}"
-        thresholds = ["SENSOR_OFF"] * 8
-        below = 0
-        for sensor, op, value in ev.conditions:
-            thresholds[sensor] = str(value)
-            if op == "<":
-                below |= 1 << sensor
-        self.out.structs.append(CStruct(spec.runtime_param, f"when_{owner}",
-                                        f"{{{{{', '.join(thresholds)}}}, 0x{below:02x}}}", comment))
-        return spec.runtime, f"&when_{owner}"
+            return spec.runtime, f"when_{owner}", spec.memory, None
+        terms = [f"ir{sensor} {op} {value}" for sensor, op, value in ev.conditions]
+        self.sensors |= {sensor for sensor, _, _ in ev.conditions}
+        return "NULL", "NULL", False, " || ".join(terms)
 
     # -- the whole program --
 
@@ -358,56 +407,57 @@ class _Lowerer:
                     f"param_{info.name}", [(EXTERN_C_TYPES[p.kind], p.name) for p in info.params]))
             if info.file not in out.includes:
                 out.includes.append(info.file)
-        for rule in self.program.rules:
+        for index, rule in enumerate(self.program.rules):
             if rule.name is not None and self.uses_cancel(rule.name):
                 self.rule_ids[rule.name] = f"rule_{rule.name}"
-                out.rule_id_vars.append(f"rule_{rule.name}")
-        registered: dict = {}          # rule_action_key -> action variable
+                out.rule_ids.append((f"rule_{rule.name}", index))
+        registered: dict = {}          # rule_action_key -> action id
+        conditions: dict = {}          # word -> [CCondition]
         for index, rule in enumerate(self.program.rules, 1):
             key = rule_action_key(index, rule)
             body_text = self.text_of(rule.node.body)
-            if key in registered:
-                action_var, new_action = registered[key], None
-            else:
-                action_var = f"a{len(registered) + 1}"
-                out.action_vars.append(action_var)
+            if key not in registered:
                 if key[0] == "named":
                     name = key[1]
                     steps = self.named_steps(name)
                     node = self.program.action_nodes[name]
-                    new_action = self.body_action(
-                        steps, f"a_{name}", f"{self.where(node)}: action {name} = {self.text_of(node.body)}")
+                    where = f"{self.where(node)}: action {name} = {self.text_of(node.body)}"
+                    function, param = self.body_action(steps, f"a_{name}", where)
                 else:
-                    steps = self.flatten(rule.body, f"r{index}")
-                    new_action = self.body_action(
-                        steps, f"r{index}", f"{self.where(rule.node)}: {body_text}")
-                registered[key] = action_var
-            event_function, event_param = self.event(rule, index)
-            event_var = f"e{index}"
-            out.event_vars.append(event_var)
+                    where = f"{self.where(rule.node)}: {body_text}"
+                    function, param = self.body_action(self.flatten(rule.body, f"r{index}"),
+                                                       f"r{index}", where)
+                registered[key] = len(out.actions)
+                out.actions.append(CAction(function, const_ref(param),
+                                           c_comment(f"{registered[key]}: {_shorten(where)}"),
+                                           c_string(_shorten(body_text))))
+            function, param, memory, condition = self.event(rule, index)
+            event_id = len(out.events)
+            if condition is not None:
+                term = f"if ({condition}) c[{event_id // 16}] |= 0x{1 << (event_id % 16):04x}u;"
+                conditions.setdefault(event_id // 16, []).append(
+                    CCondition(term, c_comment(f"event {event_id}: {self.where(rule.node)}")))
+            slot = "RT_NO_MEMORY"
+            if memory:
+                slot = str(out.memory_slots)
+                out.memory_slots += 1
             head = f"rule {rule.name}: " if rule.name else ""
-            extensions = []
-            if rule.priority:
-                extensions.append(f"set_event_priority({event_var}, {rule.priority});")
-            if rule.mode is not None:
-                extensions.append(f"set_event_mode({event_var}, {self.mode_ids[rule.mode]});"
-                                  f"  /* mode {rule.mode} */")
-            out.registrations.append(CRegistration(
-                comment=c_comment(f"{self.where(rule.node)}: {self.text_of(rule.node)}"),
-                action_var=action_var, new_action=new_action,
-                action_label=c_string(_shorten(body_text)),
-                event_var=event_var, event_function=event_function, event_param=event_param,
-                event_label=c_string(_shorten(f"{self.where(rule.node)} {head}on "
-                                              f"{self.text_of(rule.node.event)}"
-                                              + (" repeat" if rule.repeat else "")
-                                              + (f" priority {rule.priority}" if rule.priority
-                                                 else ""))),
-                repeat=rule.repeat, rule_id_var=self.rule_ids.get(rule.name),
-                extensions=extensions))
+            out.events.append(CEvent(
+                function, const_ref(param), registered[key], "RT_REPEAT" if rule.repeat else "0",
+                slot, c_comment(f"{event_id}: {self.where(rule.node)}: {self.text_of(rule.node)}"
+                                + (f" (mode {rule.mode})" if rule.mode is not None else "")),
+                c_string(_shorten(f"{self.where(rule.node)} {head}on "
+                                  f"{self.text_of(rule.node.event)}"
+                                  + (" repeat" if rule.repeat else "")
+                                  + (f" priority {rule.priority}" if rule.priority else ""))),
+                priority=rule.priority or 0,
+                mode=self.mode_ids[rule.mode] if rule.mode is not None else 0))
+        out.conditions = [CConditionWord(w, terms) for w, terms in sorted(conditions.items())]
+        out.sensors = f"0x{sum(1 << n for n in self.sensors):02x}"
+        out.watched = sorted(self.sensors)
         out.modes = [(i, c_string(name)) for name, i in self.mode_ids.items()]
         if self.program.initial_mode is not None:
             out.initial_mode = (self.mode_ids[self.program.initial_mode], self.program.initial_mode)
-        out.actions_needed, out.events_needed = count_registrations(self.program)
         if self.program.robot_given:
             geo = self.program.geometry
             out.geometry = (f"{round_nearest(geo.wheel_circumference_mm * 1000)}L, "

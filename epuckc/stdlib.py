@@ -95,6 +95,9 @@ class EventSpec:
     fields: tuple = ()        # as ActionSpec.fields, for the structs not the paper's
     in_mode: bool = False     # only inside a mode (`enter`)
     conditions_doc: str = ""  # for params None: its conditions, when not the sensor's
+    # the function keeps status->memory between polls: a compiled program
+    # gives the rule a long of RAM for it (False: the function never reads it)
+    memory: bool = True
 
     @property
     def signature(self) -> str:
@@ -176,10 +179,10 @@ ACTIONS = (
 )
 
 EVENTS = (
-    EventSpec("immediate", (), "at the first poll", "immediate"),
+    EventSpec("immediate", (), "at the first poll", "immediate", memory=False),
     EventSpec("stop_motor", (),
               "when a motion has ended (reached its distance or stopped by `stop_motor`)",
-              "event_stop_motor"),
+              "event_stop_motor", memory=False),
     EventSpec("timer",
               (Param("time", DURATION, "time since `set_timer`",
                      "> 0 [E033], at most 2147483647 ms [E034]"),),

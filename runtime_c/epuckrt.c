@@ -37,12 +37,51 @@ static event events[MAX_EVENTS];
 static int n_actions;   /* slots used so far, cancelled ones included */
 static int n_events;
 
-/* Extension state of each event, kept beside the paper's struct: its
- * priority (set_event_priority) and mode (set_event_mode, 0: none). */
+/* Extension state of each event of the arrays, kept beside the paper's
+ * struct: its priority (set_event_priority) and mode (set_event_mode, 0:
+ * none).  A table event's are in its rt_event. */
 static struct {
     int priority;
     int mode;
 } event_ext[MAX_EVENTS];
+/* 1 once any event has a priority or a mode: the walk then goes by
+ * priority levels (poll_ranked); 0: every priority is 0 and there are no
+ * modes, and the walk is the plain one in id order. */
+static int ranked;
+
+/* ---- the static tables (register_program) ----------------------------------
+ * Ids 0..s_actions-1 and 0..s_events-1 are the program's table entries; the
+ * arrays' ids follow (array index + s_actions / s_events).  The program's
+ * RAM state is six bit planes of 16-bit words, bit k % 16 of word k / 16
+ * for entry k: */
+static const rt_program *prog;      /* NULL: none registered */
+static int s_actions, s_events;     /* its table sizes, 0 without one */
+static unsigned s_words;            /* RT_WORDS(s_events) */
+static unsigned *action_off;        /* the action was cancelled */
+static unsigned *ev_armed;          /* the event is armed (valid_flag) */
+static unsigned *ev_repeat;         /* repeat_flag */
+static unsigned *ev_latch;          /* compiled condition at its last poll */
+static unsigned *ev_now;            /* compiled conditions of this poll */
+static unsigned *ev_compiled;       /* the event is a compiled condition */
+static unsigned *ev_dead;           /* cancel_event: not re-armed by enter_mode */
+static int conditions_valid;        /* ev_now holds this poll's conditions */
+
+#define WORD_MASK 0xFFFFu
+#define BIT_OF(k) (1u << ((unsigned)(k) & 15u))
+#define BIT_GET(plane, k) (((plane)[(k) >> 4] & BIT_OF(k)) != 0)
+#define BIT_SET(plane, k) ((plane)[(k) >> 4] |= BIT_OF(k))
+#define BIT_CLEAR(plane, k) ((plane)[(k) >> 4] &= ~BIT_OF(k))
+
+/* An event's priority and mode, by id (table or array). */
+static int event_priority(int id)
+{
+    return id < s_events ? prog->events[id].priority : event_ext[id - s_events].priority;
+}
+
+static int event_mode(int id)
+{
+    return id < s_events ? prog->events[id].mode : event_ext[id - s_events].mode;
+}
 
 /* ---- millisecond clock ---------------------------------------------------
  * A 1 ms e-puck agenda (cycle 10 x 0.1 ms) counts; it runs in the Timer2
@@ -118,6 +157,24 @@ static long timer_start;        /* rt_millis() at set_timer */
 /* Proximity polling (start_sensor / stop_sensor); off at start. */
 static int sensors_on;
 
+/* The proximity readings, read once per poll: bit n of prox_valid says
+ * prox[n] was read in this poll (cleared at the start of each poll). */
+static int prox[8];
+static unsigned prox_valid;
+
+static void read_prox(unsigned mask)
+{
+    unsigned n, todo = mask & ~prox_valid & 0xFFu;
+
+    if (todo == 0)
+        return;
+    for (n = 0; todo != 0; n++, todo >>= 1) {
+        if (todo & 1u)
+            prox[n] = e_get_prox(n);
+    }
+    prox_valid |= mask & 0xFFu;
+}
+
 /* Motion: at most one at a time.  Progress is measured from the 16-bit step
  * counters at each poll and accumulated in long. */
 enum { WATCH_BOTH, WATCH_LEFT, WATCH_RIGHT };
@@ -183,11 +240,18 @@ static long wheel_delta(int now, int last)
 
 static int action_ok(int id)
 {
+    if (id >= 0 && id < s_actions)
+        return !BIT_GET(action_off, id);
+    id -= s_actions;
     return id >= 0 && id < n_actions && actions[id].action_function != NULL;
 }
 
+/* A registered event that was not cancelled (it may have fired and disarmed). */
 static int event_ok(int id)
 {
+    if (id >= 0 && id < s_events)
+        return 1;   /* table events stay registered: cancel_event disarms them */
+    id -= s_events;
     return id >= 0 && id < n_events && events[id].event_function != NULL;
 }
 
@@ -199,8 +263,8 @@ int register_action(action_func f, void *action_param)
     id = n_actions++;
     actions[id].action_function = f;
     actions[id].action_param = action_param;
-    rt_new_action(id, f);
-    return id;
+    rt_new_action(s_actions + id, f);
+    return s_actions + id;
 }
 
 int register_event(event_func f, void *event_param, int action_id)
@@ -226,15 +290,20 @@ int register_event(event_func f, void *event_param, int action_id)
     }
     if (f == event_tap || f == event_tilt)
         accel_wanted = 1;
-    rt_new_event(id, f);
-    return id;
+    rt_new_event(s_events + id, f);
+    return s_events + id;
 }
 
 void cancel_action(int action_id)
 {
     if (!action_ok(action_id))
         return;
+    if (action_id < s_actions) {
+        BIT_SET(action_off, action_id);
+        return;
+    }
     /* A NULL function marks the slot cancelled; it is never reused. */
+    action_id -= s_actions;
     actions[action_id].action_function = NULL;
     actions[action_id].action_param = NULL;
 }
@@ -243,50 +312,136 @@ void cancel_event(int event_id)
 {
     if (!event_ok(event_id))
         return;
+    if (event_id < s_events) {
+        BIT_CLEAR(ev_armed, event_id);
+        BIT_SET(ev_dead, event_id);
+        return;
+    }
+    event_id -= s_events;
     events[event_id].valid_flag = 0;
     events[event_id].event_function = NULL;
 }
 
 void set_event_repeat(int event_id, int repeat)
 {
-    if (event_ok(event_id))
-        events[event_id].repeat_flag = repeat != 0;
+    if (!event_ok(event_id))
+        return;
+    if (event_id < s_events) {
+        if (repeat)
+            BIT_SET(ev_repeat, event_id);
+        else
+            BIT_CLEAR(ev_repeat, event_id);
+        return;
+    }
+    events[event_id - s_events].repeat_flag = repeat != 0;
 }
 
+/* Priorities and modes of the arrays' events; a table event's are in its
+ * rt_event (these ignore table ids). */
 void set_event_priority(int event_id, int priority)
 {
-    if (event_ok(event_id))
-        event_ext[event_id].priority = priority;
+    if (event_id >= s_events && event_ok(event_id)) {
+        event_ext[event_id - s_events].priority = priority;
+        if (priority != 0)
+            ranked = 1;
+    }
 }
 
 void set_event_mode(int event_id, int mode)
 {
-    if (event_ok(event_id) && mode >= 0)
-        event_ext[event_id].mode = mode;
+    if (event_id >= s_events && event_ok(event_id) && mode >= 0) {
+        event_ext[event_id - s_events].mode = mode;
+        if (mode != 0)
+            ranked = 1;
+    }
 }
 
 void disarm_event(int event_id)
 {
-    if (event_ok(event_id))
-        events[event_id].valid_flag = 0;
+    if (!event_ok(event_id))
+        return;
+    if (event_id < s_events)
+        BIT_CLEAR(ev_armed, event_id);
+    else
+        events[event_id - s_events].valid_flag = 0;
 }
 
-void name_mode(int mode, const char *name)
+void (name_mode)(int mode, const char *name)
 {
     if (mode > 0)
         rt_name_mode(mode, name);
 }
 
-void name_action(int action_id, const char *name)
+/* Parenthesised: epuckrt.h may define them as macros (EPUCKRT_NO_NAMES). */
+void (name_action)(int action_id, const char *name)
 {
-    if (action_id >= 0 && action_id < n_actions)
+    if (action_id >= 0 && action_id < s_actions + n_actions)
         rt_name_action(action_id, name);
 }
 
-void name_event(int event_id, const char *name)
+void (name_event)(int event_id, const char *name)
 {
-    if (event_id >= 0 && event_id < n_events)
+    if (event_id >= 0 && event_id < s_events + n_events)
         rt_name_event(event_id, name);
+}
+
+int register_program(const rt_program *p)
+{
+    int k, words_a, words_e;
+
+    if (p == NULL || prog != NULL || n_actions != 0 || n_events != 0
+            || p->n_actions < 0 || p->n_events < 0 || p->state == NULL
+            || (p->n_actions > 0 && p->actions == NULL)
+            || (p->n_events > 0 && p->events == NULL))
+        return -1;
+    for (k = 0; k < p->n_actions; k++) {
+        if (p->actions[k].action_function == NULL)
+            return -1;
+    }
+    for (k = 0; k < p->n_events; k++) {
+        const rt_event *e = &p->events[k];
+        if (e->action_id < 0 || e->action_id >= p->n_actions
+                || (e->event_function == NULL && p->conditions == NULL)
+                || (e->memory != RT_NO_MEMORY && (e->memory < 0 || p->memory == NULL))
+                || e->mode < 0)
+            return -1;
+    }
+    words_a = RT_WORDS(p->n_actions);
+    words_e = RT_WORDS(p->n_events);
+    action_off = p->state;
+    ev_armed = action_off + words_a;
+    ev_repeat = ev_armed + words_e;
+    ev_latch = ev_repeat + words_e;
+    ev_now = ev_latch + words_e;
+    ev_compiled = ev_now + words_e;
+    ev_dead = ev_compiled + words_e;
+    for (k = 0; k < words_a + 6 * words_e; k++)
+        p->state[k] = 0;
+    for (k = 0; k < p->n_actions; k++)
+        rt_new_action(k, p->actions[k].action_function);
+    for (k = 0; k < p->n_events; k++) {
+        const rt_event *e = &p->events[k];
+        BIT_SET(ev_armed, k);
+        if (e->flags & RT_REPEAT)
+            BIT_SET(ev_repeat, k);
+        if (e->event_function == NULL)
+            BIT_SET(ev_compiled, k);
+        if (e->memory != RT_NO_MEMORY)
+            p->memory[e->memory] = 0;
+        if (e->priority != 0 || e->mode != 0)
+            ranked = 1;
+        if (e->event_function == event_remote)
+            remote_wanted = 1;
+        if (e->event_function == event_tap || e->event_function == event_tilt)
+            accel_wanted = 1;
+        rt_new_event(k, e->event_function);
+    }
+    remote_start();
+    prog = p;
+    s_actions = p->n_actions;
+    s_events = p->n_events;
+    s_words = (unsigned)words_e;
+    return 0;
 }
 
 /* ---- motion control -------------------------------------------------------- */
@@ -303,9 +458,9 @@ static int motors_refused(const char *command)
 
     if (!motion.active || owner < 0 || me < 0 || owner == me)
         return 0;
-    if (event_ext[me].priority >= event_ext[owner].priority)
+    if (event_priority(me) >= event_priority(owner))
         return 0;
-    rt_trace_suppressed(me, event_ext[me].priority, owner, event_ext[owner].priority,
+    rt_trace_suppressed(me, event_priority(me), owner, event_priority(owner),
                         command);
     return 1;
 }
@@ -515,9 +670,9 @@ static int sequence_refused(void)
 
     if (seq == NULL || owner < 0 || me < 0 || owner == me)
         return 0;
-    if (event_ext[me].priority >= event_ext[owner].priority)
+    if (event_priority(me) >= event_priority(owner))
         return 0;
-    rt_trace_suppressed(me, event_ext[me].priority, owner, event_ext[owner].priority,
+    rt_trace_suppressed(me, event_priority(me), owner, event_priority(owner),
                         "run_sequence");
     return 1;
 }
@@ -660,7 +815,25 @@ void event_sensor(void *param, void *status)
 {
     const param_event_sensor *p = (const param_event_sensor *)param;
 
-    edge((event_status *)status, p != NULL && sensors_on && thresholds_passed(p, e_get_prox));
+    event_status *st = (event_status *)status;
+    int cond = 0;
+    unsigned n;
+
+    if (p != NULL && sensors_on) {
+        if (prox_valid != 0xFFu)
+            read_prox(0xFFu);       /* the first sensor event of this poll */
+        for (n = 0; n < 8; n++) {
+            int threshold = p->sensef[n];
+            int value = prox[n];
+            if (threshold == SENSOR_OFF)
+                continue;
+            if ((p->below >> n) & 1u ? value < threshold : value > threshold) {
+                cond = 1;
+                break;
+            }
+        }
+    }
+    edge(st, cond);
 }
 
 /* ---- extension: modes ---------------------------------------------------------- */
@@ -672,8 +845,17 @@ void enter_mode(int mode)
     if (mode <= 0)
         return;
     current_mode = mode;
+    /* re-armed as at registration; cancel_event's are gone for good */
+    for (i = 0; i < s_events; i++) {
+        const rt_event *e = &prog->events[i];
+        if (e->mode == mode && !BIT_GET(ev_dead, i)) {
+            BIT_SET(ev_armed, i);
+            BIT_CLEAR(ev_latch, i);
+            if (e->memory != RT_NO_MEMORY)
+                prog->memory[e->memory] = 0;
+        }
+    }
     for (i = 0; i < n_events; i++) {
-        /* re-armed as at registration; cancel_event's are gone for good */
         if (event_ext[i].mode == mode && events[i].event_function != NULL) {
             events[i].valid_flag = 1;
             events[i].status.occurred = 0;
@@ -689,12 +871,12 @@ void enter_mode(int mode)
     if (left == 0)
         return;
     /* what the rules of the mode left were doing with the motors ends */
-    if (seq != NULL && seq_event_id >= 0 && event_ext[seq_event_id].mode == left) {
+    if (seq != NULL && seq_event_id >= 0 && event_mode(seq_event_id) == left) {
         seq_generation++;
         seq = NULL;
         seq_waiting = 0;
     }
-    if (motion.active && motion.owner >= 0 && event_ext[motion.owner].mode == left) {
+    if (motion.active && motion.owner >= 0 && event_mode(motion.owner) == left) {
         /* stopped without a stop_motor event: the motion did not end, its
          * mode did (the new mode's stop_motor rules must not take it for
          * the end of a motion of theirs) */
@@ -878,25 +1060,143 @@ void immediate(void *param, void *status) { event_immediate(param, status); }
 static void run_action(int action_id)
 {
     int previous = current_action_id;
+    action_func f;
+    void *param;
 
     if (!action_ok(action_id))
         return;     /* cancelled: the event fires but runs nothing */
+    if (action_id < s_actions) {
+        f = prog->actions[action_id].action_function;
+        param = (void *)prog->actions[action_id].action_param;
+    } else {
+        f = actions[action_id - s_actions].action_function;
+        param = actions[action_id - s_actions].action_param;
+    }
     rt_trace_action(action_id, -1, 0);
     current_action_id = action_id;
-    actions[action_id].action_function(actions[action_id].action_param);
+    f(param);
     current_action_id = previous;
 }
 
-/* An event is polled when armed, and when in a mode, that mode is the
- * current one and was not entered during this poll. */
-static int armed(int i)
+/* A table event occurred: trace it, run its action, disarm it unless it
+ * repeats. */
+static void fire_static(int id)
 {
-    const event *e = &events[i];
-    int mode = event_ext[i].mode;
+    rt_trace_event(id);
+    current_event_id = id;
+    run_action(prog->events[id].action_id);
+    current_event_id = -1;
+    if (!BIT_GET(ev_repeat, id))
+        BIT_CLEAR(ev_armed, id);
+}
 
-    if (!e->valid_flag || e->event_function == NULL)
+/* ~0u while the sensors are on (this poll's compiled conditions are then
+ * in ev_now, computed at the first call of the poll), 0 while they are off:
+ * a mask for ev_now. */
+static unsigned conditions_mask(void)
+{
+    if (!sensors_on || prog->conditions == NULL)
         return 0;
+    if (!conditions_valid) {
+        read_prox(prog->sensors);
+        prog->conditions(prox, ev_now);
+        conditions_valid = 1;
+    }
+    return ~0u;
+}
+
+/* Polls a table event that is not a compiled condition. */
+static void poll_static_function(int id)
+{
+    const rt_event *e = &prog->events[id];
+    event_status st;
+
+    st.occurred = 0;
+    st.memory = e->memory != RT_NO_MEMORY ? prog->memory[e->memory] : 0;
+    e->event_function((void *)e->event_param, &st);
+    if (e->memory != RT_NO_MEMORY)
+        prog->memory[e->memory] = st.memory;
+    if (st.occurred)
+        fire_static(id);
+}
+
+/* Phase (5) for the table's events, sixteen at a time: a word whose armed
+ * events are all compiled conditions that do not become true only has its
+ * latches updated; the others are polled one by one in index order, and
+ * the word re-read after each, since an action may change the sensors or
+ * cancel events.  Returns 1 when exit_main ran. */
+static int poll_static(void)
+{
+    unsigned w;
+    unsigned *armed = ev_armed, *latch = ev_latch, *compiled = ev_compiled, *now = ev_now;
+    unsigned on = conditions_mask();
+
+    for (w = 0; w < s_words; w++) {
+        unsigned todo = armed[w];       /* armed and not polled yet */
+        while (todo != 0) {
+            unsigned comp = todo & compiled[w];
+            unsigned cond = now[w] & comp & on;
+            unsigned pick = (cond & ~latch[w]) | (todo & ~comp);
+            unsigned low, below;
+            int k;
+
+            if (pick == 0) {
+                /* no event of the word occurs: the latches follow */
+                latch[w] = (latch[w] & ~comp) | cond;
+                break;
+            }
+            for (k = 0; !((pick >> k) & 1u); k++)
+                ;
+            low = BIT_OF(k);
+            below = low - 1u;
+            latch[w] = (latch[w] & ~(comp & below)) | (cond & below);
+            if (comp & low) {
+                latch[w] |= low;        /* the condition became true */
+                fire_static((int)(w * 16u) + k);
+            } else {
+                poll_static_function((int)(w * 16u) + k);
+            }
+            if (exit_requested)
+                return 1;
+            on = conditions_mask();     /* the action may have started the sensors */
+            todo = armed[w] & ~(low | below) & WORD_MASK;
+        }
+    }
+    return 0;
+}
+
+/* An array event occurred: trace it, run its action, disarm it unless it
+ * repeats. */
+static void fire_dynamic(int i)
+{
+    event *e = &events[i];
+
+    rt_trace_event(s_events + i);
+    current_event_id = s_events + i;
+    run_action(e->action_id);
+    current_event_id = -1;
+    if (!e->repeat_flag)
+        e->valid_flag = 0;
+}
+
+/* ---- the walk by priority levels (ranked: priorities or modes in use) ---- */
+
+/* A mode's events are polled only while it is the current mode, and not in
+ * the poll that entered it. */
+static int mode_ok(int mode)
+{
     return mode == 0 || (mode == current_mode && !mode_entered_in_poll);
+}
+
+static int static_armed(int k)
+{
+    return BIT_GET(ev_armed, k) && mode_ok(prog->events[k].mode);
+}
+
+static int dynamic_armed(int i)
+{
+    return events[i].valid_flag && events[i].event_function != NULL
+           && mode_ok(event_ext[i].mode);
 }
 
 /* The highest priority below `below` among the armed events (all of them
@@ -905,9 +1205,10 @@ static int next_level(int bounded, int below, int *level)
 {
     int i, found = 0;
 
-    for (i = 0; i < n_events; i++) {
-        int p = event_ext[i].priority;
-        if (!armed(i) || (bounded && p >= below))
+    for (i = 0; i < s_events + n_events; i++) {
+        int p = event_priority(i);
+        if ((bounded && p >= below)
+                || !(i < s_events ? static_armed(i) : dynamic_armed(i - s_events)))
             continue;
         if (!found || p > *level)
             *level = p;
@@ -916,35 +1217,85 @@ static int next_level(int bounded, int below, int *level)
     return found;
 }
 
-/* Phase (5): poll the armed events, highest priority first, in index order
- * within a priority (with all priorities equal: in index order, as in the
- * paper).  Returns 1 when exit_main ran. */
-static int poll_events(void)
+/* Polls one table event (the ranked walk's, one at a time). */
+static void poll_static_one(int k)
+{
+    int cond, was;
+
+    if (!BIT_GET(ev_compiled, k)) {
+        poll_static_function(k);
+        return;
+    }
+    cond = (conditions_mask() & ev_now[k >> 4] & BIT_OF(k)) != 0;
+    was = BIT_GET(ev_latch, k);
+    if (cond)
+        BIT_SET(ev_latch, k);
+    else
+        BIT_CLEAR(ev_latch, k);
+    if (cond && !was)
+        fire_static(k);
+}
+
+/* Phase (5) with priorities or modes: the armed events (in no mode or in
+ * the current one), highest priority first, in id order within a priority
+ * (the table's, then the arrays').  Returns 1 when exit_main ran. */
+static int poll_ranked(void)
 {
     int i, level = 0, more;
 
     mode_entered_in_poll = 0;
     more = next_level(0, 0, &level);
     while (more) {
-        /* n_events is re-read: an action may register events, polled at once */
-        for (i = 0; i < n_events; i++) {
-            event *e = &events[i];
-            if (event_ext[i].priority != level || !armed(i))
+        /* s_events + n_events is re-read: an action may register events,
+         * polled at once */
+        for (i = 0; i < s_events + n_events; i++) {
+            if (event_priority(i) != level)
                 continue;
-            e->status.occurred = 0;
-            e->event_function(e->event_param, &e->status);
-            if (e->status.occurred) {
-                rt_trace_event(i);
-                current_event_id = i;
-                run_action(e->action_id);
-                current_event_id = -1;
-                if (!e->repeat_flag)
-                    e->valid_flag = 0;
+            if (i < s_events) {
+                if (!static_armed(i))
+                    continue;
+                poll_static_one(i);
+            } else {
+                event *e = &events[i - s_events];
+                if (!dynamic_armed(i - s_events))
+                    continue;
+                e->status.occurred = 0;
+                e->event_function(e->event_param, &e->status);
+                if (e->status.occurred)
+                    fire_dynamic(i - s_events);
             }
             if (exit_requested)
                 return 1;
         }
         more = next_level(1, level, &level);
+    }
+    return 0;
+}
+
+/* Phase (5): poll the armed events; without priorities and modes in index
+ * order: the table's, then the registered ones.  Returns 1 when exit_main
+ * ran. */
+static int poll_events(void)
+{
+    int i;
+
+    conditions_valid = 0;
+    prox_valid = 0;
+    if (ranked)
+        return poll_ranked();
+    if (prog != NULL && poll_static())
+        return 1;
+    /* n_events is re-read: an action may register events, polled at once */
+    for (i = 0; i < n_events; i++) {
+        event *e = &events[i];
+        if (!e->valid_flag || e->event_function == NULL)
+            continue;
+        e->status.occurred = 0;
+        e->event_function(e->event_param, &e->status);
+        if (e->status.occurred)
+            fire_dynamic(i);
+        if (exit_requested)
+            return 1;
     }
     return 0;
 }
@@ -979,5 +1330,6 @@ void mainloop(void)
     seq_waiting = 0;
     seen_moving = 0;
     exit_requested = 0;
+    prox_valid = 0;
     rt_trace_exit();
 }

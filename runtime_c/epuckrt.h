@@ -88,9 +88,75 @@ void set_event_repeat(int event_id, int repeat);   /* unknown ids ignored */
  * conversion of millimetres and degrees and for the host's odometry;
  * non-positive values are ignored.  epuckc calls it for a `robot { }` block. */
 void set_robot_geometry(long wheel_circumference_um, long axle_um, long steps_per_rev);
-/* Names shown in the host harness's trace; ignored on the robot. */
+/* Names shown in the host harness's trace; ignored on the robot.  With
+ * EPUCKRT_NO_NAMES defined (epuckc's robot builds; automatic with XC16)
+ * they are macros that drop the name, so the labels are not even stored. */
 void name_action(int action_id, const char *name);
 void name_event(int event_id, const char *name);
+#if defined(EPUCKRT_NO_NAMES) || (defined(__XC16__) && !defined(EPUCKRT_NAMES))
+#define name_action(action_id, name) ((void)(action_id))
+#define name_event(event_id, name) ((void)(event_id))
+#endif
+
+/* ---- Extension: static registration ------------------------------------
+ * A compiled program (epuckc's output) gives its actions and events as const
+ * tables, which XC16 keeps in program memory, and registers them at once with
+ * register_program; only what changes while it runs is in RAM (a few bits an
+ * event, a long per event that keeps a memory).  The tables' ids are their
+ * indices; register_action/register_event still work afterwards and their
+ * ids follow the tables'.  mainloop polls the table's events first, in index
+ * order, then the registered ones, with the same semantics (docs/runtime.md). */
+typedef struct {
+    action_func action_function;
+    const void *action_param;   /* passed as the function's void *; the
+                                   standard actions only read it */
+} rt_action;
+
+#define RT_REPEAT 1u            /* rt_event.flags: stays armed after firing */
+#define RT_NO_MEMORY (-1)       /* rt_event.memory: the function gets 0 */
+
+typedef struct {
+    event_func event_function;  /* NULL: the event is the program's compiled
+                                   sensor condition (rt_program.conditions) */
+    const void *event_param;
+    int action_id;              /* an index in the program's actions */
+    unsigned char flags;        /* RT_REPEAT */
+    int memory;                 /* index in rt_program.memory of the status's
+                                   memory, kept between polls (0 at the
+                                   start), or RT_NO_MEMORY */
+    int priority;               /* the rule's priority (set_event_priority's
+                                   for a table event), 0 by default */
+    int mode;                   /* its mode: 0 none, always armed; > 0 armed
+                                   only while that mode is current */
+} rt_event;
+
+typedef struct {
+    const rt_action *actions;
+    int n_actions;
+    const rt_event *events;
+    int n_events;
+    /* The compiled sensor conditions, or NULL: for each event k with a NULL
+     * function, sets bit k % 16 of bits[k / 16] to its condition, from the
+     * proximity readings ir[0..7] of this poll (the other bits are not
+     * read).  Called at most once per poll, while the sensors are on; the
+     * event occurs when its condition becomes true, as event_sensor's. */
+    void (*conditions)(const int *ir, unsigned *bits);
+    unsigned sensors;           /* bit n: conditions reads ir[n] */
+    unsigned *state;            /* RAM, RT_STATE_WORDS(n_actions, n_events) */
+    long *memory;               /* RAM, one per memory index used, or NULL */
+} rt_program;
+
+/* The state is bit planes of 16-bit words (unsigned is at least 16 bits). */
+#define RT_WORDS(n) (((n) + 15) / 16)
+#define RT_STATE_WORDS(n_actions, n_events) (RT_WORDS(n_actions) + 6 * RT_WORDS(n_events))
+
+/* Registers a program's tables (before mainloop; tables registered by an
+ * action are polled from the next poll): its actions get ids
+ * 0..n_actions-1, its events 0..n_events-1, all armed.  Returns 0, or -1 (and registers
+ * nothing) when a program or anything else was registered before, or a
+ * table is inconsistent (an action_id out of range, a NULL action function,
+ * a NULL event function without conditions, a NULL state). */
+int register_program(const rt_program *program);
 
 /* ---- Paper table 2: standard actions and their parameters -------------- */
 typedef struct {
@@ -171,10 +237,13 @@ void immediate(void *param, void *status);
  * stop_motor) from the action of an event of lower priority are suppressed
  * (and traced), and so is a run_sequence that would replace a sequence in
  * progress of an event of higher priority.  All priorities equal: the
- * paper's behaviour.  Unknown ids ignored. */
+ * paper's behaviour.  Unknown ids ignored, and so are a program's table
+ * ids (register_program): a table event's priority is its rt_event's. */
 void set_event_priority(int event_id, int priority);
 /* The mode an event belongs to: 0 (the default) none, always armed; a
- * positive number: polled only while that mode is the current one. */
+ * positive number: polled only while that mode is the current one.  As
+ * set_event_priority, for registered events only (a table event's mode is
+ * its rt_event's). */
 void set_event_mode(int event_id, int mode);
 /* Makes `mode` (> 0) the current mode.  Its events are re-armed with their
  * state reset as at registration (one-shot ones that fired and disarmed
@@ -187,8 +256,12 @@ void enter_mode(int mode);
 /* Disarms an event until its mode is entered again (cancel_event is
  * forever).  Unknown ids ignored. */
 void disarm_event(int event_id);
-/* The name of a mode in the host trace; ignored on the robot. */
+/* The name of a mode in the host trace; ignored on the robot, and a macro
+ * that drops the name with EPUCKRT_NO_NAMES (as name_action). */
 void name_mode(int mode, const char *name);
+#if defined(EPUCKRT_NO_NAMES) || (defined(__XC16__) && !defined(EPUCKRT_NAMES))
+#define name_mode(mode, name) ((void)(mode))
+#endif
 
 typedef struct {
     int mode;               /* > 0 */

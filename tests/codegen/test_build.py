@@ -95,10 +95,22 @@ def test_dspic_makefile_dry_run_names_the_xc16_steps(tmp_path):
     dry = subprocess.run([make, "-n", "-C", str(out), f"EPUCK_LIB={lib}"],
                          capture_output=True, text=True, check=True).stdout
     assert "xc16-gcc -mcpu=30F6014A -omf=elf" in dry
+    assert "-DEPUCKRT_NO_NAMES" in dry      # the robot stores no name labels
     assert f"-I{lib}/library" in dry
     assert "-Tp30F6014A.gld" in dry and "xc16-bin2hex extern_spin.elf" in dry
     for source in ("extern_spin.c", "epuckrt.c", "platform_robot.c", "e_agenda.c", "e_prox.c"):
         assert source in dry
+
+
+def test_dspic_arrays_shrink_unless_user_c_can_register(tmp_path):
+    """A rule file's rules are tables: without user C nothing registers, so
+    the dynamic arrays get one entry each; with user C the runtime's default."""
+    out, _ = dspic_project(tmp_path / "a", example="square.epk")
+    makefile = (out / "Makefile").read_text()
+    assert "-DMAX_ACTIONS=1 -DMAX_EVENTS=1 -DEPUCKRT_NO_NAMES" in makefile
+    out, _ = dspic_project(tmp_path / "b")
+    makefile = (out / "Makefile").read_text()
+    assert "MAX_ACTIONS" not in makefile and "-DEPUCKRT_NO_NAMES" in makefile
 
 
 def test_dspic_build_runs_make_with_xc16_from_xc16_dir(tmp_path):

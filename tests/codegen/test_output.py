@@ -36,7 +36,7 @@ def prog(tmp_path):
 def test_dash_is_standard_output(prog, tmp_path):
     result = epuckc("compile", prog, "-o", "-", cwd=tmp_path)
     assert result.returncode == 0, result.stderr
-    assert result.stdout.startswith("/*") and "register_action" in result.stdout
+    assert result.stdout.startswith("/*") and "register_program(" in result.stdout
     assert not (tmp_path / "-").exists()
 
 
@@ -91,7 +91,7 @@ def test_dev_stdout_is_the_open_standard_output(prog, tmp_path):
     before = os.lstat("/dev/stdout")
     result = epuckc("compile", prog, "-o", "/dev/stdout")
     assert result.returncode == 0, result.stderr
-    assert "register_action" in result.stdout
+    assert "register_program(" in result.stdout
     after = os.lstat("/dev/stdout")
     assert (after.st_mode, after.st_ino) == (before.st_mode, before.st_ino)
     assert not list(Path("/dev").glob(".epuckc-tmp-*"))
@@ -106,7 +106,7 @@ def test_dev_stdout_redirected_to_a_file(prog, tmp_path):
     with open(out, "wb") as f:
         subprocess.run([sys.executable, "-m", "epuckc", "compile", prog, "-o", "/dev/stdout"],
                        stdout=f, check=True, env=dict(os.environ, PYTHONPATH=str(REPO)))
-    assert "register_action" in out.read_text()
+    assert "register_program(" in out.read_text()
 
 
 def test_full_device_names_the_path():

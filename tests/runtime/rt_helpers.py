@@ -6,6 +6,8 @@ import subprocess
 from dataclasses import dataclass, field
 from pathlib import Path
 
+import pytest
+
 from conftest import REPO, require_tool
 
 RUNTIME = REPO / "runtime_c"
@@ -37,10 +39,40 @@ def cc() -> str:
     return require_tool("cc")
 
 
+# The registration path the programs are built for: "dynamic" (as written:
+# register_action/register_event) or "static" (their registrations collected
+# into tables for register_program by static_path.c).  Set per test by the
+# `registration` fixture below.
+REGISTRATION = "dynamic"
+HERE = Path(__file__).resolve().parent
+
+
+def _registration(request, param):
+    global REGISTRATION
+    if param == "static" and request.node.get_closest_marker("dynamic_only"):
+        pytest.skip("about the dynamic arrays only")
+    REGISTRATION = param
+    yield param
+    REGISTRATION = "dynamic"
+
+
+@pytest.fixture(params=["dynamic", "static"])
+def registration(request):
+    """Runs a test on both registration paths; a test module makes it
+    autouse with `both_paths`."""
+    yield from _registration(request, request.param)
+
+
+@pytest.fixture(autouse=True, params=["dynamic", "static"])
+def both_paths(request):
+    yield from _registration(request, request.param)
+
+
 def build(tmp_path: Path, program, defines=(), sanitize=False, extra_flags=(),
           name="prog") -> Path:
     """Compile a program (a path, or C source text) with the runtime sources
-    (strict flags) into tmp_path; returns the executable."""
+    (strict flags) into tmp_path, for the current REGISTRATION path; returns
+    the executable."""
     compiler = cc()
     if isinstance(program, Path):
         src = program
@@ -48,9 +80,17 @@ def build(tmp_path: Path, program, defines=(), sanitize=False, extra_flags=(),
         src = tmp_path / f"{name}.c"
         src.write_text(program)
     exe = tmp_path / name
-    cmd = [compiler, *STRICT, "-O1", *INCLUDES, *[f"-D{d}" for d in defines],
-           *(SANITIZE if sanitize else []), *extra_flags, str(src),
-           *map(str, SOURCES), "-o", str(exe)]
+    flags = [*STRICT, "-O1", *INCLUDES, *[f"-D{d}" for d in defines],
+             *(SANITIZE if sanitize else []), *extra_flags]
+    sources = [str(src)]
+    if REGISTRATION == "static":
+        obj = tmp_path / f"{name}.static.o"
+        cmd = [compiler, *flags, "-include", str(HERE / "static_path.h"), "-c", str(src),
+               "-o", str(obj)]
+        res = subprocess.run(cmd, capture_output=True, text=True)
+        assert res.returncode == 0, f"compile failed: {' '.join(cmd)}\n{res.stderr}"
+        sources = [str(obj), str(HERE / "static_path.c")]
+    cmd = [compiler, *flags, *sources, *map(str, SOURCES), "-o", str(exe)]
     res = subprocess.run(cmd, capture_output=True, text=True)
     assert res.returncode == 0, f"compile failed: {' '.join(cmd)}\n{res.stderr}"
     return exe

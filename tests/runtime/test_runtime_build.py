@@ -4,13 +4,14 @@ harness's settings and errors, determinism."""
 import os
 import stat
 import subprocess
+import sys
 from pathlib import Path
 
 import pytest
 
 from conftest import REPO, require_tool
-from rt_helpers import (INCLUDES, PROGRAMS, RUNTIME, SOURCES, STRICT, build,
-                        build_and_run, cc, run)
+from rt_helpers import (INCLUDES, PROGRAMS, RUNTIME, SOURCES, STRICT, build,  # noqa: F401
+                        build_and_run, cc, registration, run)
 
 
 def make(*args, env=None):
@@ -71,7 +72,8 @@ SANITIZED = {
     "registry.c": {}, "capacity.c": {"defines": ["MAX_ACTIONS=3", "MAX_EVENTS=4"]},
     "sensor_edge.c": {}, "sensor_off.c": {}, "timer_periodic.c": {},
     "timer_reset.c": {"time_limit": 500}, "stop_action.c": {}, "stop_restart.c": {},
-    "zero_motion.c": {}, "priority.c": {}, "modes.c": {}, "devices.c": {},
+    "zero_motion.c": {}, "static_table.c": {}, "priority.c": {}, "modes.c": {},
+    "devices.c": {},
 }
 
 
@@ -80,6 +82,7 @@ def test_sanitized_list_covers_all_programs():
 
 
 @pytest.mark.parametrize("name", sorted(SANITIZED))
+@pytest.mark.usefixtures("registration")
 def test_runs_clean_under_sanitizers(tmp_path, name):
     opts = SANITIZED[name]
     r = build_and_run(tmp_path, name, defines=opts.get("defines", ()),
@@ -89,6 +92,7 @@ def test_runs_clean_under_sanitizers(tmp_path, name):
     assert "runtime error" not in r.stderr and "Sanitizer" not in r.stderr
 
 
+@pytest.mark.usefixtures("registration")
 def test_deterministic(tmp_path):
     exe = build(tmp_path, PROGRAMS / "sequence.c")
     a = run(exe, tmp_path)
@@ -184,6 +188,7 @@ def test_bad_time_limit(tmp_path):
         assert r.returncode == 2 and "EPUCK_TIME_LIMIT_MS" in r.stderr, bad
 
 
+@pytest.mark.usefixtures("registration")
 def test_time_limit_timeout(tmp_path):
     exe = build(tmp_path, PROGRAMS / "straight.c")
     r = run(exe, tmp_path, time_limit=1000)
@@ -204,6 +209,7 @@ def test_default_time_limit_is_60s(tmp_path):
     assert r.returncode == 3 and r.trace[-1]["t_ms"] == 60000
 
 
+@pytest.mark.usefixtures("registration")
 def test_scenario_time_formats(tmp_path):
     exe = build(tmp_path, PROGRAMS / "sensor_edge.c")
     scn = "0 ir0=0\n100ms ir0=900\n0.2 s ir0=0\n0.3s ir0=900 IR7=1\n"
@@ -212,14 +218,20 @@ def test_scenario_time_formats(tmp_path):
     assert r.times("event", "sensor") == [1, 100, 200, 300]
 
 
-def test_bench_runtime_size_runs():
-    require_tool("avr-gcc")
-    require_tool("avr-size")
-    res = subprocess.run(["bash", str(REPO / "bench" / "runtime_size.sh")],
+def test_bench_robot_runs():
+    """bench/robot_bench.py measures all three figures side by side with
+    their references (10 rules only, to stay quick)."""
+    for tool in ("valgrind", "avr-gcc", "avr-size", "simavr"):
+        require_tool(tool)
+    res = subprocess.run([sys.executable, str(REPO / "bench" / "robot_bench.py"), "--sizes", "10"],
                          capture_output=True, text=True)
     assert res.returncode == 0, res.stdout + res.stderr
-    assert "epuckrt.o" in res.stdout and "rules10.elf" in res.stdout
-    assert res.stdout.count("(TOTALS)") == 2
+    rows = [line.split() for line in res.stdout.splitlines() if line.startswith("    10 ")]
+    assert len(rows) == 3, res.stdout
+    instructions, reference = float(rows[0][1]), float(rows[0][2])
+    assert 0 < reference < instructions
+    assert int(rows[1][1]) > 0            # RAM bytes
+    assert 0 < int(rows[2][1]) < 16000    # cycles per poll, 10 rules
 
 
 # ---- scenario files as users write them ---------------------------------------

@@ -1,7 +1,9 @@
 """Registration, cancelling, ordering, one-shot/repeat, sensor and timer
 events, the stop_motor event and the sequencer, each a small C program run
 on the host harness, checked on its JSON trace."""
-from rt_helpers import build_and_run
+import pytest
+
+from rt_helpers import both_paths, build_and_run  # noqa: F401 (both_paths: autouse)
 
 TRACE_KEYS = ["t_ms", "kind", "name", "id", "left_steps", "right_steps",
               "x_mm", "y_mm", "heading_deg"]
@@ -32,6 +34,7 @@ def test_register_and_cancel_return_values(tmp_path):
     assert r.trace[-1]["kind"] == "exit"
 
 
+@pytest.mark.dynamic_only
 def test_capacity_from_defines(tmp_path):
     r = build_and_run(tmp_path, "capacity.c", defines=["MAX_ACTIONS=3", "MAX_EVENTS=4"],
                       env={"EPUCK_QUIET": "1"})
@@ -168,3 +171,22 @@ def test_sequence_abandoned_by_outside_motion_and_exit_step(tmp_path):
     second = [(x["t_ms"], x["step"]) for x in r.trace if x.get("id") == 2 and "step" in x]
     assert second == [(320, 0), (370, 1)]
     assert r.times("exit") == [370]
+
+
+def test_static_tables_by_hand(tmp_path):
+    """register_program: refusals, ids after the tables, compiled conditions
+    (seen in the walk where an earlier event started the sensors), cancel and
+    set_event_repeat on table entries, two words of events, a dynamic event
+    registered by a table action and polled in the same walk."""
+    r = build_and_run(tmp_path, "static_table.c", env={"EPUCK_QUIET": "1"})
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.splitlines() == ["refuse -1 -1 -1 -1 -1 -1", "register 0", "again -1",
+                                     "ids 5", "more 19", "notes 5"]
+    assert [(x["id"], x["t_ms"]) for x in r.records("event")] == [
+        (0, 1), (1, 1), (3, 1), (17, 1),    # 3 fires, its cancelled action runs nothing
+        (1, 8), (17, 8),                    # rising edges again; 17 repeats now
+        (2, 10), (19, 10),                  # 19 registered by 2's action, same walk
+        (18, 30)]
+    assert [x["id"] for x in r.records("action")] == [0, 1, 1, 1, 1, 3, 1, 2]
+    assert r.records("event")[3]["name"] == "ir0 > 800"
+    assert r.records("action")[1]["name"] == "note"

@@ -2,7 +2,7 @@
 16-bit wrap of the step counters."""
 import pytest
 
-from rt_helpers import build_and_run
+from rt_helpers import both_paths, build_and_run  # noqa: F401 (both_paths: autouse)
 
 MM_PER_STEP = 0.128805
 

@@ -2,22 +2,26 @@
  * cancel.epk, compiled by epuckc 0.1.0. Do not edit: edit the rule file.
  *
  * As in the paper's figure 2: parameter structs, then the actions and the
- * events that trigger them registered with the runtime, then mainloop().
- * Registrations: 4 actions, 4 events.
+ * events that trigger them, then mainloop().  The actions and events are
+ * const tables registered at once (register_program), which the robot keeps
+ * in program memory; the rules' sensor conditions are compiled into one
+ * function.  Tables: 4 actions, 4 events.
  */
 #include "utility.h"
 
 /* cancel.epk:3: start_straight(200, 1 mm) (200 steps/s, 8 steps) */
-static param_start_straight p1_r2 = {200, 1, 8};
+static const param_start_straight p1_r2 = {200, 1, 8};
 /* cancel.epk:3: timer(100 ms) */
-static param_event_timer when_r2 = {100L};
+static const param_event_timer when_r2 = {100L};
 /* cancel.epk:4: timer(350 ms) */
-static param_event_timer when_r3 = {350L};
+static const param_event_timer when_r3 = {350L};
 /* cancel.epk:5: timer(1 s) */
-static param_event_timer when_r4 = {1000L};
+static const param_event_timer when_r4 = {1000L};
 
 /* Event ids of the rules that `cancel` names. */
-static int rule_tick;
+enum {
+    rule_tick = 1
+};
 
 /* cancel.epk:4: cancel tick */
 static void do_r3(void *param)
@@ -26,36 +30,51 @@ static void do_r3(void *param)
     cancel_event(rule_tick);
 }
 
+/* The actions, {function, parameter}: an action's id is its index. */
+static const rt_action action_table[] = {
+    {set_timer, NULL},   /* 0: cancel.epk:2: set_timer */
+    {start_straight, &p1_r2},   /* 1: cancel.epk:3: start_straight(200, 1 mm) */
+    {do_r3, NULL},   /* 2: cancel.epk:4: cancel tick */
+    {exit_main, NULL},   /* 3: cancel.epk:5: exit_main */
+};
+
+/* The events, {function, parameter, action id, flags, memory, priority,
+ * mode}: an event's id is its index.  A NULL function is the rule's
+ * condition in event_conditions; memory is the event's slot in event_memory
+ * (timers keep their last firing); mode 0: in no mode, always armed. */
+static const rt_event event_table[] = {
+    /* 0: cancel.epk:2: on immediate do set_timer */
+    {immediate, NULL, 0, 0, RT_NO_MEMORY, 0, 0},
+    /* 1: cancel.epk:3: rule tick: on timer(100 ms) repeat do start_straight(200, 1 mm) */
+    {timer, &when_r2, 1, RT_REPEAT, 0, 0, 0},
+    /* 2: cancel.epk:4: on timer(350 ms) do cancel tick */
+    {timer, &when_r3, 2, 0, 1, 0, 0},
+    /* 3: cancel.epk:5: on timer(1 s) do exit_main */
+    {timer, &when_r4, 3, 0, 2, 0, 0},
+};
+
+/* What changes while the program runs, the only part in RAM. */
+static unsigned event_state[RT_STATE_WORDS(4, 4)];
+static long event_memory[3];
+
+static const rt_program event_program = {
+    action_table, 4, event_table, 4,
+    NULL, 0x00, event_state, event_memory
+};
+
 int main(void)
 {
-    int a1, a2, a3, a4;
-    int e1, e2, e3, e4;
+    (void)register_program(&event_program);
 
-    /* cancel.epk:2: on immediate do set_timer */
-    a1 = register_action(set_timer, NULL);
-    name_action(a1, "set_timer");
-    e1 = register_event(immediate, NULL, a1);
-    name_event(e1, "cancel.epk:2 on immediate");
-
-    /* cancel.epk:3: rule tick: on timer(100 ms) repeat do start_straight(200, 1 mm) */
-    a2 = register_action(start_straight, &p1_r2);
-    name_action(a2, "start_straight(200, 1 mm)");
-    e2 = register_event(timer, &when_r2, a2);
-    name_event(e2, "cancel.epk:3 rule tick: on timer(100 ms) repeat");
-    set_event_repeat(e2, 1);
-    rule_tick = e2;
-
-    /* cancel.epk:4: on timer(350 ms) do cancel tick */
-    a3 = register_action(do_r3, NULL);
-    name_action(a3, "cancel tick");
-    e3 = register_event(timer, &when_r3, a3);
-    name_event(e3, "cancel.epk:4 on timer(350 ms)");
-
-    /* cancel.epk:5: on timer(1 s) do exit_main */
-    a4 = register_action(exit_main, NULL);
-    name_action(a4, "exit_main");
-    e4 = register_event(timer, &when_r4, a4);
-    name_event(e4, "cancel.epk:5 on timer(1 s)");
+    /* Names in the host harness's trace; without them on the robot (EPUCKRT_NO_NAMES). */
+    name_action(0, "set_timer");
+    name_action(1, "start_straight(200, 1 mm)");
+    name_action(2, "cancel tick");
+    name_action(3, "exit_main");
+    name_event(0, "cancel.epk:2 on immediate");
+    name_event(1, "cancel.epk:3 rule tick: on timer(100 ms) repeat");
+    name_event(2, "cancel.epk:4 on timer(350 ms)");
+    name_event(3, "cancel.epk:5 on timer(1 s)");
 
     mainloop();
     return 0;

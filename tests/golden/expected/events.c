@@ -2,19 +2,19 @@
  * events.epk, compiled by epuckc 0.1.0. Do not edit: edit the rule file.
  *
  * As in the paper's figure 2: parameter structs, then the actions and the
- * events that trigger them registered with the runtime, then mainloop().
- * Registrations: 5 actions, 5 events.
+ * events that trigger them, then mainloop().  The actions and events are
+ * const tables registered at once (register_program), which the robot keeps
+ * in program memory; the rules' sensor conditions are compiled into one
+ * function.  Tables: 5 actions, 5 events.
  */
 #include "utility.h"
 
 /* events.epk:3: start_straight(300, 1 cm) (300 steps/s, 78 steps) */
-static param_start_straight p1_r2 = {300, 10, 78};
-/* events.epk:3: sensor(ir2 > 1000, ir5 < 20) */
-static param_event_sensor when_r2 = {{SENSOR_OFF, SENSOR_OFF, 1000, SENSOR_OFF, SENSOR_OFF, 20, SENSOR_OFF, SENSOR_OFF}, 0x20};
+static const param_start_straight p1_r2 = {300, 10, 78};
 /* events.epk:5: timer(400 ms) */
-static param_event_timer when_r4 = {400L};
+static const param_event_timer when_r4 = {400L};
 /* events.epk:6: event_timer(time: 3 s) */
-static param_event_timer when_r5 = {3000L};
+static const param_event_timer when_r5 = {3000L};
 
 /* events.epk:2: start_sensor, set_timer */
 static void do_r1(void *param)
@@ -40,43 +40,68 @@ static void do_r5(void *param)
     exit_main(NULL);
 }
 
+/* The rules' sensor conditions, from this poll's proximity readings
+ * ir[0..7]: bit k % 16 of c[k / 16] is event k's.  The runtime calls it at
+ * most once per poll, while the sensors are on. */
+static void event_conditions(const int *ir, unsigned *c)
+{
+    const int ir2 = ir[2];
+    const int ir5 = ir[5];
+
+    c[0] = 0;
+    if (ir2 > 1000 || ir5 < 20) c[0] |= 0x0002u;   /* event 1: events.epk:3 */
+}
+
+/* The actions, {function, parameter}: an action's id is its index. */
+static const rt_action action_table[] = {
+    {do_r1, NULL},   /* 0: events.epk:2: start_sensor, set_timer */
+    {start_straight, &p1_r2},   /* 1: events.epk:3: start_straight(300, 1 cm) */
+    {do_r3, NULL},   /* 2: events.epk:4: reset_timer, set_timer */
+    {stop_sensor, NULL},   /* 3: events.epk:5: stop_sensor */
+    {do_r5, NULL},   /* 4: events.epk:6: stop_motor, exit_main */
+};
+
+/* The events, {function, parameter, action id, flags, memory, priority,
+ * mode}: an event's id is its index.  A NULL function is the rule's
+ * condition in event_conditions; memory is the event's slot in event_memory
+ * (timers keep their last firing); mode 0: in no mode, always armed. */
+static const rt_event event_table[] = {
+    /* 0: events.epk:2: on immediate do start_sensor, set_timer */
+    {immediate, NULL, 0, 0, RT_NO_MEMORY, 0, 0},
+    /* 1: events.epk:3: rule near: on sensor(ir2 > 1000, ir5 < 20) repeat do start_straight(300, 1 cm) */
+    {NULL, NULL, 1, RT_REPEAT, RT_NO_MEMORY, 0, 0},
+    /* 2: events.epk:4: rule moved: on stop_motor repeat do reset_timer, set_timer */
+    {event_stop_motor, NULL, 2, RT_REPEAT, RT_NO_MEMORY, 0, 0},
+    /* 3: events.epk:5: on timer(400 ms) repeat do stop_sensor */
+    {timer, &when_r4, 3, RT_REPEAT, 0, 0, 0},
+    /* 4: events.epk:6: on event_timer(time: 3 s) do stop_motor, exit_main */
+    {timer, &when_r5, 4, 0, 1, 0, 0},
+};
+
+/* What changes while the program runs, the only part in RAM. */
+static unsigned event_state[RT_STATE_WORDS(5, 5)];
+static long event_memory[2];
+
+static const rt_program event_program = {
+    action_table, 5, event_table, 5,
+    event_conditions, 0x24, event_state, event_memory
+};
+
 int main(void)
 {
-    int a1, a2, a3, a4, a5;
-    int e1, e2, e3, e4, e5;
+    (void)register_program(&event_program);
 
-    /* events.epk:2: on immediate do start_sensor, set_timer */
-    a1 = register_action(do_r1, NULL);
-    name_action(a1, "start_sensor, set_timer");
-    e1 = register_event(immediate, NULL, a1);
-    name_event(e1, "events.epk:2 on immediate");
-
-    /* events.epk:3: rule near: on sensor(ir2 > 1000, ir5 < 20) repeat do start_straight(300, 1 cm) */
-    a2 = register_action(start_straight, &p1_r2);
-    name_action(a2, "start_straight(300, 1 cm)");
-    e2 = register_event(sensor, &when_r2, a2);
-    name_event(e2, "events.epk:3 rule near: on sensor(ir2 > 1000, ir5 < 20) repeat");
-    set_event_repeat(e2, 1);
-
-    /* events.epk:4: rule moved: on stop_motor repeat do reset_timer, set_timer */
-    a3 = register_action(do_r3, NULL);
-    name_action(a3, "reset_timer, set_timer");
-    e3 = register_event(event_stop_motor, NULL, a3);
-    name_event(e3, "events.epk:4 rule moved: on stop_motor repeat");
-    set_event_repeat(e3, 1);
-
-    /* events.epk:5: on timer(400 ms) repeat do stop_sensor */
-    a4 = register_action(stop_sensor, NULL);
-    name_action(a4, "stop_sensor");
-    e4 = register_event(timer, &when_r4, a4);
-    name_event(e4, "events.epk:5 on timer(400 ms) repeat");
-    set_event_repeat(e4, 1);
-
-    /* events.epk:6: on event_timer(time: 3 s) do stop_motor, exit_main */
-    a5 = register_action(do_r5, NULL);
-    name_action(a5, "stop_motor, exit_main");
-    e5 = register_event(timer, &when_r5, a5);
-    name_event(e5, "events.epk:6 on event_timer(time: 3 s)");
+    /* Names in the host harness's trace; without them on the robot (EPUCKRT_NO_NAMES). */
+    name_action(0, "start_sensor, set_timer");
+    name_action(1, "start_straight(300, 1 cm)");
+    name_action(2, "reset_timer, set_timer");
+    name_action(3, "stop_sensor");
+    name_action(4, "stop_motor, exit_main");
+    name_event(0, "events.epk:2 on immediate");
+    name_event(1, "events.epk:3 rule near: on sensor(ir2 > 1000, ir5 < 20) repeat");
+    name_event(2, "events.epk:4 rule moved: on stop_motor repeat");
+    name_event(3, "events.epk:5 on timer(400 ms) repeat");
+    name_event(4, "events.epk:6 on event_timer(time: 3 s)");
 
     mainloop();
     return 0;

@@ -2,8 +2,10 @@
  * extern.epk, compiled by epuckc 0.1.0. Do not edit: edit the rule file.
  *
  * As in the paper's figure 2: parameter structs, then the actions and the
- * events that trigger them registered with the runtime, then mainloop().
- * Registrations: 2 actions, 2 events.
+ * events that trigger them, then mainloop().  The actions and events are
+ * const tables registered at once (register_program), which the robot keeps
+ * in program memory; the rules' sensor conditions are compiled into one
+ * function.  Tables: 2 actions, 2 events.
  */
 #include "utility.h"
 
@@ -24,17 +26,17 @@ typedef struct {
 #include "user/after.c"
 
 /* extern.epk:6: mark(count: 3, length: 2 cm, pace: 100 mm/s, turn: 45 deg, wait: 2 s) */
-static param_mark p1_r1 = {3, 155, 776, 45, 2000L};
+static const param_mark p1_r1 = {3, 155, 776, 45, 2000L};
 /* extern.epk:7: mark(1, 10 steps, 10, 1, 1) */
-static param_mark p1_r2 = {1, 10, 10, 1, 1L};
+static const param_mark p1_r2 = {1, 10, 10, 1, 1L};
 /* extern.epk:7: after(ms: 250) */
-static param_after when_r2 = {250L};
+static const param_after when_r2 = {250L};
 
 /* extern.epk:6: mark(count: 3, length: 2 cm, pace: 100 mm/s, turn: 45 deg, wait: 2 s), noop */
 static void do_r1(void *param)
 {
     (void)param;
-    mark(&p1_r1);
+    mark((void *)&p1_r1);
     noop(NULL);
 }
 
@@ -42,26 +44,45 @@ static void do_r1(void *param)
 static void do_r2(void *param)
 {
     (void)param;
-    mark(&p1_r2);
+    mark((void *)&p1_r2);
     exit_main(NULL);
 }
 
+/* The actions, {function, parameter}: an action's id is its index. */
+static const rt_action action_table[] = {
+    {do_r1, NULL},   /* 0: extern.epk:6: mark(count: 3, length: 2 cm, pace: 100 mm/s, turn: 45 deg, wait: 2 s), noop */
+    {do_r2, NULL},   /* 1: extern.epk:7: mark(1, 10 steps, 10, 1, 1), exit_main */
+};
+
+/* The events, {function, parameter, action id, flags, memory, priority,
+ * mode}: an event's id is its index.  A NULL function is the rule's
+ * condition in event_conditions; memory is the event's slot in event_memory
+ * (timers keep their last firing); mode 0: in no mode, always armed. */
+static const rt_event event_table[] = {
+    /* 0: extern.epk:6: on immediate do mark(count: 3, length: 2 cm, pace: 100 mm/s, turn: 45 deg, wait: 2 s), noop */
+    {immediate, NULL, 0, 0, RT_NO_MEMORY, 0, 0},
+    /* 1: extern.epk:7: on after(ms: 250) do mark(1, 10 steps, 10, 1, 1), exit_main */
+    {after, &when_r2, 1, 0, 0, 0, 0},
+};
+
+/* What changes while the program runs, the only part in RAM. */
+static unsigned event_state[RT_STATE_WORDS(2, 2)];
+static long event_memory[1];
+
+static const rt_program event_program = {
+    action_table, 2, event_table, 2,
+    NULL, 0x00, event_state, event_memory
+};
+
 int main(void)
 {
-    int a1, a2;
-    int e1, e2;
+    (void)register_program(&event_program);
 
-    /* extern.epk:6: on immediate do mark(count: 3, length: 2 cm, pace: 100 mm/s, turn: 45 deg, wait: 2 s), noop */
-    a1 = register_action(do_r1, NULL);
-    name_action(a1, "mark(count: 3, length: 2 cm, pace: 100 mm/s, turn: 45 deg, wait: 2 s), noop");
-    e1 = register_event(immediate, NULL, a1);
-    name_event(e1, "extern.epk:6 on immediate");
-
-    /* extern.epk:7: on after(ms: 250) do mark(1, 10 steps, 10, 1, 1), exit_main */
-    a2 = register_action(do_r2, NULL);
-    name_action(a2, "mark(1, 10 steps, 10, 1, 1), exit_main");
-    e2 = register_event(after, &when_r2, a2);
-    name_event(e2, "extern.epk:7 on after(ms: 250)");
+    /* Names in the host harness's trace; without them on the robot (EPUCKRT_NO_NAMES). */
+    name_action(0, "mark(count: 3, length: 2 cm, pace: 100 mm/s, turn: 45 deg, wait: 2 s), noop");
+    name_action(1, "mark(1, 10 steps, 10, 1, 1), exit_main");
+    name_event(0, "extern.epk:6 on immediate");
+    name_event(1, "extern.epk:7 on after(ms: 250)");
 
     mainloop();
     return 0;

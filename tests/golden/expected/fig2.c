@@ -2,30 +2,50 @@
  * fig2.epk, compiled by epuckc 0.1.0. Do not edit: edit the rule file.
  *
  * As in the paper's figure 2: parameter structs, then the actions and the
- * events that trigger them registered with the runtime, then mainloop().
- * Registrations: 2 actions, 2 events.
+ * events that trigger them, then mainloop().  The actions and events are
+ * const tables registered at once (register_program), which the robot keeps
+ * in program memory; the rules' sensor conditions are compiled into one
+ * function.  Tables: 2 actions, 2 events.
  */
 #include "utility.h"
 
 /* fig2.epk:3: start_straight(speed: 250 steps/s, distance: 100 mm) (250 steps/s, 776 steps) */
-static param_start_straight p1_a_go = {250, 100, 776};
+static const param_start_straight p1_a_go = {250, 100, 776};
+
+/* The actions, {function, parameter}: an action's id is its index. */
+static const rt_action action_table[] = {
+    {start_straight, &p1_a_go},   /* 0: fig2.epk:3: action go = start_straight(speed: 250 steps/s, distance: 100 mm) */
+    {exit_main, NULL},   /* 1: fig2.epk:4: action quit = exit_main */
+};
+
+/* The events, {function, parameter, action id, flags, memory, priority,
+ * mode}: an event's id is its index.  A NULL function is the rule's
+ * condition in event_conditions; memory is the event's slot in event_memory
+ * (timers keep their last firing); mode 0: in no mode, always armed. */
+static const rt_event event_table[] = {
+    /* 0: fig2.epk:6: on immediate do go */
+    {immediate, NULL, 0, 0, RT_NO_MEMORY, 0, 0},
+    /* 1: fig2.epk:7: on stop_motor do quit */
+    {event_stop_motor, NULL, 1, 0, RT_NO_MEMORY, 0, 0},
+};
+
+/* What changes while the program runs, the only part in RAM. */
+static unsigned event_state[RT_STATE_WORDS(2, 2)];
+
+static const rt_program event_program = {
+    action_table, 2, event_table, 2,
+    NULL, 0x00, event_state, NULL
+};
 
 int main(void)
 {
-    int a1, a2;
-    int e1, e2;
+    (void)register_program(&event_program);
 
-    /* fig2.epk:6: on immediate do go */
-    a1 = register_action(start_straight, &p1_a_go);
-    name_action(a1, "go");
-    e1 = register_event(immediate, NULL, a1);
-    name_event(e1, "fig2.epk:6 on immediate");
-
-    /* fig2.epk:7: on stop_motor do quit */
-    a2 = register_action(exit_main, NULL);
-    name_action(a2, "quit");
-    e2 = register_event(event_stop_motor, NULL, a2);
-    name_event(e2, "fig2.epk:7 on stop_motor");
+    /* Names in the host harness's trace; without them on the robot (EPUCKRT_NO_NAMES). */
+    name_action(0, "go");
+    name_action(1, "quit");
+    name_event(0, "fig2.epk:6 on immediate");
+    name_event(1, "fig2.epk:7 on stop_motor");
 
     mainloop();
     return 0;

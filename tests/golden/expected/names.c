@@ -2,16 +2,20 @@
  * names.epk, compiled by epuckc 0.1.0. Do not edit: edit the rule file.
  *
  * As in the paper's figure 2: parameter structs, then the actions and the
- * events that trigger them registered with the runtime, then mainloop().
- * Registrations: 2 actions, 2 events.
+ * events that trigger them, then mainloop().  The actions and events are
+ * const tables registered at once (register_program), which the robot keeps
+ * in program memory; the rules' sensor conditions are compiled into one
+ * function.  Tables: 2 actions, 2 events.
  */
 #include "utility.h"
 
 /* names.epk:2: start_straight(100, 1 cm) (100 steps/s, 78 steps) */
-static param_start_straight p1_a_int = {100, 10, 78};
+static const param_start_straight p1_a_int = {100, 10, 78};
 
 /* Event ids of the rules that `cancel` names. */
-static int rule_main;
+enum {
+    rule_main = 0
+};
 
 /* names.epk:6: seq_a_x, cancel main */
 static void do_r2(void *param)
@@ -23,29 +27,45 @@ static void do_r2(void *param)
 
 /* names.epk:3: action register_action = int then exit_main */
 static const action steps_a_register_action[] = {
-    {start_straight, &p1_a_int},
+    {start_straight, (void *)&p1_a_int},
     {exit_main, NULL},
 };
-static param_sequence seq_a_register_action = {steps_a_register_action, 2};
+static const param_sequence seq_a_register_action = {steps_a_register_action, 2};
+
+/* The actions, {function, parameter}: an action's id is its index. */
+static const rt_action action_table[] = {
+    {run_sequence, &seq_a_register_action},   /* 0: names.epk:3: action register_action = int then exit_main */
+    {do_r2, NULL},   /* 1: names.epk:6: seq_a_x, cancel main */
+};
+
+/* The events, {function, parameter, action id, flags, memory, priority,
+ * mode}: an event's id is its index.  A NULL function is the rule's
+ * condition in event_conditions; memory is the event's slot in event_memory
+ * (timers keep their last firing); mode 0: in no mode, always armed. */
+static const rt_event event_table[] = {
+    /* 0: names.epk:5: rule main: on immediate do register_action */
+    {immediate, NULL, 0, 0, RT_NO_MEMORY, 0, 0},
+    /* 1: names.epk:6: rule while: on stop_motor repeat do seq_a_x, cancel main */
+    {event_stop_motor, NULL, 1, RT_REPEAT, RT_NO_MEMORY, 0, 0},
+};
+
+/* What changes while the program runs, the only part in RAM. */
+static unsigned event_state[RT_STATE_WORDS(2, 2)];
+
+static const rt_program event_program = {
+    action_table, 2, event_table, 2,
+    NULL, 0x00, event_state, NULL
+};
 
 int main(void)
 {
-    int a1, a2;
-    int e1, e2;
+    (void)register_program(&event_program);
 
-    /* names.epk:5: rule main: on immediate do register_action */
-    a1 = register_action(run_sequence, &seq_a_register_action);
-    name_action(a1, "register_action");
-    e1 = register_event(immediate, NULL, a1);
-    name_event(e1, "names.epk:5 rule main: on immediate");
-    rule_main = e1;
-
-    /* names.epk:6: rule while: on stop_motor repeat do seq_a_x, cancel main */
-    a2 = register_action(do_r2, NULL);
-    name_action(a2, "seq_a_x, cancel main");
-    e2 = register_event(event_stop_motor, NULL, a2);
-    name_event(e2, "names.epk:6 rule while: on stop_motor repeat");
-    set_event_repeat(e2, 1);
+    /* Names in the host harness's trace; without them on the robot (EPUCKRT_NO_NAMES). */
+    name_action(0, "register_action");
+    name_action(1, "seq_a_x, cancel main");
+    name_event(0, "names.epk:5 rule main: on immediate");
+    name_event(1, "names.epk:6 rule while: on stop_motor repeat");
 
     mainloop();
     return 0;
