@@ -95,3 +95,31 @@ def test_all_priorities_equal_is_the_paper_s_order(tmp_path):
     same = build_and_run(tmp_path, text)
     assert plain.returncode == same.returncode == 0
     assert fired(plain) == fired(same) and plain.stdout == same.stdout
+
+
+def test_static_tables_with_priorities_and_modes(tmp_path):
+    """register_program with priorities and modes in the table: the walk by
+    priority levels over table and dynamic events, compiled conditions in
+    it, enter_mode re-arming a mode's table entries (latches and memories
+    reset) but not a cancelled one, disarm_event until the next entry, and
+    set_event_priority/set_event_mode ignoring table ids."""
+    r = build_and_run(tmp_path, "static_ranked.c", env={"EPUCK_QUIET": "1"})
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.splitlines() == ["register 0", "dynamic 11"]
+    assert [(x["id"], x["t_ms"]) for x in r.records("event")] == [
+        # the dynamic event of priority 5 first; the mode-1 entry event
+        # enters mode 2: no mode's event fires in the rest of the poll
+        (11, 1), (0, 1), (3, 1),
+        # mode 2: priority 2 (7, 8) before 4, whose action cancels 7 and disarms 8
+        (7, 2), (8, 2), (4, 2),
+        # ir0 rises: priorities 3, 2, 1 (6 enters mode 1), then 0; 1 stays at
+        # priority 0 (set_event_priority ignored the table id)
+        (5, 5), (2, 5), (6, 5), (1, 5),
+        (3, 6),                 # mode 1 again: its entry event re-armed
+        # mode 2 again: 5 and 6 fire though ir0 stayed high (latches reset),
+        # 8 re-armed, 7 cancelled for good; 4 not polled after 6 entered mode 1
+        (5, 7), (8, 7), (6, 7),
+        (3, 8),                 # to_2 enters no more
+        (10, 21)]               # event 9 (mode 3) never
+    assert [(x["t_ms"], x["name"]) for x in r.records("mode")] == [
+        (0, "one"), (1, "two"), (5, "one"), (6, "two"), (7, "one")]
