@@ -155,7 +155,8 @@ typedef struct {
  * 0..n_actions-1, its events 0..n_events-1, all armed.  Returns 0, or -1 (and registers
  * nothing) when a program or anything else was registered before, or a
  * table is inconsistent (an action_id out of range, a NULL action function,
- * a NULL event function without conditions, a NULL state). */
+ * a NULL event function without conditions, a NULL state, a negative
+ * mode). */
 int register_program(const rt_program *program);
 
 /* ---- Paper table 2: standard actions and their parameters -------------- */
