@@ -105,7 +105,7 @@ def test_static_tables_with_priorities_and_modes(tmp_path):
     set_event_priority/set_event_mode ignoring table ids."""
     r = build_and_run(tmp_path, "static_ranked.c", env={"EPUCK_QUIET": "1"})
     assert r.returncode == 0, r.stderr
-    assert r.stdout.splitlines() == ["register 0", "dynamic 11"]
+    assert r.stdout.splitlines() == ["negative mode -1", "register 0", "dynamic 11"]
     assert [(x["id"], x["t_ms"]) for x in r.records("event")] == [
         # the dynamic event of priority 5 first; the mode-1 entry event
         # enters mode 2: no mode's event fires in the rest of the poll

@@ -3,7 +3,7 @@
  * conditions included), table entries' modes, enter_mode re-arming a
  * mode's table events (latches and memories reset) except one cancelled
  * with cancel_event, disarm_event until the mode is entered again, and
- * set_event_priority ignoring table ids.
+ * set_event_priority ignoring table ids; a negative mode is refused.
  * Scenario static_ranked.scn: ir0 0 until 5 ms, then 900. */
 #include <stdio.h>
 #include "epuckrt.h"
@@ -76,9 +76,12 @@ static long memory[3];
 
 int main(void)
 {
+    static const rt_event bad_mode[] = {{immediate, NULL, 0, 0, RT_NO_MEMORY, 0, -1}};
+    rt_program bad = {actions, 6, bad_mode, 1, NULL, 0, state, NULL};
     rt_program p = {actions, 6, events, 11, conditions, 0x01, state, memory};
     int e;
 
+    printf("negative mode %d\n", register_program(&bad));
     printf("register %d\n", register_program(&p));
     set_event_priority(1, 9);           /* a table id: its entry's priority counts */
     set_event_mode(1, 3);
