@@ -153,6 +153,13 @@ class CancelCall(Node):
     span: Span
 
 
+class EnterCall(Node):
+    """`enter MODE`: makes MODE the current mode."""
+    __slots__ = ("mode", "span")
+    mode: Ident
+    span: Span
+
+
 class Step(Node):
     """Calls that run together, in order, in one poll: `A, B`."""
     __slots__ = ("calls", "span")
@@ -212,15 +219,51 @@ class ExternDef(Node):
 
 
 class Rule(Node):
-    __slots__ = ("name", "event", "repeat", "body", "span")
+    __slots__ = ("name", "event", "repeat", "body", "span", "priority", "mode")
     name: Optional[Ident]
     event: Call
     repeat: bool
     body: ActionBody
     span: Span
+    priority: Optional[Value]           # `priority N`; None: 0
+    mode: Optional[Ident]               # the mode whose block holds it, or None
+
+    def in_mode(self, mode: Ident) -> "Rule":
+        """The same rule, inside the block of `mode`."""
+        return Rule(self.name, self.event, self.repeat, self.body, self.span, self.priority,
+                    mode)
 
 
-Statement = Union[RobotBlock, ConstDef, ActionDef, ExternDef, Rule]
+class ModeDef(Node):
+    """`[initial] mode NAME { ... }`. Its rules are Rule statements of their
+    own (in file order, with `mode` set); `span` is the head `mode NAME {`."""
+    __slots__ = ("name", "initial", "span")
+    name: Ident
+    initial: bool
+    span: Span
+
+
+class ModeOpen(Node):
+    """The parser's view of a mode's head; parse() turns it into a ModeDef."""
+    __slots__ = ("name", "initial", "span")
+    name: Ident
+    initial: bool
+    span: Span
+
+
+class ModeClose(Node):
+    __slots__ = ("span",)
+    span: Span
+
+
+class ModeEnd(Node):
+    """The `}` that closes a mode block: kept in the statements so that they
+    match the lexer's statement chunks one to one (the formatter needs it)."""
+    __slots__ = ("span",)
+    span: Span
+
+
+Statement = Union[RobotBlock, ConstDef, ActionDef, ExternDef, Rule, ModeDef, ModeEnd]
 
 
 class Program:

@@ -14,13 +14,13 @@ from functools import lru_cache
 from pathlib import Path
 from typing import Optional
 
-from . import ast
+from . import ast, check_arbitration, check_modes
 from .cnames import extern_name_problem, parameter_name_problem
 from .diagnostics import Collector, Fix, Note
 from .records import field, record
 from .resources import runtime_dir
 from .source import Span
-from .stdlib import (ACTION_ALIASES, EVENT_ALIASES, EXTERN_TYPES, MOTION_ACTIONS,
+from .stdlib import (ACTION_ALIASES, CHOICE, EVENT_ALIASES, EXTERN_TYPES, MOTION_ACTIONS,
                      SENSOR_NAMES, STANDARD_ACTIONS, STANDARD_EVENTS, THRESHOLD_MAX, Param)
 from .units import (ANGLE, ARTICLE, DISTANCE, DURATION, INT, INT16_MAX, INT16_MIN, INT32_MAX,
                     KIND_UNITS, SPEED, UNITS, Geometry, Quantity, curve_wheels,
@@ -30,6 +30,8 @@ DEFAULT_CAPACITY = 32      # frontend.py passes the runtime header's MAX_ACTIONS
 # A duration written without a unit is in ms; below this many it was very
 # likely meant in seconds (`timer(2)`), and W008 says so.
 BARE_DURATION_WARNING = 100
+PRIORITY_MAX = 255         # `priority N`: 0 (the default) .. 255
+
 
 # ---- the checked program ------------------------------------------------------
 
@@ -37,8 +39,9 @@ BARE_DURATION_WARNING = 100
 class ResolvedCall:
     """A call whose arguments are checked and converted.
 
-    kind: "standard" | "extern" | "named" | "cancel"
-    values: parameter name -> integer in runtime units; for start_curve
+    kind: "standard" | "extern" | "named" | "cancel" | "enter" (name: the mode)
+    values: parameter name -> integer in runtime units (for an enumerated
+    parameter, the C text of its value: `SET_LED_BODY`); for start_curve
     also `outer_steps` and `inner_speed`.
     shown: parameter name -> the argument as the user wrote it.
     """
@@ -54,7 +57,7 @@ class ResolvedEvent:
     kind: str               # "standard" | "extern"
     name: str
     values: dict            # timer: time (ms); extern: its params
-    conditions: tuple = ()  # sensor: (index, op, threshold), sorted by index
+    conditions: tuple = ()  # sensor, ambient: (index, op, threshold), sorted by index
     node: object = None
 
 
@@ -65,6 +68,8 @@ class ResolvedRule:
     repeat: bool
     body: list              # steps, each a list of ResolvedCall
     node: ast.Rule
+    priority: int = 0
+    mode: Optional[str] = None      # the mode whose block holds it
 
 
 @record
@@ -85,6 +90,8 @@ class CheckedProgram:
     externs: dict = field(default_factory=dict)   # name -> ExternInfo
     rules: list = field(default_factory=list)     # ResolvedRule
     robot_given: bool = False
+    modes: list = field(default_factory=list)     # mode names, in declared order
+    initial_mode: Optional[str] = None
 
 
 def did_you_mean(ident: ast.Ident, candidates) -> Optional[Fix]:
@@ -129,6 +136,9 @@ class Checker:
         self._const_reported: set = set()
         self._const_diagnostics: set = set()
         self._resolved_actions: dict = {}
+        self._flat_actions: dict = {}    # named action -> flattened steps (check_modes.flat_steps)
+        self.modes: dict = {}            # name -> ModeDef
+        self.initial_mode: Optional[str] = None
 
     # -- entry point --
 
@@ -139,6 +149,7 @@ class Checker:
                              robot_given=bool(self.program.of_type(ast.RobotBlock)))
         out.externs = self.externs
         self._resolve_actions(out)
+        out.modes, out.initial_mode = list(self.modes), self.initial_mode
         for rule in self.program.of_type(ast.Rule):
             resolved = self._rule(rule)
             if resolved is not None:
@@ -151,6 +162,8 @@ class Checker:
         self._never_fire(out, complete)
         if complete:
             self._unused()
+        check_modes.check_program(self, out, complete)
+        check_arbitration.check_program(self, out)
         self._capacity(out)
         return out
 
@@ -167,9 +180,12 @@ class Checker:
     def _rule(self, rule: ast.Rule) -> Optional[ResolvedRule]:
         event = self._event(rule.event)
         body = self._body(rule.body)
-        if event is None:
+        priority = self._priority(rule.priority)
+        check_modes.check_rule(self, rule, event)
+        if event is None or priority is None:
             return None
-        return ResolvedRule(rule.name.name if rule.name else None, event, rule.repeat, body, rule)
+        return ResolvedRule(rule.name.name if rule.name else None, event, rule.repeat, body, rule,
+                            priority, rule.mode.name if rule.mode else None)
 
     # -- declarations --
 
@@ -202,6 +218,7 @@ class Checker:
             elif isinstance(stmt, ast.Rule) and stmt.name is not None:
                 if claim("rule", stmt.name, "rule"):
                     self.rule_names[stmt.name.name] = stmt
+        check_modes.declare(self, claim)
 
     def _clashes_with_standard(self, ident: ast.Ident, namespace: str) -> bool:
         standard = STANDARD_ACTIONS if namespace == "action" else STANDARD_EVENTS
@@ -557,7 +574,7 @@ class Checker:
             if isinstance(arg, ast.ConditionArg):
                 self.diags.error("E024", arg.span,
                                  f"a condition such as `{arg.sensor.name} {arg.op} ...` "
-                                 f"can only be given to `sensor`",
+                                 f"can only be given to `sensor` or `ambient`",
                                  help=_signature_help(call_name.name, params))
                 ok = False
                 continue
@@ -613,6 +630,13 @@ class Checker:
         values, shown, ok = {}, {}, True
         for p in params:
             arg = bound[p.name]
+            if p.kind == CHOICE:
+                choice = self._choice(arg.value, p)
+                if choice is None:
+                    ok = False
+                    continue
+                values[p.name], shown[p.name] = choice, _shown(arg.value)
+                continue
             q = self._value(arg.value, p.kind, p.name)
             if q is None:
                 ok = False
@@ -630,7 +654,13 @@ class Checker:
         if p.kind == INT:
             if not self._whole(node, q.value):
                 return None
-            return self._fits16(int(q.value), node, p.name, "")
+            v = self._fits16(int(q.value), node, p.name, "")
+            if v is not None and p.lo is not None and not p.lo <= v <= p.hi:
+                self.diags.error(p.range_code, node.span,
+                                 f"{_code(p.name)} `{_shown(node)}` is outside {p.lo}..{p.hi}",
+                                 help=f"{_code(p.name)} is {p.doc}: {p.range.split(' [')[0]}")
+                return None
+            return v
         if p.kind == DISTANCE:
             return self._fits16(round_nearest(q.steps(geo)), node, p.name, " steps")
         if p.kind == SPEED:
@@ -668,6 +698,53 @@ class Checker:
                          help="split the motion into several shorter ones with `then`"
                          if param == "distance" else None)
         return None
+
+    def _choice(self, value, p: Param) -> Optional[str]:
+        """The C text of a value of an enumerated parameter (`led3`, `haa`,
+        `mute`, or a number its Choices accept)."""
+        choices = p.choices
+        if isinstance(value, ast.ConstRef) and not value.negative:
+            choice = choices.get(value.name.name)
+            if choice is not None:
+                return choice.c
+            if value.name.name not in self.consts or choices.numbers is None:
+                names = choices.names()
+                self.diags.error("E041", value.name.span,
+                                 f"unknown {choices.what} {_code(value.name.name)}",
+                                 help=_then(did_you_mean(value.name, names),
+                                            f"{_code(p.name)} is one of {choices.describe()}"))
+                return None
+        if choices.numbers is None:
+            self.diags.error("E041", value.span,
+                             f"{_code(p.name)} names {_article(choices.what)} {choices.what}, "
+                             "not a number",
+                             help=f"write one of {choices.describe()}")
+            return None
+        q = self._value(value, INT, p.name)
+        if q is None or not self._whole(value, q.value):
+            return None
+        lo, hi = choices.numbers
+        if not lo <= q.value <= hi:
+            self.diags.error("E042", value.span,
+                             f"{_code(p.name)} `{_shown(value)}` is outside {lo}..{hi}",
+                             help=f"the numbered {choices.what}s are {lo}..{hi}; the others have "
+                                  f"names: {', '.join(map(_code, choices.names()))}")
+            return None
+        return str(int(q.value))
+
+    def _priority(self, value) -> Optional[int]:
+        """A rule's priority: a whole number 0..PRIORITY_MAX, 0 without one."""
+        if value is None:
+            return 0
+        q = self._value(value, INT, "priority")
+        if q is None or not self._whole(value, q.value):
+            return None
+        if not 0 <= q.value <= PRIORITY_MAX:
+            self.diags.error("E042", value.span,
+                             f"priority `{_shown(value)}` is outside 0..{PRIORITY_MAX}",
+                             help="rules without a priority have 0; a higher number wins the motors")
+            return None
+        return int(q.value)
 
     # -- actions --
 
@@ -721,6 +798,8 @@ class Checker:
         return steps
 
     def _call(self, call) -> Optional[ResolvedCall]:
+        if isinstance(call, ast.EnterCall):
+            return check_modes.enter_call(self, call)
         if isinstance(call, ast.CancelCall):
             name = call.rule.name
             if name not in self.rule_names:
@@ -814,8 +893,8 @@ class Checker:
     def _event(self, call: ast.Call) -> Optional[ResolvedEvent]:
         name = call.name.name
         canonical = EVENT_ALIASES.get(name, name)
-        if canonical == "sensor":
-            return self._sensor(call)
+        if canonical in STANDARD_EVENTS and STANDARD_EVENTS[canonical].params is None:
+            return self._sensor(call, canonical)
         if canonical in STANDARD_EVENTS:
             params = STANDARD_EVENTS[canonical].params
             bound = self._bind(call.name, call.args, params, "event")
@@ -843,16 +922,17 @@ class Checker:
                          f"declare others with `extern event {name}(...) from \"{name}.c\"`")
         return None
 
-    def _sensor(self, call: ast.Call) -> Optional[ResolvedEvent]:
+    def _sensor(self, call: ast.Call, event: str = "sensor") -> Optional[ResolvedEvent]:
+        """`sensor` and `ambient`: conditions on the eight IR sensors."""
         if not call.args:
-            self.diags.error("E017", call.span, "`sensor` needs at least one condition",
-                             help="write e.g. `sensor(ir0 > 300, ir7 > 300)`")
+            self.diags.error("E017", call.span, f"`{event}` needs at least one condition",
+                             help=f"write e.g. `{event}(ir0 > 300, ir7 > 300)`")
             return None
         conditions, seen, ok = [], {}, True
         sensors = SENSOR_NAMES
         for arg in call.args:
             if not isinstance(arg, ast.ConditionArg):
-                self.diags.error("E024", arg.span, "`sensor` takes conditions such as `ir0 > 300`",
+                self.diags.error("E024", arg.span, f"`{event}` takes conditions such as `ir0 > 300`",
                                  help="compare a sensor ir0..ir7 with a threshold using `>` or `<`")
                 ok = False
                 continue
@@ -878,13 +958,15 @@ class Checker:
             if not 0 <= q.value <= THRESHOLD_MAX:
                 self.diags.error("E032", arg.value.span,
                                  f"threshold `{_shown(arg.value)}` is outside 0..{THRESHOLD_MAX}",
-                                 help="proximity readings are 12-bit: 0 (nothing near) to 4095 (touching)")
+                                 help="proximity readings are 12-bit: 0 (nothing near) to 4095 (touching)"
+                                 if event == "sensor" else
+                                 "ambient light readings are 12-bit: 0 to 4095")
                 ok = False
                 continue
             conditions.append((index, arg.op, int(q.value)))
         if not ok:
             return None
-        return ResolvedEvent("standard", "sensor", {}, tuple(sorted(conditions)), node=call)
+        return ResolvedEvent("standard", event, {}, tuple(sorted(conditions)), node=call)
 
     # -- whole-program warnings --
 
@@ -971,6 +1053,10 @@ def _clip(text: str, limit: int = 24) -> str:
     return text if len(text) <= limit else text[:limit] + "..."
 
 
+def _article(word: str) -> str:
+    return "an" if word[:1] in "aeiouAEIOU" or word == "LED" else "a"
+
+
 def _then(fix: Optional[Fix], more: str):
     """A fix followed by more help, or the help alone."""
     return fix.then(more) if fix is not None else more
@@ -988,7 +1074,11 @@ def _count(n: int) -> str:
 def _signature_help(name: str, params) -> str:
     if not params:
         return f"write `{name}` with no arguments"
-    return f"write `{name}({', '.join(f'{p.name}: {_example(p.kind)}' for p in params)})`"
+    return f"write `{name}({', '.join(f'{p.name}: {_example_of(p)}' for p in params)})`"
+
+
+def _example_of(p: Param) -> str:
+    return p.choices.values[0].name if p.choices is not None else _example(p.kind)
 
 
 def _example(kind: str) -> str:

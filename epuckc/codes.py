@@ -46,6 +46,13 @@ CODES = {
     "E038": "whole number expected",
     "E039": "more actions or events than the runtime holds (no longer reported)",
     "E040": "extern source file not found",
+    "E041": "unknown LED, sound or key",
+    "E042": "value out of range",
+    # modes
+    "E043": "unknown mode",
+    "E044": "`on enter` outside a mode",
+    "E045": "`cancel` of a rule of another mode",
+    "E046": "two initial modes",
     # warnings
     "W001": "timer rule that can never fire",
     "W002": "sensor rule that can never fire",
@@ -55,6 +62,9 @@ CODES = {
     "W006": "program with no rules",
     "W007": "constant never used",
     "W008": "bare duration that is very likely meant in seconds",
+    "W009": "same-priority rules race for the motors",
+    "W010": "mode never entered",
+    "W011": "steps after `enter` never run",
 }
 
 _EXPLANATIONS = Path(__file__).resolve().parent / "explanations"

@@ -362,6 +362,17 @@ class _Builder:
             self.extern(node)
         elif isinstance(node, ast.RobotBlock):
             self.robot(node)
+        elif isinstance(node, ast.ModeDef):
+            if node.initial:
+                self.token("_INITIAL")
+                self.sep(" ")
+            self.token("_MODE")
+            self.sep(" ")
+            self.token("NAME")
+            self.sep(" ")
+            self.token("_LBRACE")
+        elif isinstance(node, ast.ModeEnd):
+            self.token("_RBRACE")
         else:                                       # pragma: no cover
             raise AssertionError(f"unknown statement {node!r}")
 
@@ -378,6 +389,11 @@ class _Builder:
         if node.repeat:
             self.sep(" ")
             self.token("_REPEAT")
+        if node.priority is not None:
+            self.sep(" ")
+            self.token("_PRIORITY")
+            self.sep(" ")
+            self.token(self.peek())         # a NUMBER or a constant's NAME
         self.open(_Indent())
         self.sep(LINE)
         self.token("_DO")
@@ -409,10 +425,13 @@ class _Builder:
         self.close()
 
     def call(self, node):
-        if isinstance(node, ast.CancelCall):
-            self.token("_CANCEL")
+        if isinstance(node, (ast.CancelCall, ast.EnterCall)):
+            self.token("_CANCEL" if isinstance(node, ast.CancelCall) else "_ENTER")
             self.sep(" ")
             self.token("NAME")
+            return
+        if self.peek() == "_ENTER":         # the event `on enter`
+            self.token("_ENTER")
             return
         self.token("NAME")
         if node.args is not None:
@@ -542,17 +561,24 @@ def format_text(text: str, filename: str = "<stdin>") -> str:
         if lines and lines[-1] != "":
             lines.append("")
 
+    depth = 0               # the statements of a mode block are indented
     for chunk, statement in zip(chunks, statements):
+        if isinstance(statement, ast.ModeEnd):
+            depth -= 1
+        margin = " " * (INDENT * depth)
         first = chunk[0].start_pos
         for blank_before, comment in comments.leading.get(first, ()):
             if blank_before:
                 blank()
-            lines.append(comment)
-        if comments.blank_before.get(first):
+            lines.append(margin + comment)
+        if comments.blank_before.get(first) and not isinstance(statement, ast.ModeEnd):
             blank()
         builder = _Builder(chunk, comments)
         builder.statement(statement)
-        lines.append(_render(builder.finish(), WIDTH))
+        text = _render(builder.finish(), WIDTH - len(margin))
+        lines.append(margin + text.replace("\n", "\n" + margin) if depth else text)
+        if isinstance(statement, ast.ModeDef):
+            depth += 1
     for blank_before, comment in comments.at_end:
         if blank_before:
             blank()

@@ -17,16 +17,16 @@ from .diagnostics import Collector
 from .incremental import Analysis
 from .lexer import KEYWORDS
 from .source import Span
-from .stdlib import (ACTION_ALIASES, EVENT_ALIASES, SENSOR_CONDITION_DOC, SENSOR_NAMES,
-                     STANDARD_ACTIONS, STANDARD_EVENTS, Param)
+from .stdlib import (ACTION_ALIASES, CHOICE, EVENT_ALIASES, SENSOR_CONDITION_DOC, SENSOR_NAMES,
+                     STANDARD_ACTIONS, STANDARD_EVENTS, Param, kind_name)
 from .units import (ANGLE, ARTICLE, DISTANCE, DURATION, INT, KIND_UNITS, NATURAL_UNIT, SPEED,
                     UNITS)
 
 NAME_RE = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
 
 # Namespaces of user names (as the checker's `claim`): a const, an action
-# (named or extern), an extern event, a rule.
-CONST, ACTION, EVENT, RULE = "const", "action", "event", "rule"
+# (named or extern), an extern event, a rule, a mode.
+CONST, ACTION, EVENT, RULE, MODE = "const", "action", "event", "rule", "mode"
 
 
 @dataclass(frozen=True)
@@ -59,6 +59,8 @@ def _body_names(body: ast.ActionBody, statement) -> Iterator[Occurrence]:
         for call in step.calls:
             if isinstance(call, ast.CancelCall):
                 yield Occurrence(RULE, call.rule, False, statement, "cancel")
+            elif isinstance(call, ast.EnterCall):
+                yield Occurrence(MODE, call.mode, False, statement, "enter")
             else:
                 yield Occurrence(ACTION, call.name, False, statement, "call")
                 yield from _arg_names(call.args, statement)
@@ -85,6 +87,8 @@ def occurrences(statement) -> Iterator[Occurrence]:
         for setting in s.settings:
             yield Occurrence("setting", setting.name, False, s, "setting")
             yield from _value_names(setting.value, s)
+    elif isinstance(s, ast.ModeDef):
+        yield Occurrence(MODE, s.name, True, s)
 
 
 def _inside(span: Span, line: int, column: int) -> bool:
@@ -271,6 +275,9 @@ def symbols(analysis: Analysis) -> list:
         elif isinstance(s, ast.ExternDef):
             out.append(Symbol(s.name.name, f"extern {s.kind}", f'from "{s.file}"', real,
                               analysis.real(s.name.span)))
+        elif isinstance(s, ast.ModeDef):
+            out.append(Symbol(s.name.name, "mode", "initial" if s.initial else "", real,
+                              analysis.real(s.name.span)))
         elif isinstance(s, ast.Rule):
             on = "on " + _event_text(s.event, analysis) + (" repeat" if s.repeat else "")
             if s.name is not None:
@@ -289,6 +296,9 @@ def _units_of(kind: str) -> str:
 
 
 def _param_line(p) -> str:
+    if getattr(p, "choices", None) is not None:
+        text = f"- `{p.name}`: {p.choices.what}, one of {p.choices.describe()}"
+        return text + (f", {p.doc}" if p.doc else "")
     text = f"- `{p.name}`: {p.kind} ({_units_of(p.kind)})"
     if getattr(p, "doc", ""):
         text += f", {p.doc}"
@@ -300,7 +310,7 @@ def _param_line(p) -> str:
 def _spec_markdown(spec, what: str) -> str:
     out = [f"```epuck\n{spec.signature}\n```", f"Standard {what}: {spec.doc}."]
     if spec.params is None:
-        out.append(f"Conditions: {SENSOR_CONDITION_DOC}.")
+        out.append(f"Conditions: {getattr(spec, 'conditions_doc', '') or SENSOR_CONDITION_DOC}.")
     elif spec.params:
         out.append("\n".join(_param_line(p) for p in spec.params))
     return "\n\n".join(out)
@@ -361,6 +371,8 @@ def on_robot(analysis: Analysis, value, param) -> Optional[str]:
     """What a value becomes on the robot where `param` wants it, computed
     by the checker's own conversion ("50 cm = 3,882 steps at this robot's
     geometry"); None when the value is not valid there."""
+    if param.kind == CHOICE:
+        return None         # a name of the set: nothing to convert
     checker = analysis.checker
     saved, saved_used = checker.diags, set(checker.const_used)
     checker.diags = Collector(checker.diags.source)
@@ -447,6 +459,9 @@ def hover(analysis: Analysis, line: int, column: int) -> Optional[tuple]:
         return f"```epuck\n{_statement_text(analysis, d)}\n```\n\nRule `{d.name.name}`, {where}.", span
     if isinstance(d, ast.ActionDef):
         return f"```epuck\n{_statement_text(analysis, d)}\n```\n\nNamed action, {where}.", span
+    if isinstance(d, ast.ModeDef):
+        initial = " (the initial mode)" if d.name.name == analysis.checker.initial_mode else ""
+        return f"```epuck\n{_statement_text(analysis, d)}\n```\n\nMode `{d.name.name}`{initial}, {where}.", span
     if isinstance(d, ast.ExternDef):
         params = "\n".join(_param_line(Param(p.name.name, p.type.name)) for p in d.params)
         text = f"```epuck\n{_statement_text(analysis, d)}\n```\n\nExtern {d.kind} in C, {where}."
@@ -539,7 +554,9 @@ def _action_items(analysis: Analysis) -> list:
 
 
 def _event_items(analysis: Analysis) -> list:
-    items = [Completion(e.name, "event", e.signature, doc=e.doc) for e in STANDARD_EVENTS.values()]
+    # (`enter` is offered as the keyword it is)
+    items = [Completion(e.name, "event", e.signature, doc=e.doc) for e in STANDARD_EVENTS.values()
+             if e.name not in KEYWORDS]
     for name, info in analysis.checker.externs.items():
         if info.kind == "event":
             items.append(Completion(name, "event", f'extern event from "{info.file}"'))
@@ -607,7 +624,7 @@ def completions(analysis: Analysis, line: int, column: int) -> list:
     if call is not None and prev_type in ("_LPAR", "_COMMA"):
         name_tok, args = call
         is_event = _is_event_call(tokens, name_tok)
-        if EVENT_ALIASES.get(name_tok.value, name_tok.value) == "sensor" and is_event:
+        if EVENT_ALIASES.get(name_tok.value, name_tok.value) in ("sensor", "ambient") and is_event:
             given = {a[0].value for a in args[:-1] if a}
             return items + [Completion(s, "sensor", "proximity sensor") for s in SENSOR_NAMES
                             if s not in given]
@@ -615,14 +632,21 @@ def completions(analysis: Analysis, line: int, column: int) -> list:
         given = {a[0].value for a in args[:-1] if len(a) >= 2 and a[1].type == "_COLON"}
         positional = sum(1 for a in args[:-1] if a and not (len(a) >= 2 and a[1].type == "_COLON"))
         given |= {p.name for p in params[:positional]}
-        out = [Completion(p.name, "param", f"{p.kind}", insert=f"{p.name}: ",
+        out = [Completion(p.name, "param", kind_name(p), insert=f"{p.name}: ",
                           doc=getattr(p, "doc", "")) for p in params if p.name not in given]
         if any(len(a) >= 2 and a[1].type == "_COLON" for a in args[:-1]):
             return items + out      # after a named argument, only named ones [E021]
-        kind = params[positional].kind if positional < len(params) else None
-        return items + out + _const_items(analysis, kind)
+        param = params[positional] if positional < len(params) else None
+        if param is not None and param.kind == CHOICE:
+            return items + out + _choice_items(param)
+        return items + out + _const_items(analysis, param.kind if param else None)
     if call is not None and prev_type in ("_COLON", "MINUS"):
+        param = _arg_param(analysis, tokens, call)
+        if param is not None and param.kind == CHOICE:
+            return items + _choice_items(param)
         return items + _const_items(analysis, _arg_kind(analysis, tokens, call))
+    if prev_type == "_ENTER":
+        return items + [Completion(name, "const", "mode") for name in analysis.checker.modes]
     if prev_type in ("_DO", "_THEN") or (prev_type == "_EQUAL" and tokens[0].type == "_ACTION") \
             or (prev_type == "_COMMA" and call is None and any(t.type == "_DO" for t in tokens)):
         return items + _action_items(analysis)
@@ -639,12 +663,24 @@ def _is_event_call(tokens, name_tok) -> bool:
 
 def _arg_kind(analysis: Analysis, tokens, call) -> Optional[str]:
     """The kind of the parameter the argument being typed gives."""
+    param = _arg_param(analysis, tokens, call)
+    return param.kind if param is not None else None
+
+
+def _arg_param(analysis: Analysis, tokens, call):
+    """The parameter the argument being typed gives, or None."""
     name_tok, args = call
-    params = _params_for(analysis, name_tok.value, _is_event_call(tokens, name_tok))
+    params = _params_for(analysis, name_tok.value, _is_event_call(tokens, name_tok)) or ()
     current = args[-1]
     if len(current) >= 2 and current[1].type == "_COLON":
-        return next((p.kind for p in params if p.name == current[0].value), None)
+        return next((p for p in params if p.name == current[0].value), None)
     if any(len(a) >= 2 and a[1].type == "_COLON" for a in args[:-1]):
         return None
     index = len(args) - 1
-    return params[index].kind if index < len(params) else None
+    return params[index] if index < len(params) else None
+
+
+def _choice_items(param) -> list:
+    """The names an enumerated parameter takes (LEDs, sounds, keys)."""
+    return [Completion(c.name, "const", param.choices.what, doc=c.doc)
+            for c in param.choices.values]

@@ -46,7 +46,7 @@ from . import ast
 from .checker import Checker, CheckedProgram
 from .diagnostics import Collector, Diagnostic
 from .lexer import KEYWORDS, MAX_LEXICAL_ERRORS, STATEMENT_STARTS, iter_statements, iter_tokens
-from .parser import parse, parse_statement
+from .parser import ModePlacer, parse, parse_statement
 from .source import SourceFile, Span
 
 VLINE = 1 << 20          # lines per statement in virtual coordinates
@@ -246,7 +246,7 @@ class _Capture:
 
 _MISSING = object()
 _ALL = object()
-_TABLES = ("consts", "actions", "externs", "broken_externs", "rule_names")
+_TABLES = ("consts", "actions", "externs", "broken_externs", "rule_names", "modes")
 
 
 class _Watched:
@@ -323,7 +323,8 @@ class IncrementalChecker(Checker):
         first, so this is cheap when nothing changed)."""
         return (self.geo, tuple(self.consts.items()), tuple(self.actions.items()),
                 tuple((n, e.kind, e.params, e.node) for n, e in self.externs.items()),
-                tuple(self.broken_externs.items()), tuple(self.rule_names))
+                tuple(self.broken_externs.items()), tuple(self.rule_names),
+                tuple(self.modes.items()))
 
     def _replay(self, diags, facts):
         if diags:
@@ -516,11 +517,12 @@ class Analyzer:
         starts, lines, entries = split
         program = ast.Program(self.name)
         diags = Collector(_Named(self.name))
-        statements, items = program.statements, diags.items
+        items = diags.items
+        placer = ModePlacer(program, diags)     # mode blocks span statements
         said = set()
         for entry in entries:
-            if entry.statements:
-                statements.extend(entry.statements)
+            for statement in entry.statements:
+                placer.add(statement)
             if entry.once:
                 for d in entry.diags:
                     if d.code in _ONCE:
@@ -530,6 +532,7 @@ class Analyzer:
                     items.append(d)
             elif entry.diags:
                 items.extend(entry.diags)
+        placer.finish()
         checker = IncrementalChecker(program, diags, self._memo, **self.options)
         checked = checker.check()
         live = {id(s) for s in program.statements}

@@ -15,7 +15,8 @@ KEYWORDS = {
     "robot": "_ROBOT", "const": "_CONST", "action": "_ACTION",
     "extern": "_EXTERN", "event": "_EVENT", "on": "_ON", "rule": "_RULE",
     "do": "_DO", "then": "_THEN", "repeat": "_REPEAT", "cancel": "_CANCEL",
-    "from": "_FROM",
+    "from": "_FROM", "priority": "_PRIORITY", "mode": "_MODE", "initial": "_INITIAL",
+    "enter": "_ENTER",
 }
 PUNCTUATION = {
     "(": "_LPAR", ")": "_RPAR", "{": "_LBRACE", "}": "_RBRACE", ",": "_COMMA",
@@ -47,7 +48,9 @@ class Token:
 
 
 # Keywords that begin a statement: the parser restarts at each of them.
-STATEMENT_STARTS = {"_ROBOT", "_CONST", "_ACTION", "_EXTERN", "_ON", "_RULE"}
+STATEMENT_STARTS = {"_ROBOT", "_CONST", "_ACTION", "_EXTERN", "_ON", "_RULE", "_MODE",
+                    "_INITIAL"}
+MODE_STARTS = {"_MODE", "_INITIAL"}
 
 # Stop reporting bad characters after this many: the file is likely not a
 # rule file at all, and thousands of errors help nobody.
@@ -188,13 +191,30 @@ def _exponent(source, diags, start, end, text) -> str:
 
 def iter_statements(tokens):
     """Cut the token stream before every keyword that starts a statement.
-    `action` after `extern`, and the `on` of `rule NAME: on ...`, belong to
-    the statement already under way. Yields each statement's token list."""
+    `action` after `extern`, `mode` after `initial`, and the `on` of
+    `rule NAME: on ...`, belong to the statement already under way.
+
+    A mode block `[initial] mode NAME { rules }` holds statements: its head
+    up to `{` is a statement of its own, and so is a `}` that closes no `{`
+    of the statement under way (the parser pairs it with a mode, or says
+    it closes none). Both are decided from the statement under way alone,
+    so that any part of a file splits as the whole does (the language
+    server splits again only what an edit touched). Yields each
+    statement's token list."""
     current: list = []
     seen_on = False
+    depth = 0               # `{` of the statement under way not yet closed
     for tok in tokens:
+        if tok.type == "_RBRACE" and depth == 0:
+            if current:
+                yield current
+            yield [tok]
+            current, seen_on = [], False
+            continue
         starts = tok.type in STATEMENT_STARTS and current
         if starts and tok.type == "_ACTION" and current[-1].type == "_EXTERN":
+            starts = False
+        if starts and tok.type == "_MODE" and current[-1].type == "_INITIAL" and len(current) == 1:
             starts = False
         if starts and tok.type == "_ON" and current[0].type == "_RULE" and not seen_on:
             starts = False
@@ -202,7 +222,16 @@ def iter_statements(tokens):
             yield current
             current = []
             seen_on = False
+            depth = 0
         seen_on = seen_on or tok.type == "_ON"
         current.append(tok)
+        if tok.type == "_LBRACE":
+            if current[0].type in MODE_STARTS:
+                yield current
+                current, seen_on, depth = [], False, 0
+            else:
+                depth += 1
+        elif tok.type == "_RBRACE" and depth:
+            depth -= 1
     if current:
         yield current

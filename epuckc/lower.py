@@ -110,6 +110,8 @@ class CEvent:
     memory: str            # index in epk_event_memory, or "RT_NO_MEMORY"
     comment: str
     event_label: str
+    priority: int = 0      # the rule's priority
+    mode: int = 0          # its mode's number, 0: none
 
 
 @dataclass
@@ -160,6 +162,8 @@ class CProgram:
     watched: list = field(default_factory=list)       # ... as sensor numbers
     memory_slots: int = 0                             # longs of epk_event_memory
     geometry: Optional[str] = None   # set_robot_geometry arguments, for a robot block
+    modes: list = field(default_factory=list)       # (id, C string of its name)
+    initial_mode: Optional[tuple] = None            # (id, name)
 
 
 # ---- C text helpers ------------------------------------------------------------
@@ -236,6 +240,8 @@ class _Lowerer:
         self.flat: dict = {}             # named action -> flattened steps
         self.rule_ids: dict = {}         # rule name -> C name of its event id
         self.sensors: set = set()        # the IRs the compiled conditions read
+        self.mode_ids = {name: i for i, name in enumerate(program.modes, 1)}
+        self.rule_modes = {r.name: r.mode for r in program.rules if r.name is not None}
 
     def text_of(self, node) -> str:
         """The source text of a node, from its span, on one line and without
@@ -260,7 +266,20 @@ class _Lowerer:
         text = self.text_of(call.node)
         if call.kind == "cancel":
             name = self.rule_ids[call.name]
-            return _Primitive(None, "", f"cancel_event({name});", text)
+            # a rule of a mode is disarmed until its mode is entered again
+            function = "disarm_event" if self.rule_modes.get(call.name) else "cancel_event"
+            return _Primitive(None, "", f"{function}({name});", text)
+        if call.kind == "enter":         # one param_enter_mode struct per mode entered
+            key = ("enter", call.name)
+            if key not in self.params:
+                name = f"{PREFIX}mode_{call.name}"
+                self.out.structs.append(CStruct("param_enter_mode", name,
+                                                f"{{{self.mode_ids[call.name]}}}",
+                                                c_comment(f"mode {call.name}")))
+                self.params[key] = name
+            param = self.params[key]
+            return _Primitive("action_enter_mode", param,
+                              f"action_enter_mode({void_ref(param)});", text)
         function = STANDARD_ACTIONS[call.name].runtime if call.kind == "standard" else call.name
         if not call.values:       # stop_motor, exit_main, an extern without parameters...
             return _Primitive(function, "NULL", f"{function}(NULL);", text)
@@ -291,6 +310,10 @@ class _Lowerer:
                     f"{{{left}, {right}, {v['outer_steps']}}}",
                     f"left wheel {left} steps/s, right {right} steps/s, "
                     f"{v['outer_steps']} steps of the outer wheel")
+        if call.kind == "standard":
+            spec = STANDARD_ACTIONS[call.name]
+            return (spec.runtime_param, "{" + ", ".join(f.format(**v) for f in spec.fields) + "}",
+                    "")
         info = self.program.externs[call.name]
         return (f"param_{call.name}", self.extern_init(info.params, v), "")
 
@@ -393,8 +416,25 @@ class _Lowerer:
                                             self.extern_init(info.params, ev.values), comment))
             return ev.name, when, True, None
         spec = STANDARD_EVENTS[ev.name]
-        if spec.runtime_param is None:      # immediate, stop_motor
+        if spec.runtime_param is None:      # immediate, stop_motor, enter
             return spec.runtime, "NULL", spec.memory, None
+        if spec.fields:
+            self.out.structs.append(CStruct(spec.runtime_param, when,
+                                            "{" + ", ".join(f.format(**ev.values)
+                                                            for f in spec.fields) + "}",
+                                            comment))
+            return spec.runtime, when, spec.memory, None
+        if ev.name == "ambient":            # a function event: not the proximity sensors
+            thresholds = ["SENSOR_OFF"] * 8
+            below = 0
+            for sensor, op, value in ev.conditions:
+                thresholds[sensor] = str(value)
+                if op == "<":
+                    below |= 1 << sensor
+            self.out.structs.append(CStruct(spec.runtime_param, when,
+                                            f"{{{{{', '.join(thresholds)}}}, 0x{below:02x}}}",
+                                            comment))
+            return spec.runtime, when, spec.memory, None
         if ev.name == "timer":
             self.out.structs.append(CStruct(spec.runtime_param, when,
                                             f"{{{ev.values['time']}L}}", comment))
@@ -462,13 +502,20 @@ class _Lowerer:
             head = f"rule {rule.name}: " if rule.name else ""
             out.events.append(CEvent(
                 function, const_ref(param), registered[key], "RT_REPEAT" if rule.repeat else "0",
-                slot, c_comment(f"{event_id}: {self.where(rule.node)}: {self.text_of(rule.node)}"),
+                slot, c_comment(f"{event_id}: {self.where(rule.node)}: {self.text_of(rule.node)}"
+                                + (f" (mode {rule.mode})" if rule.mode is not None else "")),
                 c_string(_shorten(f"{self.where(rule.node)} {head}on "
                                   f"{self.text_of(rule.node.event)}"
-                                  + (" repeat" if rule.repeat else "")))))
+                                  + (" repeat" if rule.repeat else "")
+                                  + (f" priority {rule.priority}" if rule.priority else ""))),
+                priority=rule.priority or 0,
+                mode=self.mode_ids[rule.mode] if rule.mode is not None else 0))
         out.conditions = [CConditionWord(w, terms) for w, terms in sorted(conditions.items())]
         out.sensors = f"0x{sum(1 << n for n in self.sensors):02x}"
         out.watched = sorted(self.sensors)
+        out.modes = [(i, c_string(name)) for name, i in self.mode_ids.items()]
+        if self.program.initial_mode is not None:
+            out.initial_mode = (self.mode_ids[self.program.initial_mode], self.program.initial_mode)
         if self.program.robot_given:
             geo = self.program.geometry
             out.geometry = (f"{round_nearest(geo.wheel_circumference_mm * 1000)}L, "

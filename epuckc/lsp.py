@@ -455,7 +455,8 @@ def create_server() -> EpuckServer:
 
     symbol_kinds = {"robot": lsp.SymbolKind.Object, "const": lsp.SymbolKind.Constant,
                     "action": lsp.SymbolKind.Function, "extern action": lsp.SymbolKind.Function,
-                    "extern event": lsp.SymbolKind.Event, "rule": lsp.SymbolKind.Event}
+                    "extern event": lsp.SymbolKind.Event, "rule": lsp.SymbolKind.Event,
+                    "mode": lsp.SymbolKind.Namespace}
 
     @request(lsp.TEXT_DOCUMENT_DOCUMENT_SYMBOL)
     def document_symbols(ls: EpuckServer, params: lsp.DocumentSymbolParams):

@@ -10,7 +10,7 @@ from functools import lru_cache
 
 from . import ast
 from . import lalr
-from .diagnostics import Collector, Fix
+from .diagnostics import Collector, Fix, Note
 from .lexer import KEYWORDS, STATEMENT_STARTS, iter_statements, iter_tokens
 from .resources import grammar_path
 from .source import SourceFile, Span
@@ -30,7 +30,7 @@ _FRIENDLY = {
     "_LPAR": "`(`", "_RPAR": "`)`", "_LBRACE": "`{`", "_RBRACE": "`}`", "_COMMA": "`,`",
     "_COLON": "`:`", "_EQUAL": "`=`", "_SLASH": "`/`",
 }
-_STATEMENT_LIST = "a statement (`on`, `rule`, `action`, `const`, `extern` or `robot`)"
+_STATEMENT_LIST = "a statement (`on`, `rule`, `action`, `const`, `extern`, `robot` or `mode`)"
 
 
 def _friendly(term: str) -> str:
@@ -240,15 +240,26 @@ class _ToAst:
         return True
 
     def rule_def(self, span, children):
-        name, event, repeat, body = children
+        name, event, repeat, priority, body = children
         node = _new(_RULE)
         node.name = _ident(name) if name is not None else None
         node.event = event
         node.repeat = bool(repeat)
         node.body = body
         node.span = span
+        node.priority = priority
+        node.mode = None
         node.__class__ = _Rule
         return node
+
+    def priority_number(self, span, children):
+        (number,) = children
+        return ast.Number(float(str(number)), str(number), None, None, _tok_span(number))
+
+    def priority_const(self, span, children):
+        (name,) = children
+        ident = _ident(name)
+        return ast.ConstRef(ident, False, ident.span)
 
     def event_ref(self, span, children):
         name, args = children
@@ -258,6 +269,23 @@ class _ToAst:
         node.span = span
         node.__class__ = _Call
         return node
+
+    def enter_event(self, span, children):
+        return ast.Call(ast.Ident("enter", span), None, span)
+
+    def enter_call(self, span, children):
+        (name,) = children
+        return ast.EnterCall(_ident(name), span)
+
+    def initial(self, span, children):
+        return True
+
+    def mode_open(self, span, children):
+        initial, name = children
+        return ast.ModeOpen(_ident(name), bool(initial), span)
+
+    def mode_close(self, span, children):
+        return ast.ModeClose(span)
 
     def action_body(self, span, children):
         node = _new(_BODY)
@@ -344,13 +372,15 @@ def parse(source: SourceFile, diags: Collector) -> ast.Program:
     # tokens at once; `following` is the next statement's first token.
     chunks = iter_statements(iter_tokens(source, diags))
     chunk = next(chunks, None)
+    placer = ModePlacer(program, diags)
     while chunk is not None:
         following_chunk = next(chunks, None)
         following = following_chunk[0] if following_chunk is not None else None
         statement = parse_statement(chunk, following, source, diags, tables)
         if statement is not None:
-            program.statements.append(statement)
+            placer.add(statement)
         chunk = following_chunk
+    placer.finish()
     return program
 
 
@@ -363,3 +393,56 @@ def parse_statement(chunk: list, following, source: SourceFile, diags: Collector
     except lalr.ParseError as exc:
         _syntax_error(exc, chunk, following, source, diags)
         return None
+
+
+class ModePlacer:
+    """Builds a program's statements from the parsed ones, minding mode
+    blocks: a mode's head becomes a ModeDef, its `}` a ModeEnd, and each
+    rule between them gets its `mode`. Used by `parse` and by the language
+    server's incremental analysis (incremental.py), which parses statements
+    on its own."""
+
+    def __init__(self, program: ast.Program, diags: Collector):
+        self.program = program
+        self.diags = diags
+        self.modes: list = []       # the ModeOpens of the blocks open, innermost last
+
+    def add(self, statement) -> None:
+        program, diags = self.program, self.diags
+        mode = self.modes[-1] if self.modes else None
+        if isinstance(statement, ast.ModeOpen):
+            if mode is not None:
+                diags.error("E001", statement.span,
+                            f"mode `{statement.name.name}` starts inside mode `{mode.name.name}`",
+                            help="modes do not nest: close the first with `}` before this one",
+                            notes=[Note(f"mode `{mode.name.name}` starts here", mode.span)])
+            program.statements.append(ast.ModeDef(statement.name, statement.initial,
+                                                  statement.span))
+            self.modes.append(statement)
+            return
+        if isinstance(statement, ast.ModeClose):
+            if mode is None:
+                diags.error("E001", statement.span, "this `}` closes no mode",
+                            help="remove it, or open a mode with `mode NAME {`")
+            else:
+                self.modes.pop()
+                program.statements.append(ast.ModeEnd(statement.span))
+            return
+        if mode is not None and not isinstance(statement, ast.Rule):
+            what = {ast.ConstDef: "a constant", ast.ActionDef: "an action",
+                    ast.ExternDef: "an extern", ast.RobotBlock: "the robot block"}[type(statement)]
+            diags.error("E001", statement.span,
+                        f"{what} cannot be defined inside mode `{mode.name.name}`",
+                        help="only rules go in a mode; define it before the mode (names are "
+                             "visible everywhere)",
+                        notes=[Note(f"mode `{mode.name.name}` starts here", mode.span)])
+        elif mode is not None:
+            statement = statement.in_mode(mode.name)
+        # a definition misplaced in a mode still defines its name: no follow-up errors
+        program.statements.append(statement)
+
+    def finish(self) -> None:
+        for mode in self.modes:
+            self.diags.error("E001", mode.span, f"mode `{mode.name.name}` is not closed",
+                             help="end the mode's rules with `}`")
+        self.modes = []

@@ -20,6 +20,12 @@
 #include "motor_led/advance_one_timer/e_agenda.h"
 #include "a_d/advance_ad_scan/e_prox.h"
 #include "a_d/advance_ad_scan/e_ad_conv.h"
+#include "a_d/advance_ad_scan/e_micro.h"
+#include "a_d/advance_ad_scan/e_acc.h"
+#include "motor_led/e_led.h"
+#include "motor_led/advance_one_timer/e_remote_control.h"
+#include "codec/e_sound.h"
+#include "utility/utility.h"
 
 #if MAX_ACTIONS < 1 || MAX_EVENTS < 1
 #error "MAX_ACTIONS and MAX_EVENTS must be at least 1"
@@ -30,6 +36,18 @@ static action actions[MAX_ACTIONS];
 static event events[MAX_EVENTS];
 static int n_actions;   /* slots used so far, cancelled ones included */
 static int n_events;
+
+/* Extension state of each event of the arrays, kept beside the paper's
+ * struct: its priority (set_event_priority) and mode (set_event_mode, 0:
+ * none).  A table event's are in its rt_event. */
+static struct {
+    int priority;
+    int mode;
+} event_ext[MAX_EVENTS];
+/* 1 once any event has a priority or a mode: the walk then goes by
+ * priority levels (poll_ranked); 0: every priority is 0 and there are no
+ * modes, and the walk is the plain one in id order. */
+static int ranked;
 
 /* ---- the static tables (register_program) ----------------------------------
  * Ids 0..s_actions-1 and 0..s_events-1 are the program's table entries; the
@@ -45,6 +63,7 @@ static unsigned *ev_repeat;         /* repeat_flag */
 static unsigned *ev_latch;          /* compiled condition at its last poll */
 static unsigned *ev_now;            /* compiled conditions of this poll */
 static unsigned *ev_compiled;       /* the event is a compiled condition */
+static unsigned *ev_dead;           /* cancel_event: not re-armed by enter_mode */
 static int conditions_valid;        /* ev_now holds this poll's conditions */
 
 #define WORD_MASK 0xFFFFu
@@ -52,6 +71,17 @@ static int conditions_valid;        /* ev_now holds this poll's conditions */
 #define BIT_GET(plane, k) (((plane)[(k) >> 4] & BIT_OF(k)) != 0)
 #define BIT_SET(plane, k) ((plane)[(k) >> 4] |= BIT_OF(k))
 #define BIT_CLEAR(plane, k) ((plane)[(k) >> 4] &= ~BIT_OF(k))
+
+/* An event's priority and mode, by id (table or array). */
+static int event_priority(int id)
+{
+    return id < s_events ? prog->events[id].priority : event_ext[id - s_events].priority;
+}
+
+static int event_mode(int id)
+{
+    return id < s_events ? prog->events[id].mode : event_ext[id - s_events].mode;
+}
 
 /* ---- millisecond clock ---------------------------------------------------
  * A 1 ms e-puck agenda (cycle 10 x 0.1 ms) counts; it runs in the Timer2
@@ -79,6 +109,17 @@ long rt_millis(void)
 }
 
 static int initialised;
+static int remote_wanted;       /* an event_remote was registered */
+static int remote_started;      /* e_init_remote_control() has run */
+static int accel_wanted;        /* an event_tap or event_tilt was registered */
+
+static void remote_start(void)
+{
+    if (remote_wanted && initialised && !remote_started) {
+        remote_started = 1;
+        e_init_remote_control();
+    }
+}
 
 static void rt_init(void)
 {
@@ -93,12 +134,21 @@ static void rt_init(void)
     e_init_ad_scan(ALL_ADC);
     (void)e_activate_agenda(clock_tick, 10);
     rt_platform_init();
+    remote_start();     /* only for programs that use the remote control */
 }
 
 /* ---- state of the standard actions and events --------------------------- */
 
 static int exit_requested;      /* set by exit_main, checked by mainloop */
 static int current_action_id = -1;  /* the action being run by mainloop */
+static int current_event_id = -1;   /* the event whose action runs (-1: none) */
+
+/* Modes: the current one (0: none), entries so far, and whether a mode was
+ * entered during this poll's walk (then no mode's event fires until the
+ * next poll). */
+static int current_mode;
+static int mode_entered_in_poll;
+static int mode_trace_pending;      /* enter_mode before mainloop */
 
 /* Timer (set_timer / reset_timer / event_timer). */
 static int timer_running;
@@ -134,7 +184,9 @@ static struct {
     long target;    /* steps, >= 0 */
     long left;      /* signed steps turned since the start */
     long right;
-} motion;
+    int owner;      /* event whose action started it (-1: none); the
+                       motors are its until the motion ends */
+} motion = { 0, 0, 0, 0, 0, -1 };
 static int last_left;           /* raw counters at the previous poll */
 static int last_right;
 static unsigned motion_starts;  /* incremented at every motion start */
@@ -147,6 +199,7 @@ static int stop_sample;         /* the stop_motor condition of this poll */
 static const param_sequence *seq;   /* NULL: none */
 static int seq_next;                /* index of the next step to run */
 static int seq_action_id;           /* id used in the trace of its steps */
+static int seq_event_id;            /* the event whose action started it */
 static int seq_waiting;             /* a step's motion is under way */
 static unsigned seq_generation;     /* changes when a sequence replaces one */
 static int in_step;                 /* > 0 while a step's function runs */
@@ -229,6 +282,14 @@ int register_event(event_func f, void *event_param, int action_id)
     e->repeat_flag = 0;
     e->status.occurred = 0;
     e->status.memory = 0;
+    event_ext[id].priority = 0;
+    event_ext[id].mode = 0;
+    if (f == event_remote) {
+        remote_wanted = 1;
+        remote_start();
+    }
+    if (f == event_tap || f == event_tilt)
+        accel_wanted = 1;
     rt_new_event(s_events + id, f);
     return s_events + id;
 }
@@ -253,6 +314,7 @@ void cancel_event(int event_id)
         return;
     if (event_id < s_events) {
         BIT_CLEAR(ev_armed, event_id);
+        BIT_SET(ev_dead, event_id);
         return;
     }
     event_id -= s_events;
@@ -272,6 +334,42 @@ void set_event_repeat(int event_id, int repeat)
         return;
     }
     events[event_id - s_events].repeat_flag = repeat != 0;
+}
+
+/* Priorities and modes of the arrays' events; a table event's are in its
+ * rt_event (these ignore table ids). */
+void set_event_priority(int event_id, int priority)
+{
+    if (event_id >= s_events && event_ok(event_id)) {
+        event_ext[event_id - s_events].priority = priority;
+        if (priority != 0)
+            ranked = 1;
+    }
+}
+
+void set_event_mode(int event_id, int mode)
+{
+    if (event_id >= s_events && event_ok(event_id) && mode >= 0) {
+        event_ext[event_id - s_events].mode = mode;
+        if (mode != 0)
+            ranked = 1;
+    }
+}
+
+void disarm_event(int event_id)
+{
+    if (!event_ok(event_id))
+        return;
+    if (event_id < s_events)
+        BIT_CLEAR(ev_armed, event_id);
+    else
+        events[event_id - s_events].valid_flag = 0;
+}
+
+void (name_mode)(int mode, const char *name)
+{
+    if (mode > 0)
+        rt_name_mode(mode, name);
 }
 
 /* Parenthesised: epuckrt.h may define them as macros (EPUCKRT_NO_NAMES). */
@@ -304,7 +402,8 @@ int register_program(const rt_program *p)
         const rt_event *e = &p->events[k];
         if (e->action_id < 0 || e->action_id >= p->n_actions
                 || (e->event_function == NULL && p->conditions == NULL)
-                || (e->memory != RT_NO_MEMORY && (e->memory < 0 || p->memory == NULL)))
+                || (e->memory != RT_NO_MEMORY && (e->memory < 0 || p->memory == NULL))
+                || e->mode < 0)
             return -1;
     }
     words_a = RT_WORDS(p->n_actions);
@@ -315,7 +414,8 @@ int register_program(const rt_program *p)
     ev_latch = ev_repeat + words_e;
     ev_now = ev_latch + words_e;
     ev_compiled = ev_now + words_e;
-    for (k = 0; k < words_a + 5 * words_e; k++)
+    ev_dead = ev_compiled + words_e;
+    for (k = 0; k < words_a + 6 * words_e; k++)
         p->state[k] = 0;
     for (k = 0; k < p->n_actions; k++)
         rt_new_action(k, p->actions[k].action_function);
@@ -328,8 +428,15 @@ int register_program(const rt_program *p)
             BIT_SET(ev_compiled, k);
         if (e->memory != RT_NO_MEMORY)
             p->memory[e->memory] = 0;
+        if (e->priority != 0 || e->mode != 0)
+            ranked = 1;
+        if (e->event_function == event_remote)
+            remote_wanted = 1;
+        if (e->event_function == event_tap || e->event_function == event_tilt)
+            accel_wanted = 1;
         rt_new_event(k, e->event_function);
     }
+    remote_start();
     prog = p;
     s_actions = p->n_actions;
     s_events = p->n_events;
@@ -340,6 +447,23 @@ int register_program(const rt_program *p)
 /* ---- motion control -------------------------------------------------------- */
 
 static void sequence_outside_command(void);
+
+/* Motor arbitration: 1 when the running action may not command the motors
+ * because the motion in progress belongs to an event of higher priority
+ * (the command is then traced as suppressed and not carried out).  Commands
+ * from outside any event's action (main, before mainloop) always pass. */
+static int motors_refused(const char *command)
+{
+    int owner = motion.owner, me = current_event_id;
+
+    if (!motion.active || owner < 0 || me < 0 || owner == me)
+        return 0;
+    if (event_priority(me) >= event_priority(owner))
+        return 0;
+    rt_trace_suppressed(me, event_priority(me), owner, event_priority(owner),
+                        command);
+    return 1;
+}
 
 static void wheels(int left, int right)
 {
@@ -367,6 +491,7 @@ static void motion_begin(int left, int right, long target, int watch)
         right = 0;
     }
     motion.active = 1;
+    motion.owner = current_event_id;
     motion.watch = watch;
     motion.target = target;
     motion.left = 0;
@@ -463,7 +588,7 @@ void action_start_straight(void *param)
 {
     const param_start_straight *p = (const param_start_straight *)param;
 
-    if (p == NULL)
+    if (p == NULL || motors_refused("start_straight"))
         return;
     straight(p->speed, mm_to_steps(p->distance), (p->speed < 0) != (p->distance < 0));
 }
@@ -472,7 +597,8 @@ void action_straight_steps(void *param)
 {
     const param_straight_steps *p = (const param_straight_steps *)param;
 
-    if (p == NULL)
+    /* traced under the rule file's name of the motion it compiles */
+    if (p == NULL || motors_refused("start_straight"))
         return;
     straight(p->speed, abs_l(p->steps), (p->speed < 0) != (p->steps < 0));
 }
@@ -485,7 +611,7 @@ void action_start_curve(void *param)
     long long two_r, arc;       /* um; um * degrees * 355 */
     long outer_steps;
 
-    if (p == NULL)
+    if (p == NULL || motors_refused("start_curve"))
         return;
     outer = clamp_speed(p->speed);
     /* within the robot's 16-bit int, so that a host with a wider int
@@ -511,7 +637,8 @@ void action_curve_steps(void *param)
     int left, right;
     long al, ar;
 
-    if (p == NULL)
+    /* traced under the rule file's name of the motion it compiles */
+    if (p == NULL || motors_refused("start_curve"))
         return;
     left = clamp_speed(p->left_speed);
     right = clamp_speed(p->right_speed);
@@ -524,6 +651,8 @@ void action_curve_steps(void *param)
 void action_stop_motor(void *param)
 {
     (void)param;
+    if (motors_refused("stop_motor"))
+        return;
     sequence_outside_command();
     motion.active = 0;
     wheels(0, 0);
@@ -574,6 +703,23 @@ static void sequence_outside_command(void)
     }
 }
 
+/* Motor arbitration of run_sequence: a sequence in progress belongs to the
+ * event that started it; one of lower priority may not replace it (1: the
+ * new sequence is suppressed and traced).  Otherwise the new sequence runs,
+ * and each of its steps' motor commands is arbitrated on its own. */
+static int sequence_refused(void)
+{
+    int owner = seq_event_id, me = current_event_id;
+
+    if (seq == NULL || owner < 0 || me < 0 || owner == me)
+        return 0;
+    if (event_priority(me) >= event_priority(owner))
+        return 0;
+    rt_trace_suppressed(me, event_priority(me), owner, event_priority(owner),
+                        "run_sequence");
+    return 1;
+}
+
 /* Run steps from seq_next on, until one starts a motion (then wait for it
  * to end) or the sequence is over. */
 static void sequence_run_steps(void)
@@ -587,13 +733,16 @@ static void sequence_run_steps(void)
 
         rt_trace_action(seq_action_id, index, seq->count);
         if (step->action_function != NULL) {
-            int previous = current_action_id;
-            /* a step that runs a sequence names it after this one */
+            int previous = current_action_id, previous_event = current_event_id;
+            /* a step that runs a sequence names it after this one; its
+             * motor commands are those of the event that started it */
             current_action_id = seq_action_id;
+            current_event_id = seq_event_id;
             in_step++;
             step->action_function(step->action_param);
             in_step--;
             current_action_id = previous;
+            current_event_id = previous_event;
         }
         if (generation != seq_generation || seq == NULL)
             return;     /* the step ran a sequence that replaced this one */
@@ -613,6 +762,8 @@ void action_run_sequence(void *param)
 {
     const param_sequence *p = (const param_sequence *)param;
 
+    if (sequence_refused())
+        return;
     seq_generation++;
     seq = NULL;
     seq_waiting = 0;
@@ -621,6 +772,7 @@ void action_run_sequence(void *param)
     seq = p;
     seq_next = 0;
     seq_action_id = current_action_id;
+    seq_event_id = current_event_id;
     if (in_step > 0) {
         /* run by a step of a sequence: it starts at the next poll (once the
          * step's motion, if any, has ended), so a sequence that runs itself
@@ -685,9 +837,34 @@ void event_timer(void *param, void *status)
 
 /* Occurs when the condition becomes true (status->memory: the condition at
  * the previous poll, 0 before the first). */
+static int thresholds_passed(const param_event_sensor *p, int (*reading)(unsigned int))
+{
+    unsigned n;
+
+    for (n = 0; n < 8; n++) {
+        int threshold = p->sensef[n];
+        int value;
+        if (threshold == SENSOR_OFF)
+            continue;
+        value = reading(n);
+        if ((p->below >> n) & 1u ? value < threshold : value > threshold)
+            return 1;
+    }
+    return 0;
+}
+
+/* Rising edge of cond: status->memory holds the condition at the previous
+ * poll (0 before the first). */
+static void edge(event_status *st, int cond)
+{
+    st->occurred = cond && st->memory == 0;
+    st->memory = cond;
+}
+
 void event_sensor(void *param, void *status)
 {
     const param_event_sensor *p = (const param_event_sensor *)param;
+
     event_status *st = (event_status *)status;
     int cond = 0;
     unsigned n;
@@ -706,8 +883,211 @@ void event_sensor(void *param, void *status)
             }
         }
     }
-    st->occurred = cond && st->memory == 0;
-    st->memory = cond;
+    edge(st, cond);
+}
+
+/* ---- extension: modes ---------------------------------------------------------- */
+
+void enter_mode(int mode)
+{
+    int i, left = current_mode;
+
+    if (mode <= 0)
+        return;
+    current_mode = mode;
+    /* re-armed as at registration; cancel_event's are gone for good */
+    for (i = 0; i < s_events; i++) {
+        const rt_event *e = &prog->events[i];
+        if (e->mode == mode && !BIT_GET(ev_dead, i)) {
+            BIT_SET(ev_armed, i);
+            BIT_CLEAR(ev_latch, i);
+            if (e->memory != RT_NO_MEMORY)
+                prog->memory[e->memory] = 0;
+        }
+    }
+    for (i = 0; i < n_events; i++) {
+        if (event_ext[i].mode == mode && events[i].event_function != NULL) {
+            events[i].valid_flag = 1;
+            events[i].status.occurred = 0;
+            events[i].status.memory = 0;
+        }
+    }
+    if (!initialised) {
+        mode_trace_pending = 1;     /* traced when mainloop starts */
+        return;
+    }
+    mode_entered_in_poll = 1;
+    rt_trace_mode(mode);
+    if (left == 0)
+        return;
+    /* what the rules of the mode left were doing with the motors ends */
+    if (seq != NULL && seq_event_id >= 0 && event_mode(seq_event_id) == left) {
+        seq_generation++;
+        seq = NULL;
+        seq_waiting = 0;
+    }
+    if (motion.active && motion.owner >= 0 && event_mode(motion.owner) == left) {
+        /* stopped without a stop_motor event: the motion did not end, its
+         * mode did (the new mode's stop_motor rules must not take it for
+         * the end of a motion of theirs) */
+        motion.active = 0;
+        seen_moving = 0;
+        wheels(0, 0);
+    }
+}
+
+void action_enter_mode(void *param)
+{
+    const param_enter_mode *p = (const param_enter_mode *)param;
+
+    if (p != NULL)
+        enter_mode(p->mode);
+}
+
+/* Occurs at its first poll after it was (re-)armed: mode entries reset
+ * status->memory to 0. */
+void event_enter_mode(void *param, void *status)
+{
+    event_status *st = (event_status *)status;
+
+    (void)param;
+    st->occurred = st->memory == 0;
+    st->memory = 1;
+}
+
+/* ---- extension: LEDs and sound --------------------------------------------------- */
+
+void action_set_led(void *param)
+{
+    const param_set_led *p = (const param_set_led *)param;
+
+    if (p == NULL || p->value < SET_LED_OFF || p->value > SET_LED_TOGGLE)
+        return;
+    if (p->led >= 0 && p->led <= SET_LED_ALL)
+        e_set_led((unsigned)p->led, (unsigned)p->value);
+    else if (p->led == SET_LED_BODY)
+        e_set_body_led((unsigned)p->value);
+    else if (p->led == SET_LED_FRONT)
+        e_set_front_led((unsigned)p->value);
+}
+
+/* [offset, length] in words of the library's samples (codec/e_const_sound.s) */
+static const int sound_samples[5][2] = {
+    { 0, 2112 }, { 2116, 1760 }, { 3878, 3412 }, { 7294, 3732 }, { 11028, 8016 }
+};
+static int sound_ready;
+
+void action_play_sound(void *param)
+{
+    const param_play_sound *p = (const param_play_sound *)param;
+
+    if (p == NULL || p->sound < 0 || p->sound > SOUND_WOUAAAAAAAAH)
+        return;
+    if (!sound_ready) {
+        sound_ready = 1;
+        e_init_sound();
+    }
+    e_play_sound(sound_samples[p->sound][0], sound_samples[p->sound][1]);
+}
+
+/* ---- extension: selector, microphones, accelerometer, remote, ambient light ----- */
+
+void event_selector(void *param, void *status)
+{
+    const param_event_selector *p = (const param_event_selector *)param;
+
+    edge((event_status *)status, p != NULL && getselector() == p->position);
+}
+
+void event_clap(void *param, void *status)
+{
+    const param_event_clap *p = (const param_event_clap *)param;
+    int cond = 0;
+    unsigned m;
+
+    if (p != NULL)
+        for (m = 0; m < 3 && !cond; m++)
+            cond = e_get_micro_volume(m) > p->volume;
+    edge((event_status *)status, cond);
+}
+
+/* Accelerometer samples, taken once per poll (phase 4) when a tap or tilt
+ * event is registered: this poll's, the previous poll's, and the first
+ * (the robot at rest). */
+static int acc_now[3], acc_prev[3], acc_rest[3];
+static int acc_samples;
+
+static void accel_sample(void)
+{
+    unsigned k;
+
+    for (k = 0; k < 3; k++) {
+        acc_prev[k] = acc_now[k];
+        acc_now[k] = e_get_acc(k);
+        if (acc_samples == 0) {
+            acc_prev[k] = acc_now[k];
+            acc_rest[k] = acc_now[k];
+        }
+    }
+    acc_samples = 1;
+}
+
+static int differs(int a, int b, int threshold)
+{
+    long d = (long)a - b;
+    return (d < 0 ? -d : d) > threshold;
+}
+
+void event_tap(void *param, void *status)
+{
+    const param_event_accel *p = (const param_event_accel *)param;
+    int cond = 0;
+    unsigned k;
+
+    if (p != NULL && acc_samples)
+        for (k = 0; k < 3 && !cond; k++)
+            cond = differs(acc_now[k], acc_prev[k], p->threshold);
+    edge((event_status *)status, cond);
+}
+
+void event_tilt(void *param, void *status)
+{
+    const param_event_accel *p = (const param_event_accel *)param;
+    int cond = 0;
+    unsigned k;
+
+    if (p != NULL && acc_samples)
+        for (k = 0; k < 2 && !cond; k++)
+            cond = differs(acc_now[k], acc_rest[k], p->threshold);
+    edge((event_status *)status, cond);
+}
+
+/* status->memory: 0 before the first poll, else 1 + the check bit seen at
+ * the previous poll; a new press toggles the bit. */
+void event_remote(void *param, void *status)
+{
+    const param_event_remote *p = (const param_event_remote *)param;
+    event_status *st = (event_status *)status;
+    int check;
+
+    st->occurred = 0;
+    if (p == NULL || !remote_started)
+        return;
+    check = e_get_check() != 0;
+    st->occurred = st->memory != 0 && check != st->memory - 1 && e_get_data() == p->key;
+    st->memory = check + 1;
+}
+
+static int ambient_reading(unsigned int n)
+{
+    return e_get_ambient_light(n);
+}
+
+void event_ambient(void *param, void *status)
+{
+    const param_event_sensor *p = (const param_event_sensor *)param;
+
+    edge((event_status *)status, p != NULL && thresholds_passed(p, ambient_reading));
 }
 
 /* ---- the paper's short spellings -------------------------------------------- */
@@ -755,7 +1135,9 @@ static void run_action(int action_id)
 static void fire_static(int id)
 {
     rt_trace_event(id);
+    current_event_id = id;
     run_action(prog->events[id].action_id);
+    current_event_id = -1;
     if (!BIT_GET(ev_repeat, id))
         BIT_CLEAR(ev_armed, id);
 }
@@ -835,14 +1217,124 @@ static int poll_static(void)
     return 0;
 }
 
-/* Phase (5): poll the armed events in index order: the table's, then the
- * registered ones.  Returns 1 when exit_main ran. */
+/* An array event occurred: trace it, run its action, disarm it unless it
+ * repeats. */
+static void fire_dynamic(int i)
+{
+    event *e = &events[i];
+
+    rt_trace_event(s_events + i);
+    current_event_id = s_events + i;
+    run_action(e->action_id);
+    current_event_id = -1;
+    if (!e->repeat_flag)
+        e->valid_flag = 0;
+}
+
+/* ---- the walk by priority levels (ranked: priorities or modes in use) ---- */
+
+/* A mode's events are polled only while it is the current mode, and not in
+ * the poll that entered it. */
+static int mode_ok(int mode)
+{
+    return mode == 0 || (mode == current_mode && !mode_entered_in_poll);
+}
+
+static int static_armed(int k)
+{
+    return BIT_GET(ev_armed, k) && mode_ok(prog->events[k].mode);
+}
+
+static int dynamic_armed(int i)
+{
+    return events[i].valid_flag && events[i].event_function != NULL
+           && mode_ok(event_ext[i].mode);
+}
+
+/* The highest priority below `below` among the armed events (all of them
+ * when !bounded); returns 0 when there is none. */
+static int next_level(int bounded, int below, int *level)
+{
+    int i, found = 0;
+
+    for (i = 0; i < s_events + n_events; i++) {
+        int p = event_priority(i);
+        if ((bounded && p >= below)
+                || !(i < s_events ? static_armed(i) : dynamic_armed(i - s_events)))
+            continue;
+        if (!found || p > *level)
+            *level = p;
+        found = 1;
+    }
+    return found;
+}
+
+/* Polls one table event (the ranked walk's, one at a time). */
+static void poll_static_one(int k)
+{
+    int cond, was;
+
+    if (!BIT_GET(ev_compiled, k)) {
+        poll_static_function(k);
+        return;
+    }
+    cond = (conditions_mask() & ev_now[k >> 4] & BIT_OF(k)) != 0;
+    was = BIT_GET(ev_latch, k);
+    if (cond)
+        BIT_SET(ev_latch, k);
+    else
+        BIT_CLEAR(ev_latch, k);
+    if (cond && !was)
+        fire_static(k);
+}
+
+/* Phase (5) with priorities or modes: the armed events (in no mode or in
+ * the current one), highest priority first, in id order within a priority
+ * (the table's, then the arrays').  Returns 1 when exit_main ran. */
+static int poll_ranked(void)
+{
+    int i, level = 0, more;
+
+    mode_entered_in_poll = 0;
+    more = next_level(0, 0, &level);
+    while (more) {
+        /* s_events + n_events is re-read: an action may register events,
+         * polled at once */
+        for (i = 0; i < s_events + n_events; i++) {
+            if (event_priority(i) != level)
+                continue;
+            if (i < s_events) {
+                if (!static_armed(i))
+                    continue;
+                poll_static_one(i);
+            } else {
+                event *e = &events[i - s_events];
+                if (!dynamic_armed(i - s_events))
+                    continue;
+                e->status.occurred = 0;
+                e->event_function(e->event_param, &e->status);
+                if (e->status.occurred)
+                    fire_dynamic(i - s_events);
+            }
+            if (exit_requested)
+                return 1;
+        }
+        more = next_level(1, level, &level);
+    }
+    return 0;
+}
+
+/* Phase (5): poll the armed events; without priorities and modes in index
+ * order: the table's, then the registered ones.  Returns 1 when exit_main
+ * ran. */
 static int poll_events(void)
 {
     int i;
 
     conditions_valid = 0;
     prox_valid = 0;
+    if (ranked)
+        return poll_ranked();
     if (prog != NULL && poll_static())
         return 1;
     /* n_events is re-read: an action may register events, polled at once */
@@ -852,12 +1344,8 @@ static int poll_events(void)
             continue;
         e->status.occurred = 0;
         e->event_function(e->event_param, &e->status);
-        if (e->status.occurred) {
-            rt_trace_event(s_events + i);
-            run_action(e->action_id);
-            if (!e->repeat_flag)
-                e->valid_flag = 0;
-        }
+        if (e->status.occurred)
+            fire_dynamic(i);
         if (exit_requested)
             return 1;
     }
@@ -868,6 +1356,10 @@ void mainloop(void)
 {
     rt_init();
     exit_requested = 0;
+    if (mode_trace_pending) {
+        mode_trace_pending = 0;
+        rt_trace_mode(current_mode);
+    }
     last_left = e_get_steps_left();
     last_right = e_get_steps_right();
     for (;;) {
@@ -878,6 +1370,8 @@ void mainloop(void)
             break;
         stop_sample = seen_moving && !motion.active;    /* (4) */
         seen_moving = motion.active;
+        if (accel_wanted)
+            accel_sample();
         if (poll_events())          /* (5) */
             break;
     }

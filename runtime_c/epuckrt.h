@@ -129,8 +129,10 @@ typedef struct {
     int memory;                 /* index in rt_program.memory of the status's
                                    memory, kept between polls (0 at the
                                    start), or RT_NO_MEMORY */
-    /* Rule priorities and modes (issue 9) belong here as `int priority;
-     * int mode;`: see docs/runtime.md, "Static registration". */
+    int priority;               /* the rule's priority (set_event_priority's
+                                   for a table event), 0 by default */
+    int mode;                   /* its mode: 0 none, always armed; > 0 armed
+                                   only while that mode is current */
 } rt_event;
 
 typedef struct {
@@ -151,14 +153,15 @@ typedef struct {
 
 /* The state is bit planes of 16-bit words (unsigned is at least 16 bits). */
 #define RT_WORDS(n) (((n) + 15) / 16)
-#define RT_STATE_WORDS(n_actions, n_events) (RT_WORDS(n_actions) + 5 * RT_WORDS(n_events))
+#define RT_STATE_WORDS(n_actions, n_events) (RT_WORDS(n_actions) + 6 * RT_WORDS(n_events))
 
 /* Registers a program's tables (before mainloop; tables registered by an
  * action are polled from the next poll): its actions get ids
  * 0..n_actions-1, its events 0..n_events-1, all armed.  Returns 0, or -1 (and registers
  * nothing) when a program or anything else was registered before, or a
  * table is inconsistent (an action_id out of range, a NULL action function,
- * a NULL event function without conditions, a NULL state). */
+ * a NULL event function without conditions, a NULL state, a negative
+ * mode). */
 int register_program(const rt_program *program);
 
 /* ---- Paper table 2: standard actions and their parameters -------------- */
@@ -249,5 +252,109 @@ void event_stop_motor(void *param, void *status);  /* NULL */
 void sensor(void *param, void *status);
 void timer(void *param, void *status);
 void immediate(void *param, void *status);
+
+/* ---- Extension: priorities and modes ------------------------------------- */
+/* Priority of an event's rule (default 0).  Within a poll, events are
+ * polled and their actions run highest priority first, then in index
+ * order.  The motors belong to the event whose action started the motion
+ * in progress: while it runs, motor commands (start_straight, start_curve,
+ * stop_motor) from the action of an event of lower priority are suppressed
+ * (and traced), and so is a run_sequence that would replace a sequence in
+ * progress of an event of higher priority.  All priorities equal: the
+ * paper's behaviour.  Unknown ids ignored, and so are a program's table
+ * ids (register_program): a table event's priority is its rt_event's. */
+void set_event_priority(int event_id, int priority);
+/* The mode an event belongs to: 0 (the default) none, always armed; a
+ * positive number: polled only while that mode is the current one.  As
+ * set_event_priority, for registered events only (a table event's mode is
+ * its rt_event's). */
+void set_event_mode(int event_id, int mode);
+/* Makes `mode` (> 0) the current mode.  Its events are re-armed with their
+ * state reset as at registration (one-shot ones that fired and disarmed
+ * ones included; not those cancelled with cancel_event); no event of any
+ * mode fires in the rest of this poll.  A sequence started by an event of
+ * the mode left is abandoned and a motion it owns stopped (without a
+ * stop_motor event).  Before
+ * mainloop: sets the initial mode (traced when mainloop starts). */
+void enter_mode(int mode);
+/* Disarms an event until its mode is entered again (cancel_event is
+ * forever).  Unknown ids ignored. */
+void disarm_event(int event_id);
+/* The name of a mode in the host trace; ignored on the robot, and a macro
+ * that drops the name with EPUCKRT_NO_NAMES (as name_action). */
+void name_mode(int mode, const char *name);
+#if defined(EPUCKRT_NO_NAMES) || (defined(__XC16__) && !defined(EPUCKRT_NAMES))
+#define name_mode(mode, name) ((void)(mode))
+#endif
+
+typedef struct {
+    int mode;               /* > 0 */
+} param_enter_mode;
+void action_enter_mode(void *param);         /* param_enter_mode * */
+/* Occurs at the first poll after its mode was entered (an event in no mode:
+ * at the first poll, like immediate). */
+void event_enter_mode(void *param, void *status);   /* NULL */
+
+/* ---- Extension: the rest of the robot -------------------------------------- */
+/* LEDs (e_set_led, e_set_body_led, e_set_front_led). */
+#define SET_LED_ALL 8       /* led: 0..7 one ring LED, or one of these */
+#define SET_LED_BODY 9
+#define SET_LED_FRONT 10
+#define SET_LED_OFF 0       /* value */
+#define SET_LED_ON 1
+#define SET_LED_TOGGLE 2
+typedef struct {
+    int led;
+    int value;
+} param_set_led;
+void action_set_led(void *param);            /* param_set_led * */
+
+/* The five samples of the library (e_play_sound; e_init_sound at the first
+ * play). */
+#define SOUND_HAA 0
+#define SOUND_SPAAH 1
+#define SOUND_OUAH 2
+#define SOUND_YAOUH 3
+#define SOUND_WOUAAAAAAAAH 4
+typedef struct {
+    int sound;
+} param_play_sound;
+void action_play_sound(void *param);         /* param_play_sound * */
+
+/* Occurs when the selector (getselector(), 0..15) is at `position` at the
+ * event's first poll, or moves to it. */
+typedef struct {
+    int position;
+} param_event_selector;
+void event_selector(void *param, void *status);
+
+/* Occurs when some microphone's volume (e_get_micro_volume) goes over
+ * `volume` (rising edge). */
+typedef struct {
+    int volume;
+} param_event_clap;
+void event_clap(void *param, void *status);
+
+/* Accelerometer (e_get_acc, raw units).  tap: some axis changed by more
+ * than `threshold` since the previous poll; tilt: x or y differs from its
+ * reading at the first poll by more than `threshold`.  Both on the rising
+ * edge. */
+typedef struct {
+    int threshold;
+} param_event_accel;
+void event_tap(void *param, void *status);
+void event_tilt(void *param, void *status);
+
+/* Occurs when a key of the RC5 remote control is pressed (e_get_check
+ * toggled) and it is `key` (e_get_data: 0..9 digits, 12 standby, 13 mute,
+ * 16/17 volume up/down, 32/33 channel up/down). */
+typedef struct {
+    int key;
+} param_event_remote;
+void event_remote(void *param, void *status);
+
+/* Like event_sensor, on the ambient light readings (e_get_ambient_light);
+ * works without start_sensor. */
+void event_ambient(void *param, void *status);   /* param_event_sensor * */
 
 #endif /* EPUCKRT_H */

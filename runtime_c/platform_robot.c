@@ -39,6 +39,27 @@ void rt_trace_exit(void)
 {
 }
 
+void rt_trace_suppressed(int event_id, int priority, int owner_event_id,
+                         int owner_priority, const char *command)
+{
+    (void)event_id;
+    (void)priority;
+    (void)owner_event_id;
+    (void)owner_priority;
+    (void)command;
+}
+
+void rt_trace_mode(int mode)
+{
+    (void)mode;
+}
+
+void rt_name_mode(int mode, const char *name)
+{
+    (void)mode;
+    (void)name;
+}
+
 void rt_new_action(int action_id, action_func f)
 {
     (void)action_id;

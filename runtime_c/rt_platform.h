@@ -27,6 +27,13 @@ void rt_platform_idle(void);
 void rt_trace_event(int event_id);
 void rt_trace_action(int action_id, int step, int steps);
 void rt_trace_exit(void);
+/* Extension (priorities and modes): a motor command of event_id's action
+ * suppressed because owner_event_id's motion of higher priority runs;
+ * command is "start_straight", "start_curve", "stop_motor" or
+ * "run_sequence".  And a change of the current mode (0: none). */
+void rt_trace_suppressed(int event_id, int priority, int owner_event_id,
+                         int owner_priority, const char *command);
+void rt_trace_mode(int mode);
 
 /* Registration and names, for the trace.  The core calls rt_new_action /
  * rt_new_event at each registration (the host names standard functions
@@ -40,6 +47,7 @@ void rt_new_event(int event_id, event_func f);
 void rt_geometry(long wheel_circumference_um, long axle_um, long steps_per_rev);
 void rt_name_action(int action_id, const char *name);
 void rt_name_event(int event_id, const char *name);
+void rt_name_mode(int mode, const char *name);
 
 /* Provided by the core: milliseconds since the runtime was initialised,
  * counted by a 1 ms e-puck agenda; 0 before.  Wraps to 0 after 2^31-1 ms

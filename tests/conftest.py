@@ -43,3 +43,15 @@ def require_enki():
     if os.environ.get("EPUCKC_REQUIRE_ALL_TOOLS"):
         pytest.fail(ENKI_MISSING)
     pytest.skip(ENKI_MISSING)
+
+
+def pytest_collection_modifyitems(config, items):
+    """A runtime test marked `dynamic_only` is about the paper's arrays: it
+    is not collected on the static registration path at all (deselected,
+    not skipped, so that a run where nothing may skip stays clean)."""
+    dropped = [item for item in items
+               if item.get_closest_marker("dynamic_only")
+               and "static" in getattr(getattr(item, "callspec", None), "params", {}).values()]
+    if dropped:
+        config.hook.pytest_deselected(items=dropped)
+        items[:] = [item for item in items if item not in dropped]

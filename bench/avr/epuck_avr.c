@@ -11,6 +11,12 @@
 #include "motor_led/advance_one_timer/e_agenda.h"
 #include "a_d/advance_ad_scan/e_prox.h"
 #include "a_d/advance_ad_scan/e_ad_conv.h"
+#include "a_d/advance_ad_scan/e_acc.h"
+#include "a_d/advance_ad_scan/e_micro.h"
+#include "motor_led/e_led.h"
+#include "motor_led/advance_one_timer/e_remote_control.h"
+#include "codec/e_sound.h"
+#include "utility/utility.h"
 #include "epuck_avr.h"
 
 #define MAX_AGENDAS 4
@@ -103,3 +109,35 @@ void e_calibrate_ir(void) {}
 int e_get_prox(unsigned int n) { return n < 8 ? prox[n] : 0; }
 int e_get_calibrated_prox(unsigned int n) { return e_get_prox(n); }
 int e_get_ambient_light(unsigned int n) { (void)n; return 0; }
+
+/* The rest of the robot (issue 9): quiet devices; the benched programs do
+ * not use them, but the runtime links them. */
+void e_set_led(unsigned int led_number, unsigned int value) { (void)led_number; (void)value; }
+void e_led_clear(void) {}
+void e_set_body_led(unsigned int value) { (void)value; }
+void e_set_front_led(unsigned int value) { (void)value; }
+void e_init_sound(void) {}
+void e_play_sound(int sound_offset, int sound_length) { (void)sound_offset; (void)sound_length; }
+void e_close_sound(void) {}
+int e_get_acc(unsigned int captor) { (void)captor; return 0; }
+int e_get_acc_filtered(unsigned int captor, unsigned int filter_size)
+{
+    (void)captor;
+    (void)filter_size;
+    return 0;
+}
+void e_acc_calibr(void) {}
+int e_get_micro(unsigned int micro_id) { (void)micro_id; return 0; }
+int e_get_micro_average(unsigned int micro_id, unsigned int filter_size)
+{
+    (void)micro_id;
+    (void)filter_size;
+    return 0;
+}
+int e_get_micro_volume(unsigned int micro_id) { (void)micro_id; return 0; }
+void e_init_remote_control(void) {}
+unsigned char e_get_check(void) { return 0; }
+unsigned char e_get_address(void) { return 0; }
+unsigned char e_get_data(void) { return 0; }
+void wait(long num) { (void)num; }
+int getselector(void) { return 0; }

@@ -43,3 +43,14 @@ void rt_geometry(long wheel_circumference_um, long axle_um, long steps_per_rev)
 }
 void rt_name_action(int action_id, const char *name) { (void)action_id; (void)name; }
 void rt_name_event(int event_id, const char *name) { (void)event_id; (void)name; }
+void rt_trace_suppressed(int event_id, int priority, int owner_event_id,
+                         int owner_priority, const char *command)
+{
+    (void)event_id;
+    (void)priority;
+    (void)owner_event_id;
+    (void)owner_priority;
+    (void)command;
+}
+void rt_trace_mode(int mode) { (void)mode; }
+void rt_name_mode(int mode, const char *name) { (void)mode; (void)name; }

@@ -23,6 +23,12 @@
 #include "motor_led/advance_one_timer/e_agenda.h"
 #include "a_d/advance_ad_scan/e_prox.h"
 #include "a_d/advance_ad_scan/e_ad_conv.h"
+#include "a_d/advance_ad_scan/e_micro.h"
+#include "a_d/advance_ad_scan/e_acc.h"
+#include "motor_led/e_led.h"
+#include "motor_led/advance_one_timer/e_remote_control.h"
+#include "codec/e_sound.h"
+#include "utility/utility.h"
 
 #define STUB_PI 3.14159265358979323846
 static double mm_per_step = (double)EPUCK_WHEEL_CIRCUMFERENCE_UM / 1000.0 / (double)EPUCK_STEPS_PER_REV;
@@ -351,8 +357,219 @@ int e_get_calibrated_prox(unsigned int sensor_number)
     return e_get_prox(sensor_number);
 }
 
+static int ambient[8];
+
+void stub_set_ambient(int n, int value)
+{
+    if (n >= 0 && n < 8)
+        ambient[n] = value;
+}
+
 int e_get_ambient_light(unsigned int sensor_number)
 {
-    (void)sensor_number;
+    if (!ad_scan_on || sensor_number > 7)
+        return 0;
+    return ambient[sensor_number];
+}
+
+/* ---- what the host is told about the robot's outputs ------------------------- */
+
+static stub_observer observer;
+
+void stub_set_observer(stub_observer f)
+{
+    observer = f;
+}
+
+static void observe(const char *device, const char *name, int value)
+{
+    if (observer != NULL)
+        observer(device, name, value);
+}
+
+/* ---- LEDs ---------------------------------------------------------------------- */
+
+static int ring[8], body_led, front_led;
+
+/* 0 off, 1 on, anything else toggles, as the library */
+static int led_value(int old, unsigned int value)
+{
+    return value == 0 ? 0 : value == 1 ? 1 : !old;
+}
+
+void e_set_led(unsigned int led_number, unsigned int value)
+{
+    static const char *const names[9] = {
+        "led0", "led1", "led2", "led3", "led4", "led5", "led6", "led7", "all"
+    };
+    unsigned int n;
+
+    if (led_number > 8)
+        led_number = 8;     /* the library sets all eight for any other number */
+    for (n = 0; n < 8; n++)
+        if (n == led_number || led_number == 8)
+            ring[n] = led_value(ring[n], value);
+    observe("led", names[led_number], led_number == 8 ? ring[0] : ring[led_number]);
+}
+
+void e_led_clear(void)
+{
+    unsigned int n;
+    for (n = 0; n < 8; n++)
+        ring[n] = 0;
+    observe("led", "all", 0);
+}
+
+void e_set_body_led(unsigned int value)
+{
+    body_led = led_value(body_led, value);
+    observe("led", "body", body_led);
+}
+
+void e_set_front_led(unsigned int value)
+{
+    front_led = led_value(front_led, value);
+    observe("led", "front", front_led);
+}
+
+int stub_led(int n)
+{
+    if (n >= 0 && n < 8)
+        return ring[n];
+    return n == 9 ? body_led : n == 10 ? front_led : 0;
+}
+
+/* ---- sound ------------------------------------------------------------------------ */
+
+static int sound_on;
+
+void e_init_sound(void)
+{
+    sound_on = 1;
+}
+
+/* The samples of codec/e_const_sound.s: a play is reported by its name. */
+void e_play_sound(int sound_offset, int sound_length)
+{
+    static const struct {
+        int offset, length;
+        const char *name;
+    } samples[] = {
+        { 0, 2112, "haa" }, { 2116, 1760, "spaah" }, { 3878, 3412, "ouah" },
+        { 7294, 3732, "yaouh" }, { 11028, 8016, "wouaaaaaaaah" }
+    };
+    size_t i;
+    const char *name = "sample";
+
+    if (!sound_on)
+        return;     /* the codec is not initialised: silence, as on the robot */
+    for (i = 0; i < sizeof samples / sizeof samples[0]; i++)
+        if (samples[i].offset == sound_offset && samples[i].length == sound_length)
+            name = samples[i].name;
+    observe("sound", name, sound_length);
+}
+
+void e_close_sound(void)
+{
+    sound_on = 0;
+}
+
+/* ---- microphones ------------------------------------------------------------------- */
+
+static int micro_volume[3];
+
+void stub_set_micro(int n, int volume)
+{
+    if (n >= 0 && n < 3)
+        micro_volume[n] = volume;
+}
+
+/* a quiet room: the samples sit at the middle of the 12-bit range */
+int e_get_micro(unsigned int micro_id)
+{
+    (void)micro_id;
+    return 2048;
+}
+
+int e_get_micro_average(unsigned int micro_id, unsigned int filter_size)
+{
+    (void)filter_size;
+    return e_get_micro(micro_id);
+}
+
+int e_get_micro_volume(unsigned int micro_id)
+{
+    return micro_id < 3 ? micro_volume[micro_id] : 0;
+}
+
+/* ---- accelerometer ----------------------------------------------------------------- */
+
+static int acc[3] = { STUB_ACC_REST, STUB_ACC_REST, STUB_ACC_REST };
+
+void stub_set_acc(int axis, int value)
+{
+    if (axis >= 0 && axis < 3)
+        acc[axis] = value;
+}
+
+int e_get_acc(unsigned int captor)
+{
+    return captor < 3 ? acc[captor] : 0;
+}
+
+int e_get_acc_filtered(unsigned int captor, unsigned int filter_size)
+{
+    (void)filter_size;
+    return e_get_acc(captor);
+}
+
+void e_acc_calibr(void)
+{
+}
+
+/* ---- IR remote control (RC5) ------------------------------------------------------- */
+
+static int remote_on;
+static unsigned char remote_check, remote_data;
+
+void e_init_remote_control(void)
+{
+    remote_on = 1;
+}
+
+void stub_press_key(int key)
+{
+    if (!remote_on)
+        return;     /* the receiver is not initialised: the press is lost */
+    remote_check = (unsigned char)!remote_check;
+    remote_data = (unsigned char)key;
+}
+
+unsigned char e_get_check(void)
+{
+    return remote_check;
+}
+
+unsigned char e_get_address(void)
+{
     return 0;
+}
+
+unsigned char e_get_data(void)
+{
+    return remote_data;
+}
+
+/* ---- selector ---------------------------------------------------------------------- */
+
+static int selector;
+
+void stub_set_selector(int position)
+{
+    selector = position & 15;
+}
+
+int getselector(void)
+{
+    return selector;
 }

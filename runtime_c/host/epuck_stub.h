@@ -23,4 +23,23 @@ void stub_pose(double *x_mm, double *y_mm, double *heading_deg);
 /* The geometry of the odometry (set_robot_geometry); defaults from epuckrt.h. */
 void stub_set_geometry(long wheel_circumference_um, long axle_um, long steps_per_rev);
 
+/* The other simulated inputs, each holding until changed: the ambient
+ * light of IR sensor n (0..7), the volume of microphone n (0..2), the raw
+ * accelerometer axis (0 x, 1 y, 2 z; STUB_ACC_REST at start), the selector
+ * (0..15); and a key press on the remote control (lost unless
+ * e_init_remote_control ran). */
+#define STUB_ACC_REST 2048
+void stub_set_ambient(int n, int value);
+void stub_set_micro(int n, int volume);
+void stub_set_acc(int axis, int value);
+void stub_set_selector(int position);
+void stub_press_key(int key);
+/* The robot's outputs as the harness sees them: LED n (0..7 ring, 9 body,
+ * 10 front) is on, and an observer called at every LED command ("led",
+ * "led3" | "all" | "body" | "front", its new state) and every sound played
+ * ("sound", the sample's name, its length in words). */
+int stub_led(int n);
+typedef void (*stub_observer)(const char *device, const char *name, int value);
+void stub_set_observer(stub_observer f);
+
 #endif

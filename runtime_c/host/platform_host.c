@@ -46,7 +46,7 @@ typedef struct {
     int size;
 } name_table;
 
-static name_table action_names, event_names;
+static name_table action_names, event_names, mode_names;
 
 static char *copy_string(const char *s)
 {
@@ -112,6 +112,9 @@ static const struct {
     { run_sequence, "run_sequence" },
     { straight_steps, "straight_steps" },
     { curve_steps, "curve_steps" },
+    { action_enter_mode, "action_enter_mode" },
+    { action_set_led, "action_set_led" },
+    { action_play_sound, "action_play_sound" },
 };
 
 static const struct {
@@ -125,6 +128,13 @@ static const struct {
     { sensor, "sensor" },
     { timer, "timer" },
     { immediate, "immediate" },
+    { event_enter_mode, "event_enter_mode" },
+    { event_selector, "event_selector" },
+    { event_clap, "event_clap" },
+    { event_tap, "event_tap" },
+    { event_tilt, "event_tilt" },
+    { event_remote, "event_remote" },
+    { event_ambient, "event_ambient" },
 };
 
 void rt_new_action(int action_id, action_func f)
@@ -162,6 +172,11 @@ void rt_name_event(int event_id, const char *name)
     set_name(&event_names, event_id, name);
 }
 
+void rt_name_mode(int mode, const char *name)
+{
+    set_name(&mode_names, mode, name);
+}
+
 /* ---- settings errors ------------------------------------------------------ */
 
 /* Run by `epuckc run` (EPUCK_FRONTEND=epuckc), messages name the options the
@@ -196,18 +211,45 @@ static void fail(const char *fmt, ...)
 }
 
 /* ---- scenario ---------------------------------------------------------------
- * One line per change: "<time> [ms|s|min] irN=V ...", values hold until
- * changed.  Lines end with LF, CRLF or a lone CR; a UTF-8 byte order mark
- * is skipped; a NUL or another control character means the file is not text. */
+ * One line per change: "<time> [ms|s|min] NAME=V ...", values hold until
+ * changed (a key is pressed once).  Lines end with LF, CRLF or a lone CR; a
+ * UTF-8 byte order mark is skipped; a NUL or another control character means
+ * the file is not text.  The inputs: */
+
+enum { IN_IR, IN_AMB, IN_MIC, IN_ACC, IN_SELECTOR, IN_KEY };
+static const struct {
+    const char *prefix;     /* then a digit 0..count-1 (acc: x, y, z), or nothing */
+    int count;              /* 1: no index */
+    int max;                /* values 0..max */
+} inputs[] = {
+    { "ir", 8, 4095 }, { "amb", 8, 4095 }, { "mic", 3, 4095 }, { "acc", 3, 4095 },
+    { "selector", 1, 15 }, { "key", 1, 127 },
+};
+/* remote control keys by name (RC5 codes), besides their numbers */
+static const struct {
+    const char *name;
+    int code;
+} key_names[] = {
+    { "standby", 12 }, { "mute", 13 }, { "vol_up", 16 }, { "vol_down", 17 },
+    { "chan_up", 32 }, { "chan_down", 33 },
+};
+
+typedef struct {
+    unsigned char input;    /* IN_* */
+    signed char index;      /* -1: all (mic=V) */
+    int value;
+} scenario_item;
 
 typedef struct {
     long t_ms;
-    int set[8];     /* 1: sensor n gets value[n] */
-    int value[8];
+    size_t first;           /* its items: items[first .. first + count - 1] */
+    int count;
 } scenario_line;
 
 static scenario_line *scenario;
 static size_t scenario_size, scenario_capacity, scenario_next;
+static scenario_item *items;
+static size_t items_size, items_capacity;
 
 /* Parses a time token (and maybe the unit token after it) into ms.  Returns
  * the number of tokens used (1 or 2), or 0 with *err set. */
@@ -278,23 +320,59 @@ static int parse_time(char **tok, int ntok, long *ms, const char **err)
     return used;
 }
 
-/* "irN=V" */
-static int parse_assignment(const char *s, int *n, int *v)
+/* "NAME=V": irN, ambN (N 0..7), micN (0..2) or mic (all three), accx, accy,
+ * accz (0..4095), selector (0..15), key (0..127 or a key's name); names
+ * in any case.  Returns 0 when it is none of these. */
+static int parse_assignment(const char *s, int *input, int *index, int *v)
 {
+    char name[16];
+    size_t n = 0, i;
     long value = 0;
     int digits = 0;
-    if ((s[0] != 'i' && s[0] != 'I') || (s[1] != 'r' && s[1] != 'R'))
+    const char *eq = strchr(s, '=');
+
+    if (eq == NULL || eq == s || (size_t)(eq - s) >= sizeof name)
         return 0;
-    if (s[2] < '0' || s[2] > '7' || s[3] != '=')
+    for (; s + n < eq; n++)
+        name[n] = (char)tolower((unsigned char)s[n]);
+    name[n] = '\0';
+    *input = -1;
+    for (i = 0; i < sizeof inputs / sizeof inputs[0]; i++) {
+        size_t len = strlen(inputs[i].prefix);
+        if (strncmp(name, inputs[i].prefix, len) != 0)
+            continue;
+        if (inputs[i].count == 1 && name[len] == '\0') {
+            *index = 0;
+        } else if (i == IN_ACC && name[len] >= 'x' && name[len] <= 'z' && name[len + 1] == '\0') {
+            *index = name[len] - 'x';
+        } else if (i == IN_MIC && name[len] == '\0') {
+            *index = -1;
+        } else if (inputs[i].count > 1 && name[len] >= '0'
+                   && name[len] < '0' + inputs[i].count && name[len + 1] == '\0' && i != IN_ACC) {
+            *index = name[len] - '0';
+        } else {
+            continue;
+        }
+        *input = (int)i;
+        break;
+    }
+    if (*input < 0)
         return 0;
-    *n = s[2] - '0';
-    s += 4;
+    s = eq + 1;
+    if (*input == IN_KEY) {
+        for (i = 0; i < sizeof key_names / sizeof key_names[0]; i++) {
+            if (strcmp(s, key_names[i].name) == 0) {
+                *v = key_names[i].code;
+                return 1;
+            }
+        }
+    }
     while (isdigit((unsigned char)*s)) {
         value = value * 10 + (*s++ - '0');
         if (++digits > 5)
             return 0;
     }
-    if (digits == 0 || *s != '\0' || value > 4095)
+    if (digits == 0 || *s != '\0' || value > inputs[*input].max)
         return 0;
     *v = (int)value;
     return 1;
@@ -346,10 +424,26 @@ static void add_scenario_line(const char *path, long lineno, const scenario_line
     scenario[scenario_size++] = *sl;
 }
 
+static void add_scenario_item(const char *path, long lineno, int input, int index, int value)
+{
+    if (items_size == items_capacity) {            /* doubling: linear in the items */
+        size_t capacity = items_capacity ? items_capacity * 2 : 64;
+        scenario_item *grown = realloc(items, capacity * sizeof *grown);
+        if (grown == NULL)
+            fail("%s:%ld: out of memory", path, lineno);
+        items = grown;
+        items_capacity = capacity;
+    }
+    items[items_size].input = (unsigned char)input;
+    items[items_size].index = (signed char)index;
+    items[items_size].value = value;
+    items_size++;
+}
+
 static void parse_scenario_line(const char *path, long lineno, char *line, long *last_t)
 {
     char *tok[64];
-    int ntok = 0, i, used, n, v;
+    int ntok = 0, i, used, input, n, v;
     char *p, *hash;
     const char *err = NULL;
     scenario_line sl;
@@ -376,11 +470,15 @@ static void parse_scenario_line(const char *path, long lineno, char *line, long 
         if (i == used && used == 1 && isalpha((unsigned char)tok[i][0])
                 && strchr(tok[i], '=') == NULL)
             fail("%s:%ld: unknown time unit '%s' (use ms, s or min)", path, lineno, tok[i]);
-        if (!parse_assignment(tok[i], &n, &v))
-            fail("%s:%ld: expected irN=V with N 0..7 and V 0..4095, got '%s'",
-                 path, lineno, tok[i]);
-        sl.set[n] = 1;
-        sl.value[n] = v;
+        if (!parse_assignment(tok[i], &input, &n, &v))
+            fail("%s:%ld: expected irN=V or ambN=V (N 0..7), micN=V (N 0..2) or mic=V, "
+                 "accx=V, accy=V or accz=V (V 0..4095), selector=V (0..15), or "
+                 "key=K (0..127 or standby, mute, vol_up, vol_down, chan_up, chan_down), "
+                 "got '%s'", path, lineno, tok[i]);
+        if (sl.count == 0)
+            sl.first = items_size;
+        add_scenario_item(path, lineno, input, n, v);
+        sl.count++;
     }
     add_scenario_line(path, lineno, &sl);
 }
@@ -415,15 +513,46 @@ static void load_scenario(const char *path)
     free(data);
 }
 
-/* Apply the scenario lines whose time has come. */
+static void record_input(const char *name, int index, int value);
+
+/* Apply the scenario lines whose time has come.  Inputs other than the
+ * proximity sensors are traced ("input" records). */
 static void scenario_apply(long t)
 {
     while (scenario_next < scenario_size && scenario[scenario_next].t_ms <= t) {
         const scenario_line *sl = &scenario[scenario_next++];
-        int n;
-        for (n = 0; n < 8; n++)
-            if (sl->set[n])
-                stub_set_prox(n, sl->value[n]);
+        int k, m;
+        for (k = 0; k < sl->count; k++) {
+            const scenario_item *item = &items[sl->first + (size_t)k];
+            int n = item->index, v = item->value;
+            switch (item->input) {
+            case IN_IR:
+                stub_set_prox(n, v);
+                break;
+            case IN_AMB:
+                stub_set_ambient(n, v);
+                record_input("amb", n, v);
+                break;
+            case IN_MIC:
+                for (m = 0; m < 3; m++)
+                    if (n < 0 || m == n)
+                        stub_set_micro(m, v);
+                record_input("mic", n, v);
+                break;
+            case IN_ACC:
+                stub_set_acc(n, v);
+                record_input("acc", n, v);
+                break;
+            case IN_SELECTOR:
+                stub_set_selector(v);
+                record_input("selector", -1, v);
+                break;
+            default:
+                stub_press_key(v);
+                record_input("key", -1, v);
+                break;
+            }
+        }
     }
 }
 
@@ -450,7 +579,17 @@ static void json_string(FILE *f, const char *s)
     fputc('"', f);
 }
 
+static void record_extra(const char *kind, const char *name, int id, int step, int steps,
+                         const char *extra);
+
 static void record(const char *kind, const char *name, int id, int step, int steps)
+{
+    record_extra(kind, name, id, step, steps, "");
+}
+
+/* extra: more keys, already JSON (", \"key\": value ..."), after the pose */
+static void record_extra(const char *kind, const char *name, int id, int step, int steps,
+                         const char *extra)
 {
     double x, y, h;
     stub_pose(&x, &y, &h);
@@ -464,6 +603,7 @@ static void record(const char *kind, const char *name, int id, int step, int ste
             tidy(x), tidy(y), tidy(h));
     if (step >= 0)
         fprintf(trace_file, ", \"step\": %d, \"steps\": %d", step + 1, steps);
+    fputs(extra, trace_file);
     fputs("}\n", trace_file);
     fflush(trace_file);
 }
@@ -527,6 +667,87 @@ void rt_trace_action(int action_id, int step, int steps)
     }
 }
 
+void rt_trace_suppressed(int event_id, int priority, int owner_event_id,
+                         int owner_priority, const char *command)
+{
+    char buf[32], owner_buf[32], extra[512];
+    const char *name = get_name(&event_names, event_id, "event", buf, sizeof buf);
+    const char *owner = get_name(&event_names, owner_event_id, "event", owner_buf,
+                                 sizeof owner_buf);
+    size_t used;
+
+    /* the owner's name is JSON-escaped like the record's own (names are
+     * short: longer ones are cut) */
+    used = (size_t)snprintf(extra, sizeof extra, ", \"command\": \"%s\", \"priority\": %d, "
+                            "\"owner\": %d, \"owner_name\": \"", command, priority,
+                            owner_event_id);
+    for (; *owner != '\0' && used + 16 < sizeof extra; owner++) {
+        unsigned char c = (unsigned char)*owner;
+        if (c == '"' || c == '\\')
+            used += (size_t)snprintf(extra + used, sizeof extra - used, "\\%c", c);
+        else if (c < 0x20)
+            used += (size_t)snprintf(extra + used, sizeof extra - used, "\\u%04x", c);
+        else
+            extra[used++] = (char)c;
+    }
+    snprintf(extra + used, sizeof extra - used, "\", \"owner_priority\": %d", owner_priority);
+    record_extra("suppressed", name, event_id, -1, 0, extra);
+    if (!quiet)
+        printf("[%6ld ms] suppressed %s of #%d %s (priority %d); motors owned by #%d %s "
+               "(priority %d)\n", now_ms, command, event_id, name, priority, owner_event_id,
+               get_name(&event_names, owner_event_id, "event", owner_buf, sizeof owner_buf),
+               owner_priority);
+}
+
+void rt_trace_mode(int mode)
+{
+    char buf[32];
+    const char *name = get_name(&mode_names, mode, "mode", buf, sizeof buf);
+    record("mode", name, mode, -1, 0);
+    if (!quiet)
+        printf("[%6ld ms] mode      %s\n", now_ms, name);
+}
+
+/* the harness's view of the robot's outputs */
+static void observe_output(const char *device, const char *name, int value)
+{
+    char extra[160];
+    int n;
+
+    if (strcmp(device, "led") == 0) {
+        char ring[9];
+        for (n = 0; n < 8; n++)
+            ring[n] = (char)('0' + stub_led(n));
+        ring[8] = '\0';
+        snprintf(extra, sizeof extra, ", \"state\": %d, \"ring\": \"%s\", \"body\": %d, "
+                 "\"front\": %d", value, ring, stub_led(9), stub_led(10));
+        record_extra("led", name, -1, -1, 0, extra);
+        if (!quiet)
+            printf("[%6ld ms] led       %-5s %-3s ring %s body %d front %d\n", now_ms, name,
+                   value ? "on" : "off", ring, stub_led(9), stub_led(10));
+    } else {
+        snprintf(extra, sizeof extra, ", \"length\": %d", value);
+        record_extra("sound", name, -1, -1, 0, extra);
+        if (!quiet)
+            printf("[%6ld ms] sound     %s\n", now_ms, name);
+    }
+}
+
+static void record_input(const char *name, int index, int value)
+{
+    char extra[64], full[16];
+    if (index >= 0 && strcmp(name, "acc") == 0)
+        snprintf(full, sizeof full, "acc%c", 'x' + index);
+    else if (index >= 0)
+        snprintf(full, sizeof full, "%s%d", name, index);
+    else
+        snprintf(full, sizeof full, "%s", name);
+    snprintf(extra, sizeof extra, ", \"value\": %d", value);
+    record_extra("input", full, -1, -1, 0, extra);
+    if (!quiet)
+        printf("[%6ld ms] input     %s=%d\n", now_ms, full, value);
+}
+
 void rt_trace_exit(void)
 {
     record("exit", "exit_main", -1, -1, 0);
@@ -570,6 +791,7 @@ void rt_platform_init(void)
         if (trace_file == NULL)
             fail("%s: cannot write '%s': %s", setting_name("EPUCK_TRACE"), trace, strerror(errno));
     }
+    stub_set_observer(observe_output);
     scenario_apply(0);
     if (pose_every_ms > 0)
         record("pose", "pose", -1, -1, 0);

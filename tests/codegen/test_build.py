@@ -45,10 +45,12 @@ def test_dspic_project_compiles_on_the_host_against_the_library_declarations(tmp
                         str(out / source), "-o", str(tmp_path / "x.o")], check=True)
 
 
-def test_dspic_project_compiles_with_16_bit_int(tmp_path):
-    out, _ = dspic_project(tmp_path, example="square.epk")
+@pytest.mark.parametrize("example", ["square.epk", "explorer.epk", "two_phase.epk",
+                                     "selector_menu.epk"])
+def test_dspic_project_compiles_with_16_bit_int(tmp_path, example):
+    out, _ = dspic_project(tmp_path, example=example)
     avr = require_tool("avr-gcc")
-    for source in ("square.c", "runtime/epuckrt.c", "runtime/platform_robot.c"):
+    for source in (example.replace(".epk", ".c"), "runtime/epuckrt.c", "runtime/platform_robot.c"):
         subprocess.run([avr, "-mmcu=atmega128", *WARN, "-Os", f"-I{out}", f"-I{out / 'runtime'}",
                         f"-I{EPUCK_API}", "-c", str(out / source), "-o", str(tmp_path / "x.o")],
                        check=True)
@@ -80,7 +82,10 @@ def _fake_library(root: Path) -> Path:
     for rel in ("motor_led/e_init_port.c", "motor_led/advance_one_timer/e_motors.c",
                 "motor_led/advance_one_timer/e_agenda.c", "motor_led/advance_one_timer/e_led.c",
                 "a_d/advance_ad_scan/e_ad_conv.c", "a_d/advance_ad_scan/e_prox.c",
-                "a_d/advance_ad_scan/e_acc.c", "a_d/advance_ad_scan/e_micro.c"):
+                "a_d/advance_ad_scan/e_acc.c", "a_d/advance_ad_scan/e_micro.c",
+                "motor_led/advance_one_timer/e_remote_control.c", "codec/e_sound.c",
+                "utility/utility.c", "codec/e_const_sound.s", "codec/e_init_codec_slave.s",
+                "codec/e_init_dci_master.s", "codec/e_isr_dci.s", "codec/e_sub_dci_kickoff.s"):
         (lib / "library" / rel).parent.mkdir(parents=True, exist_ok=True)
         (lib / "library" / rel).write_text("/* stand-in */\n")
     return lib
@@ -121,7 +126,8 @@ def test_dspic_build_runs_make_with_xc16_from_xc16_dir(tmp_path):
     assert (out / "extern_spin.hex").is_file()
     calls = log.read_text().splitlines()
     compiles = [c for c in calls if " -c " in c]
-    assert len(compiles) == 4 + 8          # program, runtime, robot layer, spin.c + library
+    # program, runtime, robot layer, spin.c + the library's 11 C and 5 assembly files
+    assert len(compiles) == 4 + 11 + 5
     # generated C is -Werror, the user's not
     [program] = [c for c in compiles if c.endswith("-c extern_spin.c -o extern_spin.o")]
     [user] = [c for c in compiles if "user/1_spin.c" in c]

@@ -99,7 +99,7 @@ def test_set_robot_geometry_converts_the_papers_millimetres(tmp_path):
     prog.write_text("""#include "utility.h"
 int main(void){
     int a1, a2;
-    param_start_straight sample = {250, 100, 0};
+    param_start_straight sample = {250, 100};
     set_robot_geometry(257610L, 53000L, 1000L);
     a1 = register_action(start_straight, &sample);
     a2 = register_action(exit_main, NULL);

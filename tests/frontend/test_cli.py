@@ -152,7 +152,7 @@ def test_human_summary_counts_all_files(work, capsys):
 def test_capacity_options_do_not_limit_a_rule_files_rules(work, capsys):
     """The rules are tables: the capacities only size the dynamic arrays
     (for register_action/register_event from the user's C)."""
-    rules = "".join(f"rule r{i}: on immediate do start_straight(300, {i + 1} mm)\n"
+    rules = "".join(f"rule r{i}: on immediate do led_on(led{i})\n"
                     for i in range(5))
     (work / "five.epk").write_text(rules, encoding="utf-8")
     assert run_cli(["check", "five.epk"], capsys)[0] == 0

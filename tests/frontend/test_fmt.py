@@ -171,21 +171,25 @@ args = st.one_of(
 arg_lists = st.lists(args, max_size=4).map(lambda a: ["("] + _join(a, ",") + [")"])
 calls = st.one_of(
     st.tuples(CALLEES, st.one_of(st.just([]), arg_lists)).map(lambda t: [t[0]] + t[1]),
-    NAMES.map(lambda n: ["cancel", n]))
+    NAMES.map(lambda n: ["cancel", n]), NAMES.map(lambda n: ["enter", n]))
 bodies = st.lists(st.lists(calls, min_size=1, max_size=3).map(lambda c: _join(c, ",")),
                   min_size=1, max_size=4).map(lambda s: _join(s, "then"))
 events = st.one_of(
-    st.sampled_from([["immediate"], ["stop_motor"], ["event_stop_motor"]]),
+    st.sampled_from([["immediate"], ["stop_motor"], ["event_stop_motor"], ["enter"]]),
     values.map(lambda v: ["timer", "("] + v + [")"]),
     st.lists(st.tuples(st.sampled_from(["ir0", "ir1", "ir7"]), st.sampled_from([">", "<"]),
                        NUMBERS), min_size=1, max_size=3)
     .map(lambda cs: ["sensor", "("] + _join([list(c) for c in cs], ",") + [")"]),
     st.tuples(NAMES, st.one_of(st.just([]), arg_lists)).map(lambda t: [t[0]] + t[1]))
+PRIORITIES = st.one_of(st.just([]), st.sampled_from(["0", "2", "300", "2.5", "P"])
+                       .map(lambda p: ["priority", p]))
 rules = st.tuples(st.one_of(st.just([]), NAMES.map(lambda n: ["rule", n, ":"])), events,
-                  st.booleans(), bodies).map(
-    lambda t: t[0] + ["on"] + t[1] + (["repeat"] if t[2] else []) + ["do"] + t[3])
+                  st.booleans(), PRIORITIES, bodies).map(
+    lambda t: t[0] + ["on"] + t[1] + (["repeat"] if t[2] else []) + t[3] + ["do"] + t[4])
+modes = st.tuples(st.booleans(), NAMES, st.lists(rules, max_size=3)).map(
+    lambda t: (["initial"] if t[0] else []) + ["mode", t[1], "{"] + _join(t[2], None) + ["}"])
 statements = st.one_of(
-    rules, rules,
+    rules, rules, modes,
     st.tuples(NAMES, bodies).map(lambda t: ["action", t[0], "="] + t[1]),
     st.tuples(NAMES, values).map(lambda t: ["const", t[0], "="] + t[1]),
     st.tuples(st.lists(st.tuples(st.sampled_from(["axle", "wheel_diameter", "max_speed",
@@ -222,9 +226,12 @@ VALID_CALLS = ["start_straight(300, 10 cm)", "start_straight(speed: 200 steps/s,
                "start_curve(radius: 0 mm, degrees: 90 deg, speed: 300)",
                "start_curve(5 cm, -45 deg, 100 mm/s)", "stop_motor", "set_timer", "reset_timer",
                "start_sensor", "stop_sensor", "exit_main", "start_straight(CRUISE, -D)", "turn",
-               "action_start_straight(distance: 2 m, speed: 1000)"]
+               "action_start_straight(distance: 2 m, speed: 1000)", "led_on(led3)",
+               "led_toggle(all)", "led_off(body)", "play_sound(haa)"]
 VALID_EVENTS = ["immediate", "stop_motor", "timer(2 s)", "timer(500 ms)",
-                "sensor(ir0 > 300, ir7 < 20)", "sensor(ir3 > 1000)", "event_timer(time: 1)"]
+                "sensor(ir0 > 300, ir7 < 20)", "sensor(ir3 > 1000)", "event_timer(time: 1)",
+                "selector(3)", "remote(mute)", "remote(7)", "clap(2000)", "tap(500)",
+                "tilt(300)", "ambient(ir2 < 100)"]
 
 
 @st.composite
@@ -240,6 +247,7 @@ def valid_programs(draw):
                                        min_size=1, max_size=3), min_size=1, max_size=3))
         body = " then ".join(", ".join(step) for step in steps)
         repeat = " repeat" if draw(st.booleans()) else ""
+        repeat += draw(st.sampled_from(["", "", " priority 1", " priority 255"]))
         parts.append(f"rule r{k}: on {draw(st.sampled_from(VALID_EVENTS))}{repeat} do {body}")
     draw(st.randoms(use_true_random=False)).shuffle(parts)
     return _layout(draw, [t.value for t in tokens_of(" ".join(parts))])

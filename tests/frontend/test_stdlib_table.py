@@ -44,3 +44,51 @@ def test_aliases_follow_the_table():
     assert stdlib.STANDARD_EVENTS["sensor"].signature.startswith("sensor(irN")
     assert stdlib.STANDARD_ACTIONS["start_curve"].signature == \
         "start_curve(radius: distance, degrees: angle, speed: speed)"
+
+
+def test_parameter_structs_and_choices_are_the_runtime_s():
+    """Every struct the table names is a typedef of epuckrt.h with as many
+    fields as the table initialises, and every choice's C text is a
+    number or a macro the header defines."""
+    header = (REPO / "runtime_c" / "epuckrt.h").read_text()
+    structs = {name: body for body, name in
+               re.findall(r"typedef struct \{([^}]*)\}\s*(\w+);", header)}
+    macros = set(re.findall(r"#define (\w+) ", header))
+    for spec in (*stdlib.ACTIONS, *stdlib.EVENTS):
+        if spec.fields:
+            assert spec.runtime_param in structs, spec.name
+            fields = re.findall(r"\bint \w+;", structs[spec.runtime_param])
+            assert len(fields) == len(spec.fields), spec.name
+            for field in spec.fields:
+                names = set(re.findall(r"\{(\w+)\}", field))
+                assert names <= {p.name for p in spec.params}, spec.name
+                if not names:
+                    assert field in macros, field
+    for choices in stdlib.CHOICES:
+        for choice in choices.values:
+            assert choice.c.isdigit() or choice.c in macros, choice
+        assert len(set(choices.names())) == len(choices.values)
+
+
+def test_every_motor_command_is_arbitrated_by_the_runtime():
+    """The actions the arbitration check counts as motor commands are the
+    ones the runtime refuses when a rule of higher priority owns the motors:
+    the function each compiles to (start_straight -> straight_steps ->
+    action_straight_steps) asks motors_refused, under the name the rule file
+    used, and nothing else does."""
+    source = (REPO / "runtime_c" / "epuckrt.c").read_text()
+
+    def body(function: str) -> str:
+        alias = re.search(rf"^void {function}\(void \*param\) \{{ (\w+)\(param\); \}}$",
+                          source, re.M)
+        if alias:
+            return body(alias.group(1))
+        found = re.search(rf"^void {function}\(void \*param\)\n\{{\n(.*?)^\}}$", source,
+                          re.M | re.S)
+        assert found, function
+        return found.group(1)
+
+    for name in stdlib.MOTOR_ACTIONS:
+        runtime = stdlib.STANDARD_ACTIONS[name].runtime
+        assert f'motors_refused("{name}")' in body(runtime), (name, runtime)
+    assert set(re.findall(r'motors_refused\("(\w+)"\)', source)) == set(stdlib.MOTOR_ACTIONS)

@@ -20,7 +20,7 @@ const fast = 300 steps/s
 action go = start_straight(fast, D)
 rule patrol: on timer(2 s) repeat do set_timer, go
 on immediate do start_sensor, set_timer, go
-on sensor(ir0 > 300) do cancel patrol, stop_motor
+on sensor(ir0 > 300) priority 1 do cancel patrol, stop_motor
 on stop_motor do exit_main
 """
 
@@ -189,7 +189,9 @@ async def _complete(client, tmp_path, tail):
 
 
 async def test_completion(client, tmp_path):
-    assert await _complete(client, tmp_path, "on ") == ["immediate", "stop_motor", "timer", "sensor"]
+    assert await _complete(client, tmp_path, "on ") == [
+        "enter", "immediate", "stop_motor", "timer", "sensor", "selector", "clap", "tap", "tilt",
+        "remote", "ambient"]
     labels = await _complete(client, tmp_path, "on immediate do ")
     assert {"cancel", "start_straight", "exit_main", "go"} <= set(labels)
     assert await _complete(client, tmp_path, "on immediate do cancel ") == ["patrol"]
@@ -202,7 +204,7 @@ async def test_completion(client, tmp_path):
     assert await _complete(client, tmp_path, "on timer(3 ") == ["ms", "s"]
     assert await _complete(client, tmp_path, "on sensor(ir1 > 30, ") == [
         "ir0", "ir2", "ir3", "ir4", "ir5", "ir6", "ir7"]
-    assert await _complete(client, tmp_path, "on immediate ") == ["do", "repeat"]
+    assert await _complete(client, tmp_path, "on immediate ") == ["do", "priority", "repeat"]
 
 
 async def test_definition_references_and_symbols(client, tmp_path):
@@ -268,7 +270,7 @@ def _apply(text: str, edits) -> str:
 async def test_quick_fixes(client, tmp_path):
     text = ("const D = 5 cm\n"
             "on immediate strat_sensor, start_straight(speed = 300, distance: D)\n"
-            "on sensor(ir8 > 300.5) do stop_motr\n")
+            "on sensor(ir8 > 300.5) priority 1 do stop_motr\n")
     uri = await _opened(client, tmp_path, text, "fix.epk")
     fixed = text
     for _ in range(10):     # apply the first quick fix until none is left
@@ -287,7 +289,7 @@ async def test_quick_fixes(client, tmp_path):
         fixed = _apply(fixed, action.edit.changes[uri])
     assert fixed == ("const D = 5 cm\n"
                      "on immediate do start_sensor, start_straight(speed: 300, distance: D)\n"
-                     "on sensor(ir7 > 301) do stop_motor\n")
+                     "on sensor(ir7 > 301) priority 1 do stop_motor\n")
     assert check_json(tmp_path / "fix.epk") == []
 
 

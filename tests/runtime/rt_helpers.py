@@ -49,8 +49,6 @@ HERE = Path(__file__).resolve().parent
 
 def _registration(request, param):
     global REGISTRATION
-    if param == "static" and request.node.get_closest_marker("dynamic_only"):
-        pytest.skip("about the dynamic arrays only")
     REGISTRATION = param
     yield param
     REGISTRATION = "dynamic"

@@ -4,11 +4,14 @@
  * program is compiled with -include static_path.h, which sends its calls
  * here.  Registrations are collected into an rt_program's tables, with the
  * ids the tables will give them, until the program calls anything else
- * (cancel, set_event_repeat, a name, mainloop) or makes a registration the
+ * (cancel, enter_mode, mainloop; set_event_repeat, names, priorities
+ * and modes of collected entries are collected with them) or makes a registration the
  * tables cannot hold (a NULL function, an unknown action): then the tables
  * are registered with register_program and every later call goes to the
  * runtime as it is, so later registrations are dynamic and get the ids that
- * follow the tables'.  A program that calls register_program itself runs
+ * follow the tables'.  set_event_priority and set_event_mode of a
+ * collected event go into its table entry (its rt_event's priority and
+ * mode, as epuckc generates them).  A program that calls register_program itself runs
  * as it is.  A sensor event (event_sensor / sensor with a
  * parameter) becomes a compiled condition, as epuckc generates them: a
  * NULL event function and a bit set by conditions() below.
@@ -24,6 +27,9 @@ static rt_action acts[CAP];
 static rt_event evs[CAP];
 static const param_event_sensor *sensor_params[CAP];   /* compiled: its thresholds */
 static const char *sensor_names[CAP];
+static const char *action_names[CAP], *event_names[CAP];   /* named while collected */
+#define MODES 16
+static const char *mode_names[MODES];
 static long memory[CAP];
 static unsigned state[RT_STATE_WORDS(CAP, CAP)];
 static int n_acts, n_evs, recording = 1;
@@ -71,10 +77,21 @@ static void flush(void)
         fprintf(stderr, "static_path: register_program refused the tables\n");
         exit(99);
     }
-    /* the names the host gives event_sensor / sensor when registered */
+    /* the names the host gives event_sensor / sensor when registered, then
+     * those the program gave while its registrations were collected */
     for (k = 0; k < n_evs; k++) {
         if (sensor_names[k] != NULL)
             name_event(k, sensor_names[k]);
+        if (event_names[k] != NULL)
+            name_event(k, event_names[k]);
+    }
+    for (k = 0; k < n_acts; k++) {
+        if (action_names[k] != NULL)
+            name_action(k, action_names[k]);
+    }
+    for (k = 0; k < MODES; k++) {
+        if (mode_names[k] != NULL)
+            name_mode(k, mode_names[k]);
     }
 }
 
@@ -97,6 +114,8 @@ int sp_register_event(event_func f, void *param, int action_id)
         e->action_id = action_id;
         e->flags = 0;
         e->memory = n_evs;
+        e->priority = 0;
+        e->mode = 0;
         e->event_function = f;
         if ((f == event_sensor || f == sensor) && param != NULL) {
             e->event_function = NULL;
@@ -113,9 +132,68 @@ int sp_register_event(event_func f, void *param, int action_id)
 
 void sp_cancel_action(int id) { flush(); cancel_action(id); }
 void sp_cancel_event(int id) { flush(); cancel_event(id); }
-void sp_set_event_repeat(int id, int repeat) { flush(); set_event_repeat(id, repeat); }
-void sp_name_action(int id, const char *name) { flush(); name_action(id, name); }
-void sp_name_event(int id, const char *name) { flush(); name_event(id, name); }
+void sp_set_event_repeat(int id, int repeat)
+{
+    if (recording && id >= 0 && id < n_evs) {
+        evs[id].flags = repeat ? RT_REPEAT : 0;
+        return;
+    }
+    flush();
+    set_event_repeat(id, repeat);
+}
+
+/* Names given while collecting are kept (the pointers: string literals)
+ * and given at the flush, so naming does not end the tables. */
+void sp_name_action(int id, const char *name)
+{
+    if (recording && id >= 0 && id < n_acts) {
+        action_names[id] = name;
+        return;
+    }
+    flush();
+    name_action(id, name);
+}
+
+void sp_name_event(int id, const char *name)
+{
+    if (recording && id >= 0 && id < n_evs) {
+        event_names[id] = name;
+        return;
+    }
+    flush();
+    name_event(id, name);
+}
 void sp_mainloop(void) { flush(); mainloop(); }
 /* a program that registers its own tables: nothing to collect */
 int sp_register_program(const rt_program *p) { flush(); return register_program(p); }
+void sp_set_event_priority(int id, int priority)
+{
+    if (recording && id >= 0 && id < n_evs) {
+        evs[id].priority = priority;
+        return;
+    }
+    flush();
+    set_event_priority(id, priority);
+}
+
+void sp_set_event_mode(int id, int mode)
+{
+    if (recording && id >= 0 && id < n_evs && mode >= 0) {
+        evs[id].mode = mode;
+        return;
+    }
+    flush();
+    set_event_mode(id, mode);
+}
+
+void sp_enter_mode(int mode) { flush(); enter_mode(mode); }
+void sp_disarm_event(int id) { flush(); disarm_event(id); }
+void sp_name_mode(int mode, const char *name)
+{
+    if (recording && mode > 0 && mode < MODES) {
+        mode_names[mode] = name;
+        return;
+    }
+    flush();
+    name_mode(mode, name);
+}

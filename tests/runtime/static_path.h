@@ -13,3 +13,8 @@
 #define name_event sp_name_event
 #define mainloop sp_mainloop
 #define register_program sp_register_program
+#define set_event_priority sp_set_event_priority
+#define set_event_mode sp_set_event_mode
+#define enter_mode sp_enter_mode
+#define disarm_event sp_disarm_event
+#define name_mode sp_name_mode

@@ -72,6 +72,7 @@ SANITIZED = {
     "sensor_edge.c": {}, "sensor_off.c": {}, "timer_periodic.c": {},
     "timer_reset.c": {"time_limit": 500}, "stop_action.c": {}, "stop_restart.c": {},
     "zero_motion.c": {}, "overflow.c": {}, "sequence_self.c": {}, "static_table.c": {},
+    "priority.c": {}, "modes.c": {}, "devices.c": {}, "static_ranked.c": {},
 }
 
 

@@ -7,14 +7,19 @@ endif
 
 syntax case match
 
-syntax keyword epuckDeclaration robot const action extern event rule
-syntax keyword epuckKeyword on do then repeat cancel from
+syntax keyword epuckDeclaration robot const action extern event rule mode initial
+syntax keyword epuckKeyword on do then repeat cancel from priority enter
 syntax keyword epuckBuiltin start_straight start_curve stop_motor set_timer reset_timer
 syntax keyword epuckBuiltin start_sensor stop_sensor exit_main immediate timer sensor
 syntax keyword epuckBuiltin action_start_straight action_start_curve action_stop_motor
 syntax keyword epuckBuiltin action_set_timer action_reset_timer action_start_sensor
 syntax keyword epuckBuiltin action_stop_sensor action_exit_main
 syntax keyword epuckBuiltin event_immediate event_stop_motor event_timer event_sensor
+syntax keyword epuckBuiltin led_on led_off led_toggle play_sound
+syntax keyword epuckBuiltin action_led_on action_led_off action_led_toggle action_play_sound
+syntax keyword epuckBuiltin selector clap tap tilt remote ambient
+syntax keyword epuckBuiltin event_selector event_clap event_tap event_tilt event_remote
+syntax keyword epuckBuiltin event_ambient
 
 " the name a statement defines
 syntax match epuckDefinition "\%(\<\%(rule\|action\|event\|const\)\s\+\)\@<=\h\w*"

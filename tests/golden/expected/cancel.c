@@ -38,19 +38,20 @@ static const rt_action epk_action_table[] = {
     {exit_main, NULL},   /* 3: cancel.epk:5: exit_main */
 };
 
-/* The events, {function, parameter, action id, flags, memory}: an event's id
- * is its index.  A NULL function is the rule's condition in
- * epk_event_conditions; memory is the event's slot in epk_event_memory
- * (timers keep their last firing). */
+/* The events, {function, parameter, action id, flags, memory, priority,
+ * mode}: an event's id is its index.  A NULL function is the rule's
+ * condition in epk_event_conditions; memory is the event's slot in
+ * epk_event_memory (timers keep their last firing); mode 0: in no mode,
+ * always armed. */
 static const rt_event epk_event_table[] = {
     /* 0: cancel.epk:2: on immediate do set_timer */
-    {immediate, NULL, 0, 0, RT_NO_MEMORY},
+    {immediate, NULL, 0, 0, RT_NO_MEMORY, 0, 0},
     /* 1: cancel.epk:3: rule tick: on timer(100 ms) repeat do start_straight(200, 1 mm) */
-    {timer, &epk_when_r2, 1, RT_REPEAT, 0},
+    {timer, &epk_when_r2, 1, RT_REPEAT, 0, 0, 0},
     /* 2: cancel.epk:4: on timer(350 ms) do cancel tick */
-    {timer, &epk_when_r3, 2, 0, 1},
+    {timer, &epk_when_r3, 2, 0, 1, 0, 0},
     /* 3: cancel.epk:5: on timer(1 s) do exit_main */
-    {timer, &epk_when_r4, 3, 0, 2},
+    {timer, &epk_when_r4, 3, 0, 2, 0, 0},
 };
 
 /* What changes while the program runs, the only part in RAM. */

@@ -39,15 +39,16 @@ static const rt_action epk_action_table[] = {
     {epk_do_r2, NULL},   /* 1: extern.epk:7: mark(1, 10 steps, 10, 1, 1), exit_main */
 };
 
-/* The events, {function, parameter, action id, flags, memory}: an event's id
- * is its index.  A NULL function is the rule's condition in
- * epk_event_conditions; memory is the event's slot in epk_event_memory
- * (timers keep their last firing). */
+/* The events, {function, parameter, action id, flags, memory, priority,
+ * mode}: an event's id is its index.  A NULL function is the rule's
+ * condition in epk_event_conditions; memory is the event's slot in
+ * epk_event_memory (timers keep their last firing); mode 0: in no mode,
+ * always armed. */
 static const rt_event epk_event_table[] = {
     /* 0: extern.epk:6: on immediate do mark(count: 3, length: 2 cm, pace: 100 mm/s, turn: 45 deg, wait: 2 s), noop */
-    {immediate, NULL, 0, 0, RT_NO_MEMORY},
+    {immediate, NULL, 0, 0, RT_NO_MEMORY, 0, 0},
     /* 1: extern.epk:7: on after(ms: 250) do mark(1, 10 steps, 10, 1, 1), exit_main */
-    {after, &epk_when_r2, 1, 0, 0},
+    {after, &epk_when_r2, 1, 0, 0, 0, 0},
 };
 
 /* What changes while the program runs, the only part in RAM. */

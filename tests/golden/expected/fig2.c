@@ -18,15 +18,16 @@ static const rt_action epk_action_table[] = {
     {exit_main, NULL},   /* 1: fig2.epk:4: action quit = exit_main */
 };
 
-/* The events, {function, parameter, action id, flags, memory}: an event's id
- * is its index.  A NULL function is the rule's condition in
- * epk_event_conditions; memory is the event's slot in epk_event_memory
- * (timers keep their last firing). */
+/* The events, {function, parameter, action id, flags, memory, priority,
+ * mode}: an event's id is its index.  A NULL function is the rule's
+ * condition in epk_event_conditions; memory is the event's slot in
+ * epk_event_memory (timers keep their last firing); mode 0: in no mode,
+ * always armed. */
 static const rt_event epk_event_table[] = {
     /* 0: fig2.epk:6: on immediate do go */
-    {immediate, NULL, 0, 0, RT_NO_MEMORY},
+    {immediate, NULL, 0, 0, RT_NO_MEMORY, 0, 0},
     /* 1: fig2.epk:7: on stop_motor do quit */
-    {event_stop_motor, NULL, 1, 0, RT_NO_MEMORY},
+    {event_stop_motor, NULL, 1, 0, RT_NO_MEMORY, 0, 0},
 };
 
 /* What changes while the program runs, the only part in RAM. */

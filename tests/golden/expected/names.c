@@ -38,15 +38,16 @@ static const rt_action epk_action_table[] = {
     {epk_do_r2, NULL},   /* 1: names.epk:6: seq_a_x, cancel main */
 };
 
-/* The events, {function, parameter, action id, flags, memory}: an event's id
- * is its index.  A NULL function is the rule's condition in
- * epk_event_conditions; memory is the event's slot in epk_event_memory
- * (timers keep their last firing). */
+/* The events, {function, parameter, action id, flags, memory, priority,
+ * mode}: an event's id is its index.  A NULL function is the rule's
+ * condition in epk_event_conditions; memory is the event's slot in
+ * epk_event_memory (timers keep their last firing); mode 0: in no mode,
+ * always armed. */
 static const rt_event epk_event_table[] = {
     /* 0: names.epk:5: rule main: on immediate do register_action */
-    {immediate, NULL, 0, 0, RT_NO_MEMORY},
+    {immediate, NULL, 0, 0, RT_NO_MEMORY, 0, 0},
     /* 1: names.epk:6: rule while: on stop_motor repeat do seq_a_x, cancel main */
-    {event_stop_motor, NULL, 1, RT_REPEAT, RT_NO_MEMORY},
+    {event_stop_motor, NULL, 1, RT_REPEAT, RT_NO_MEMORY, 0, 0},
 };
 
 /* What changes while the program runs, the only part in RAM. */

@@ -39,13 +39,14 @@ static const rt_action epk_action_table[] = {
     {run_sequence, &epk_seq_r1},   /* 0: sequences.epk:6: l_shape then set_timer, leg then exit_main */
 };
 
-/* The events, {function, parameter, action id, flags, memory}: an event's id
- * is its index.  A NULL function is the rule's condition in
- * epk_event_conditions; memory is the event's slot in epk_event_memory
- * (timers keep their last firing). */
+/* The events, {function, parameter, action id, flags, memory, priority,
+ * mode}: an event's id is its index.  A NULL function is the rule's
+ * condition in epk_event_conditions; memory is the event's slot in
+ * epk_event_memory (timers keep their last firing); mode 0: in no mode,
+ * always armed. */
 static const rt_event epk_event_table[] = {
     /* 0: sequences.epk:6: on immediate do l_shape then set_timer, leg then exit_main */
-    {immediate, NULL, 0, 0, RT_NO_MEMORY},
+    {immediate, NULL, 0, 0, RT_NO_MEMORY, 0, 0},
 };
 
 /* What changes while the program runs, the only part in RAM. */

@@ -20,15 +20,16 @@ static const rt_action epk_action_table[] = {
     {straight_steps, &epk_p1_r2},   /* 1: warnings.epk:5: start_straight(200, 1 cm) */
 };
 
-/* The events, {function, parameter, action id, flags, memory}: an event's id
- * is its index.  A NULL function is the rule's condition in
- * epk_event_conditions; memory is the event's slot in epk_event_memory
- * (timers keep their last firing). */
+/* The events, {function, parameter, action id, flags, memory, priority,
+ * mode}: an event's id is its index.  A NULL function is the rule's
+ * condition in epk_event_conditions; memory is the event's slot in
+ * epk_event_memory (timers keep their last firing); mode 0: in no mode,
+ * always armed. */
 static const rt_event epk_event_table[] = {
     /* 0: warnings.epk:4: on timer(1 s) do exit_main */
-    {timer, &epk_when_r1, 0, 0, 0},
+    {timer, &epk_when_r1, 0, 0, 0, 0, 0},
     /* 1: warnings.epk:5: on immediate do start_straight(200, 1 cm) */
-    {immediate, NULL, 1, 0, RT_NO_MEMORY},
+    {immediate, NULL, 1, 0, RT_NO_MEMORY, 0, 0},
 };
 
 /* What changes while the program runs, the only part in RAM. */

@@ -39,17 +39,17 @@ static const rt_action actions[] = {
     {note, NULL},               /* 4: cancelled */
 };
 
-#define NEVER {NULL, NULL, 1, RT_REPEAT, RT_NO_MEMORY}
+#define NEVER {NULL, NULL, 1, RT_REPEAT, RT_NO_MEMORY, 0, 0}
 static const rt_event events[] = {
-    {immediate, NULL, 0, 0, RT_NO_MEMORY},      /* 0: starts the sensors */
-    {NULL, NULL, 1, RT_REPEAT, RT_NO_MEMORY},   /* 1: ir0 > 500 */
-    {timer, &t10, 3, 0, 0},                     /* 2 */
-    {immediate, NULL, 4, 0, RT_NO_MEMORY},      /* 3: its action cancelled */
-    {immediate, NULL, 1, 0, RT_NO_MEMORY},      /* 4: cancelled */
+    {immediate, NULL, 0, 0, RT_NO_MEMORY, 0, 0},      /* 0: starts the sensors */
+    {NULL, NULL, 1, RT_REPEAT, RT_NO_MEMORY, 0, 0},   /* 1: ir0 > 500 */
+    {timer, &t10, 3, 0, 0, 0, 0},                     /* 2 */
+    {immediate, NULL, 4, 0, RT_NO_MEMORY, 0, 0},      /* 3: its action cancelled */
+    {immediate, NULL, 1, 0, RT_NO_MEMORY, 0, 0},      /* 4: cancelled */
     NEVER, NEVER, NEVER, NEVER, NEVER, NEVER,   /* 5..10 */
     NEVER, NEVER, NEVER, NEVER, NEVER, NEVER,   /* 11..16 */
-    {NULL, NULL, 1, 0, RT_NO_MEMORY},           /* 17: ir0 > 800, made repeating */
-    {timer, &t30, 2, 0, 1},                     /* 18 */
+    {NULL, NULL, 1, 0, RT_NO_MEMORY, 0, 0},           /* 17: ir0 > 800, made repeating */
+    {timer, &t30, 2, 0, 1, 0, 0},                     /* 18 */
 };
 
 static unsigned state[RT_STATE_WORDS(5, 19)];
@@ -57,7 +57,7 @@ static long memory[2];
 
 int main(void)
 {
-    static rt_event bad_events[1] = {{immediate, NULL, 0, 0, RT_NO_MEMORY}};
+    static rt_event bad_events[1] = {{immediate, NULL, 0, 0, RT_NO_MEMORY, 0, 0}};
     static const rt_action bad_action[] = {{NULL, NULL}};
     rt_program p = {actions, 5, events, 19, conditions, 0x03, state, memory};
     rt_program bad = p;
