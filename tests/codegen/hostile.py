@@ -92,6 +92,9 @@ def programs(draw) -> Program:
             lines.append(f'extern {kind} {ext.name}({decl}) from "ext.c"')
     actions = [e for e in externs if e.kind == "action"]
     events = [e for e in externs if e.kind == "event"]
+    # issue 9: modes (their names reach C only as epk_mode_NAME), priorities,
+    # the LEDs, the speaker and the other devices' events
+    modes = draw(st.lists(names(2), max_size=2, unique=True))
 
     def call():
         options = [
@@ -101,7 +104,12 @@ def programs(draw) -> Program:
                     f"{draw(value('angle'))}, "
                     f"{draw(value('speed'))})",
             lambda: draw(st.sampled_from(["stop_motor", "set_timer", "reset_timer",
-                                          "start_sensor", "stop_sensor", "exit_main"]))]
+                                          "start_sensor", "stop_sensor", "exit_main"])),
+            lambda: f"{draw(st.sampled_from(['led_on', 'led_off', 'led_toggle']))}("
+                    f"{draw(st.sampled_from(['led0', 'led7', 'all', 'body', 'front']))})",
+            lambda: f"play_sound({draw(st.sampled_from(['haa', 'spaah', 'wouaaaaaaaah']))})"]
+        if modes:
+            options.append(lambda: f"enter {draw(st.sampled_from(modes))}")
         if actions:
             def extern_call():
                 ext = draw(st.sampled_from(actions))
@@ -120,21 +128,36 @@ def programs(draw) -> Program:
         lines.append(f"action {name} = {body()}")
     rule_names = draw(st.lists(names(2), max_size=2, unique=True))
     n_rules = max(draw(st.integers(1, 4)), len(rule_names))
+    in_mode: dict = {mode: [] for mode in modes}
     for i in range(n_rules):
         head = f"rule {rule_names[i]}: " if i < len(rule_names) else ""
-        event_options = ["immediate", "stop_motor", "timer(100 ms)", "sensor(ir0 > 300, ir3 < 20)"]
+        mode = draw(st.sampled_from([None, *modes]))
+        event_options = ["immediate", "stop_motor", "timer(100 ms)", "sensor(ir0 > 300, ir3 < 20)",
+                         "clap(3000)", "tap(600)", "tilt(800)", "selector(15)", "remote(5)",
+                         "remote(standby)", "ambient(ir0 < 200)"]
+        if mode is not None:
+            event_options.append("enter")
         if events:
             ext = draw(st.sampled_from(events))
             args = ", ".join(draw(value(t)) for _, t in ext.params)
             event_options.append(f"{ext.name}({args})" if ext.params else ext.name)
         event = draw(st.sampled_from(event_options))
         repeat = " repeat" if draw(st.booleans()) and event != "immediate" else ""
+        repeat += draw(st.sampled_from(["", "", " priority 1", " priority 255"]))
         parts = [body()]
         if named and draw(st.booleans()):
             parts = [draw(st.sampled_from(named))]
         if rule_names and draw(st.booleans()):
             parts.append(f"cancel {draw(st.sampled_from(rule_names))}")
-        lines.append(f"{head}on {event}{repeat} do {', '.join(parts)}")
+        rule = f"{head}on {event}{repeat} do {', '.join(parts)}"
+        if mode is None:
+            lines.append(rule)
+        else:
+            in_mode[mode].append(rule)
+    for k, mode in enumerate(modes):
+        lines.append(("initial " if k == 0 else "") + f"mode {mode} {{")
+        lines += [f"  {rule}" for rule in in_mode[mode]]
+        lines.append("}")
     lines.append("on timer(1500 ms) do exit_main")
     lines.insert(0, "on immediate do set_timer, start_sensor")
     stem = draw(st.sampled_from(FILE_STEMS))
