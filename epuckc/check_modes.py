@@ -11,6 +11,7 @@ from typing import Optional
 
 from . import ast
 from .diagnostics import Note
+from .splice import splice
 
 
 def _code(text: str) -> str:
@@ -65,50 +66,11 @@ def check_rule(checker, rule: ast.Rule, event) -> None:
 
 
 def flat_steps(checker, steps) -> list:
-    """A body's steps with its named actions spliced in, as lowering does:
-    used alone as a step a named action's steps replace it; inside a comma
-    list its first step runs in its place and its later steps follow the
-    list. Memoised per named action (on the checker), and walked on a stack
-    of our own: a chain of thousands of named actions is deeper than
-    Python's stack. (Resolved bodies hold no cycles: a call that would close
-    one is an error, E023, and left out.)"""
-    memo = checker._flat_actions
+    """A body's steps with its named actions spliced in, as lowering does
+    (splice.py), memoised per named action on the checker."""
     resolved = checker._resolved_actions
-
-    def walk(body):
-        out = []
-        for step in body:
-            current, later = [], []
-            for call in step:
-                if call.kind == "named":
-                    inner = memo.get(call.name)
-                    if inner is None:
-                        inner = yield call.name
-                    if inner:
-                        current.extend(inner[0])
-                        later.extend(inner[1:])
-                else:
-                    current.append(call)
-            out.append(current)
-            out.extend(later)
-        return out
-
-    stack = [(walk(steps), None)]
-    result = None
-    while True:
-        gen, name = stack[-1]
-        try:
-            needed = gen.send(result)
-        except StopIteration as done:
-            stack.pop()
-            if name is not None:
-                memo[name] = done.value
-            if not stack:
-                return done.value
-            result = done.value
-            continue
-        stack.append((walk(resolved.get(needed, [])), needed))
-        result = None
+    return splice(steps, lambda call, _: call, lambda name: (resolved.get(name, []), None),
+                  checker._flat_actions)
 
 
 def _steps_after_enter(checker, steps) -> Optional[object]:

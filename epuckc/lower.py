@@ -31,6 +31,7 @@ from pathlib import PurePath
 from typing import Optional
 
 from .checker import CheckedProgram, ResolvedCall
+from .splice import splice
 from .stdlib import STANDARD_ACTIONS, STANDARD_EVENTS
 from .units import round_nearest
 
@@ -324,51 +325,10 @@ class _Lowerer:
         return "{" + ", ".join(items) + "}"
 
     def flatten(self, steps: list, owner: str) -> list:
-        """Steps of primitives. A named action used alone as a step splices
-        in its own steps; inside a comma list its first step runs in its
-        place and its later steps follow the list.
-
-        Named actions inside are flattened on a stack of our own rather
-        than by recursion (a chain of thousands of named actions is deeper
-        than Python's stack), in the same order recursion would take."""
-        stack = [(self._flatten_steps(steps, owner), None)]
-        result = None
-        while True:
-            walk, name = stack[-1]
-            try:
-                needed = walk.send(result)
-            except StopIteration as done:
-                stack.pop()
-                if name is not None:
-                    self.flat[name] = done.value
-                if not stack:
-                    return done.value
-                result = done.value
-                continue
-            stack.append((self._flatten_steps(self.program.actions[needed], f"a_{needed}"),
-                          needed))
-            result = None
-
-    def _flatten_steps(self, steps: list, owner: str):
-        """flatten's body: yields the name of a named action it needs that
-        is not flattened yet, and is sent its steps."""
-        out = []
-        for step in steps:
-            current: list = []
-            later: list = []
-            for call in step:
-                if call.kind == "named":
-                    inner = self.flat.get(call.name)
-                    if inner is None:
-                        inner = yield call.name
-                    if inner:
-                        current.extend(inner[0])
-                        later.extend(inner[1:])
-                else:
-                    current.append(self.primitive(call, owner))
-            out.append(current)
-            out.extend(later)
-        return out
+        """Steps of primitives, with named actions spliced in (splice.py);
+        a named action's own parameter structs belong to `a_NAME`."""
+        return splice(steps, lambda call, context: self.primitive(call, context or owner),
+                      lambda name: (self.program.actions[name], f"a_{name}"), self.flat)
 
     def named_steps(self, name: str) -> list:
         if name not in self.flat:
