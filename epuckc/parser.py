@@ -364,8 +364,90 @@ _TO_AST = _ToAst()
 _CALLBACKS = {name: getattr(_TO_AST, name) for name in dir(_ToAst) if not name.startswith("_")}
 
 
+@lru_cache(maxsize=1)
+def _c_driver():
+    """The C front end (epuckc/_front.c) over the grammar's tables, the
+    lexer's keywords and this module's callbacks; None when it is not built
+    (it is optional) or EPUCKC_PURE_PYTHON is set."""
+    import os
+    if os.environ.get("EPUCKC_PURE_PYTHON"):
+        return None
+    try:
+        from . import _front
+    except ImportError:
+        return None
+    if _stale(_front.__file__):
+        return None
+    return make_c_driver(_front, _tables(), _CALLBACKS)
+
+
+def _stale(built: str) -> bool:
+    """Whether the C source beside a built module (in a checkout, not in a
+    wheel) was changed after the build: a stale build is not used, and
+    tests/frontend/test_front_accel.py says to rebuild it."""
+    import os
+    try:
+        return os.stat(os.path.join(os.path.dirname(built), "_front.c")).st_mtime > \
+            os.stat(built).st_mtime
+    except OSError:
+        return False
+
+
+def make_c_driver(front, tables: lalr.Tables, callbacks):
+    """A C driver over `tables` and `callbacks`: every symbol becomes a
+    number, and the lexer's own tables say which word or character is
+    which terminal and which ones start a statement."""
+    from .lexer import MODE_STARTS, PUNCTUATION
+    names = {"NAME", "NUMBER", "STRING", "$END"} | set(KEYWORDS.values()) | set(PUNCTUATION.values())
+    for row in tables.states.values():
+        names.update(row)
+    names.update(rule[0] for rule in tables.rules)
+    names = sorted(names)
+    sym = {name: i for i, name in enumerate(names)}
+    if sorted(tables.states) != list(range(len(tables.states))):
+        raise ValueError("the LALR states are not numbered 0..n-1")
+    rows = [[(sym[name], code) for name, code in tables.states[state].items()]
+            for state in range(len(tables.states))]
+    rules = []
+    for (origin, _, size, include, after), (_, _, func, how, arg, _) in zip(
+            tables.rules, lalr._plan(tables.rules, callbacks)):
+        rules.append((sym[origin], size, func, include, after, arg if how == lalr.GROW else 0))
+    lexer = (tuple((word, sym[t]) for word, t in KEYWORDS.items()),
+             tuple((char, sym[t]) for char, t in PUNCTUATION.items()),
+             sym["NAME"], sym["NUMBER"], sym["STRING"], sym["$END"], sym["_LBRACE"],
+             sym["_RBRACE"], sym["_ACTION"], sym["_EXTERN"], sym["_MODE"], sym["_INITIAL"],
+             sym["_ON"], sym["_RULE"], tuple(sym[t] for t in STATEMENT_STARTS),
+             tuple(sym[t] for t in MODE_STARTS))
+    return front.make_driver(names, rows, tables.start, tables.end, rules, Span, lexer)
+
+
 def parse(source: SourceFile, diags: Collector) -> ast.Program:
     """The statements that parse; a diagnostic for each one that does not."""
+    driver = _c_driver()
+    if driver is not None:
+        program = parse_c(driver, source, diags)
+        if program is not None:
+            return program
+    return parse_python(source, diags)
+
+
+def parse_c(driver, source: SourceFile, diags: Collector):
+    """`parse` by the C front end, or None when the file has something to
+    report (a bad character, a syntax error, ...): the C front end reports
+    nothing, and leaves such a file to parse_python."""
+    statements = driver.parse(source.text)
+    if statements is None:
+        return None
+    program = ast.Program(source.name)
+    placer = ModePlacer(program, diags)
+    for statement in statements:
+        placer.add(statement)
+    placer.finish()
+    return program
+
+
+def parse_python(source: SourceFile, diags: Collector) -> ast.Program:
+    """`parse` by the Python front end, which reports every problem."""
     program = ast.Program(source.name)
     tables = _tables()
     # One statement at a time, so that a huge file never holds all its
