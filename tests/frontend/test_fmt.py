@@ -137,6 +137,12 @@ def test_corpus_properties(path):
     assert long == []
 
 
+def test_the_examples_are_in_the_formatters_layout(capsys):
+    """What users copy from is what `epuckc fmt` writes."""
+    status, out, err = run_cli(["fmt", "--check", str(REPO / "examples")], capsys)
+    assert status == 0, out + err
+
+
 def test_corpus_is_not_empty():
     assert len(CORPUS) >= 40
     assert {p.name for p in CORPUS} >= {"paper_fig2.epk", "extern.epk", "units.epk"}
