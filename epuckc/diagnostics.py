@@ -186,6 +186,11 @@ def to_json_object(diag: Diagnostic) -> dict:
         "end_column": s.end_column,
         "help": diag.help,
         "notes": [n.message for n in diag.notes],
+        # what an editor's quick fix does: replace the text from
+        # line:column to end_line:end_column (exclusive) with `text`
+        "fixes": [{"line": f.span.line, "column": f.span.column,
+                   "end_line": f.span.end_line, "end_column": f.span.end_column,
+                   "text": f.text, "help": f.help} for f in diag.fixes],
     }
 
 

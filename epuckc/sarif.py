@@ -55,11 +55,15 @@ def _artifact(file: str) -> dict:
     return {"uri": quote(path.as_posix()), "uriBaseId": SRCROOT}
 
 
+def _region(span) -> dict:
+    return {"startLine": span.line, "startColumn": span.column,
+            "endLine": span.end_line, "endColumn": span.end_column}
+
+
 def _location(file: str, span, message: str | None = None) -> dict:
     location = {"physicalLocation": {
         "artifactLocation": _artifact(file),
-        "region": {"startLine": span.line, "startColumn": span.column,
-                   "endLine": span.end_line, "endColumn": span.end_column},
+        "region": _region(span),
     }}
     if message is not None:
         location["message"] = {"text": message}
@@ -80,6 +84,18 @@ def _result(diag: Diagnostic, rule_index: int) -> dict:
         "message": {"text": text},
         "locations": [_location(diag.file, diag.span)],
     }
+    if diag.fixes:
+        # SARIF's fix: the same edit the language server's quick fix makes
+        result["fixes"] = [{
+            "description": {"text": fix.help},
+            "artifactChanges": [{
+                "artifactLocation": _artifact(diag.file),
+                "replacements": [{
+                    "deletedRegion": _region(fix.span),
+                    "insertedContent": {"text": fix.text},
+                }],
+            }],
+        } for fix in diag.fixes]
     related = [note for note in diag.notes if note.span is not None]
     if related:
         result["relatedLocations"] = [

@@ -74,6 +74,27 @@ def test_json_format(work, capsys):
     assert diags[1]["end_line"] == 3 and diags[1]["end_column"] == 8
 
 
+def test_json_fixes_are_edits_that_repair_the_file(tmp_path, monkeypatch, capsys):
+    """Applied as a tool would apply them, the JSON's quick fixes turn the
+    misspellings into the names meant, and the file checks clean."""
+    monkeypatch.chdir(tmp_path)
+    text = "on immediat do start_straigt(300, 10 cm)\non stop_motor do exit_main\n"
+    (tmp_path / "typo.epk").write_text(text)
+    status, out, _ = run_cli(["check", "--format", "json", "typo.epk"], capsys)
+    diags = json.loads(out)
+    fixes = [f for d in diags for f in d["fixes"]]
+    assert status == 1 and len(fixes) == 2
+    assert all(f["help"] and f["help"] in d["help"] for d in diags for f in d["fixes"])
+    lines = text.split("\n")
+    for f in sorted(fixes, key=lambda f: (f["line"], f["column"]), reverse=True):
+        assert f["line"] == f["end_line"]
+        line = lines[f["line"] - 1]
+        lines[f["line"] - 1] = line[:f["column"] - 1] + f["text"] + line[f["end_column"] - 1:]
+    (tmp_path / "typo.epk").write_text("\n".join(lines))
+    status, out, _ = run_cli(["check", "--format", "json", "typo.epk"], capsys)
+    assert (status, json.loads(out)) == (0, [])
+
+
 def test_json_of_a_clean_file_is_an_empty_array(work, capsys):
     status, out, err = run_cli(["check", "--format", "json", "good.epk"], capsys)
     assert (status, json.loads(out), err) == (0, [], "")

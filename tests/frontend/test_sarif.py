@@ -66,6 +66,15 @@ def test_every_golden_case_gives_valid_sarif_that_matches_the_json(case, capsys,
         assert physical["region"] == {
             "startLine": diag["line"], "startColumn": diag["column"],
             "endLine": diag["end_line"], "endColumn": diag["end_column"]}
+        # the quick fixes: the same edits as the JSON's
+        fixes = [(f["description"]["text"], change["artifactLocation"]["uri"],
+                  r["deletedRegion"], r["insertedContent"]["text"])
+                 for f in result.get("fixes", []) for change in f["artifactChanges"]
+                 for r in change["replacements"]]
+        assert fixes == [(f["help"], diag["file"],
+                          {"startLine": f["line"], "startColumn": f["column"],
+                           "endLine": f["end_line"], "endColumn": f["end_column"]}, f["text"])
+                         for f in diag["fixes"]]
     for rule in rules:
         code = rule["id"]
         assert rule["shortDescription"]["text"] == CODES[code]
