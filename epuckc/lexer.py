@@ -9,7 +9,7 @@ from __future__ import annotations
 import re
 
 from .diagnostics import Collector
-from .source import SourceFile
+from .source import SourceFile, Span
 
 KEYWORDS = {
     "robot": "_ROBOT", "const": "_CONST", "action": "_ACTION",
@@ -39,6 +39,10 @@ class Token:
         self.end_column = end_column
         self.end_pos = end_pos
         self.after_bad = False      # unexpected characters come just before it
+
+    @property
+    def span(self) -> Span:
+        return Span(self.line, self.column, self.end_line, self.end_column)
 
     def __str__(self):
         return self.value

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from functools import lru_cache
 
-from . import ast
+from . import accel, ast
 from . import lalr
 from .diagnostics import Collector, Fix, Note
 from .lexer import KEYWORDS, STATEMENT_STARTS, iter_statements, iter_tokens
@@ -158,35 +158,32 @@ def _fix(tok, prev, expected: set, hint: str):
 # ---- tree -> AST --------------------------------------------------------------
 #
 # These run once per node of a file (some 20,000 for 1,000 rules), so they
-# build nodes the cheap way (see ast.builder): a node is made as its
-# builder, its fields set one by one, then it becomes the frozen node.
+# build nodes with ast.maker: every field by position, in the order of the
+# node's `_fields`, without __init__'s checks.
 
-_new = object.__new__
-_new_span = tuple.__new__
-_IDENT = ast.builder(ast.Ident)
-_NUMBER = ast.builder(ast.Number)
-_CALL = ast.builder(ast.Call)
-_POSITIONAL = ast.builder(ast.PositionalArg)
-_NAMED = ast.builder(ast.NamedArg)
-_CONDITION = ast.builder(ast.ConditionArg)
-_STEP = ast.builder(ast.Step)
-_BODY = ast.builder(ast.ActionBody)
-_RULE = ast.builder(ast.Rule)
-_Ident, _Number, _Call = ast.Ident, ast.Number, ast.Call
-_PositionalArg, _NamedArg, _ConditionArg = ast.PositionalArg, ast.NamedArg, ast.ConditionArg
-_Step, _ActionBody, _Rule = ast.Step, ast.ActionBody, ast.Rule
+_Ident = ast.maker(ast.Ident)
+_Number = ast.maker(ast.Number)
+_ConstRef = ast.maker(ast.ConstRef)
+_Call = ast.maker(ast.Call)
+_PositionalArg = ast.maker(ast.PositionalArg)
+_NamedArg = ast.maker(ast.NamedArg)
+_ConditionArg = ast.maker(ast.ConditionArg)
+_CancelCall = ast.maker(ast.CancelCall)
+_EnterCall = ast.maker(ast.EnterCall)
+_Step = ast.maker(ast.Step)
+_ActionBody = ast.maker(ast.ActionBody)
+_Rule = ast.maker(ast.Rule)
+_Setting = ast.maker(ast.Setting)
+_ConstDef = ast.maker(ast.ConstDef)
+_ActionDef = ast.maker(ast.ActionDef)
 
 
 def _tok_span(tok) -> Span:
-    return _new_span(Span, (tok.line, tok.column, tok.end_line, tok.end_column))
+    return tok.span
 
 
 def _ident(tok) -> ast.Ident:
-    node = _new(_IDENT)
-    node.name = tok.value
-    node.span = _new_span(Span, (tok.line, tok.column, tok.end_line, tok.end_column))
-    node.__class__ = _Ident
-    return node
+    return _Ident(tok.value, tok.span)
 
 
 def _unescape(literal: str) -> str:
@@ -211,15 +208,15 @@ class _ToAst:
 
     def setting(self, span, children):
         name, value = children
-        return ast.Setting(_ident(name), value, span)
+        return _Setting(_ident(name), value, span)
 
     def const_def(self, span, children):
         name, value = children
-        return ast.ConstDef(_ident(name), value, span)
+        return _ConstDef(_ident(name), value, span)
 
     def action_def(self, span, children):
         name, body = children
-        return ast.ActionDef(_ident(name), body, span)
+        return _ActionDef(_ident(name), body, span)
 
     def extern_action(self, span, children):
         return "action"
@@ -230,7 +227,7 @@ class _ToAst:
     def extern_def(self, span, children):
         kind, name, *params, file_tok = children
         return ast.ExternDef(kind, _ident(name), tuple(p for p in params if p is not None),
-                             _unescape(file_tok.value), _tok_span(file_tok), span)
+                             _unescape(file_tok.value), file_tok.span, span)
 
     def param_decl(self, span, children):
         name, type_ = children
@@ -241,41 +238,28 @@ class _ToAst:
 
     def rule_def(self, span, children):
         name, event, repeat, priority, body = children
-        node = _new(_RULE)
-        node.name = _ident(name) if name is not None else None
-        node.event = event
-        node.repeat = bool(repeat)
-        node.body = body
-        node.span = span
-        node.priority = priority
-        node.mode = None
-        node.__class__ = _Rule
-        return node
+        return _Rule(_ident(name) if name is not None else None, event, bool(repeat), body,
+                     span, priority, None)
 
     def priority_number(self, span, children):
         (number,) = children
-        return ast.Number(float(str(number)), str(number), None, None, _tok_span(number))
+        return _Number(float(number.value), number.value, None, None, number.span)
 
     def priority_const(self, span, children):
         (name,) = children
         ident = _ident(name)
-        return ast.ConstRef(ident, False, ident.span)
+        return _ConstRef(ident, False, ident.span)
 
     def event_ref(self, span, children):
         name, args = children
-        node = _new(_CALL)
-        node.name = _ident(name)
-        node.args = args
-        node.span = span
-        node.__class__ = _Call
-        return node
+        return _Call(_ident(name), args, span)
 
     def enter_event(self, span, children):
-        return ast.Call(ast.Ident("enter", span), None, span)
+        return _Call(_Ident("enter", span), None, span)
 
     def enter_call(self, span, children):
         (name,) = children
-        return ast.EnterCall(_ident(name), span)
+        return _EnterCall(_ident(name), span)
 
     def initial(self, span, children):
         return True
@@ -288,71 +272,41 @@ class _ToAst:
         return ast.ModeClose(span)
 
     def action_body(self, span, children):
-        node = _new(_BODY)
-        node.steps = tuple(children)
-        node.span = span
-        node.__class__ = _ActionBody
-        return node
+        return _ActionBody(tuple(children), span)
 
     def step(self, span, children):
-        node = _new(_STEP)
-        node.calls = tuple(children)
-        node.span = span
-        node.__class__ = _Step
-        return node
+        return _Step(tuple(children), span)
 
     plain_call = event_ref
 
     def cancel_call(self, span, children):
         (name,) = children
-        return ast.CancelCall(_ident(name), span)
+        return _CancelCall(_ident(name), span)
 
     def arg_list(self, span, children):
         return tuple(c for c in children if c is not None)
 
     def named_arg(self, span, children):
         name, value = children
-        node = _new(_NAMED)
-        node.name = _ident(name)
-        node.value = value
-        node.span = span
-        node.__class__ = _NamedArg
-        return node
+        return _NamedArg(_ident(name), value, span)
 
     def positional_arg(self, span, children):
-        node = _new(_POSITIONAL)
-        node.value = children[0]
-        node.span = span
-        node.__class__ = _PositionalArg
-        return node
+        return _PositionalArg(children[0], span)
 
     def condition_arg(self, span, children):
         name, op, value = children
-        node = _new(_CONDITION)
-        node.sensor = _ident(name)
-        node.op = op.value
-        node.value = value
-        node.span = span
-        node.__class__ = _ConditionArg
-        return node
+        return _ConditionArg(_ident(name), op.value, value, span)
 
     def number(self, span, children):
         minus, number, unit = children
         text = number.value if minus is None else "-" + number.value
-        node = _new(_NUMBER)
-        node.value = float(text)
-        node.text = text
         if unit is None:
-            node.unit = node.unit_span = None
-        else:
-            node.unit, node.unit_span = unit
-        node.span = span
-        node.__class__ = _Number
-        return node
+            return _Number(float(text), text, None, None, span)
+        return _Number(float(text), text, unit[0], unit[1], span)
 
     def const_ref(self, span, children):
         minus, name = children
-        return ast.ConstRef(_ident(name), minus is not None, span)
+        return _ConstRef(_ident(name), minus is not None, span)
 
     def unit(self, span, children):
         first, second = children
@@ -367,30 +321,10 @@ _CALLBACKS = {name: getattr(_TO_AST, name) for name in dir(_ToAst) if not name.s
 @lru_cache(maxsize=1)
 def _c_driver():
     """The C front end (epuckc/_front.c) over the grammar's tables, the
-    lexer's keywords and this module's callbacks; None when it is not built
-    (it is optional) or EPUCKC_PURE_PYTHON is set."""
-    import os
-    if os.environ.get("EPUCKC_PURE_PYTHON"):
-        return None
-    try:
-        from . import _front
-    except ImportError:
-        return None
-    if _stale(_front.__file__):
-        return None
-    return make_c_driver(_front, _tables(), _CALLBACKS)
-
-
-def _stale(built: str) -> bool:
-    """Whether the C source beside a built module (in a checkout, not in a
-    wheel) was changed after the build: a stale build is not used, and
-    tests/frontend/test_front_accel.py says to rebuild it."""
-    import os
-    try:
-        return os.stat(os.path.join(os.path.dirname(built), "_front.c")).st_mtime > \
-            os.stat(built).st_mtime
-    except OSError:
-        return False
+    lexer's keywords and this module's callbacks; None without it (see
+    accel.py)."""
+    front = accel.front()
+    return None if front is None else make_c_driver(front, _tables(), _CALLBACKS)
 
 
 def make_c_driver(front, tables: lalr.Tables, callbacks):

@@ -29,9 +29,22 @@ class TokenList(Lexer):
         return iter(data)
 
 
+_SPANNED: dict = {}
+
+
+def _spanned(token_class):
+    """`token_class` with the `span` epuckc's tokens have (the callbacks
+    read it)."""
+    if token_class not in _SPANNED:
+        _SPANNED[token_class] = type("Spanned" + token_class.__name__, (token_class,), {
+            "span": property(lambda t: Span(t.line, t.column, t.end_line, t.end_column))})
+    return _SPANNED[token_class]
+
+
 def lark_tokens(chunk, token_class=Token) -> list:
     """Lark's tokens (a standalone module has its own Token class, which its
     tree builder needs to see to give spans)."""
+    token_class = _spanned(token_class)
     return [token_class(t.type, t.value, t.start_pos, t.line, t.column, t.end_line, t.end_column,
                   t.end_pos) for t in chunk]
 

@@ -17,8 +17,9 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from epuckc import parser
+from epuckc import accel, ast, parser
 from epuckc.diagnostics import Collector
+from epuckc.records import FrozenInstanceError
 from epuckc.source import SourceFile
 
 from .test_lalr_vs_lark import CORPUS, body, call, mutated, names, value
@@ -35,7 +36,7 @@ def _front():
         if os.environ.get("EPUCKC_REQUIRE_ALL_TOOLS"):
             pytest.fail(reason)
         pytest.skip(reason)
-    assert not parser._stale(_front.__file__), \
+    assert not accel.stale(_front.__file__), \
         "epuckc/_front.c changed after it was built: run `pip install -e .` again"
     return _front
 
@@ -229,3 +230,51 @@ def test_check_uses_the_c_front_end_unless_told_not_to(driver):
                                capture_output=True, text=True, cwd=REPO) for e in (env, pure)]
         assert outs[0].returncode == outs[1].returncode == 0
         assert outs[0].stderr == outs[1].stderr
+
+
+# ---- makers: the nodes the callbacks build ----------------------------------------------------
+
+NODE_CLASSES = [c for c in vars(ast).values()
+                if isinstance(c, type) and issubclass(c, ast.Node) and c._fields]
+
+
+def test_every_node_class_is_covered():
+    assert {ast.Ident, ast.Number, ast.Rule, ast.ExternDef} <= set(NODE_CLASSES)
+
+
+@pytest.mark.parametrize("cls", NODE_CLASSES, ids=lambda c: c.__name__)
+def test_makers_make_what_the_class_makes(cls, monkeypatch):
+    """ast.maker(cls)(*fields) is cls(*fields), frozen, both from the C
+    accelerator and from Python."""
+    values = [f"field {i}" for i in range(len(cls._fields))]
+    expected = cls(*values)
+    c_maker = _front().maker(cls)
+    monkeypatch.setattr(accel, "front", lambda: None)
+    python_maker = ast.maker(cls)
+    for make in (c_maker, python_maker):
+        made = make(*values)
+        assert type(made) is cls and made == expected
+        assert [getattr(made, f) for f in cls._fields] == values
+        with pytest.raises(FrozenInstanceError):
+            setattr(made, cls._fields[0], "changed")
+        with pytest.raises(TypeError):
+            make(*values, "one too many")
+    with pytest.raises(TypeError):
+        c_maker(*values[:-1])
+
+
+def test_the_c_maker_takes_only_classes_of_plain_slots():
+    front = _front()
+
+    class WithNew(ast.Node):
+        __slots__ = ("a",)
+
+        def __new__(cls, *args):
+            return super().__new__(cls)
+
+    class NoSlot:
+        _fields = ("a",)
+
+    for cls in (WithNew, NoSlot, int):
+        with pytest.raises(TypeError):
+            front.maker(cls)
