@@ -288,3 +288,20 @@ def test_a_reader_that_goes_away_stops_epuckc_quietly(tmp_path):
     os.close(write_end)
     assert result.returncode == 141, result.stderr
     assert result.stderr == ""
+
+
+@pytest.mark.parametrize("argv", [
+    ["check", "a.epk", "b.epk", "--format", "json", "--werror", "--max-actions", "20"],
+    ["explain", "E001"], ["fmt", "--check", "x.epk"], ["lsp"],
+    ["compile", "a.epk", "-o", "-"], ["build", "a.epk", "--target", "dspic", "-o", "out"],
+    ["run", "a.epk", "--time-limit", "2s", "--trace", "-", "--scenario", "s.scn"],
+    ["plot", "t.jsonl", "-o", "x.svg", "--title", "T"],
+])
+def test_a_command_alone_parses_as_with_every_command(argv):
+    """main builds only the command it runs (build_parser(only=...)): the
+    arguments come out the same as from the whole command line's parser."""
+    from epuckc.cli import _COMMANDS, build_parser
+    assert build_parser(argv[0]).parse_args(argv) == build_parser().parse_args(argv)
+    whole = build_parser()
+    [sub] = [a for a in whole._actions if a.dest == "command"]
+    assert list(sub.choices) == list(_COMMANDS)
