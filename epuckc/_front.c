@@ -818,65 +818,75 @@ static int int_item(PyObject *seq, Py_ssize_t i, int *out)
     return 0;
 }
 
-/* make_driver(names, rows, start, end, rules, meta, lexer)
- *   names: the symbols' names, a symbol being its index
- *   rows:  per state, a sequence of (symbol, code) (lalr.Tables.states)
- *   rules: per rule, (origin, size, callback or None, include, after, grow)
- *          with include ((index, splice, nones), ...) as in lalr.Tables
- *   meta:  the span type (source.Span, a named tuple of four ints)
- *   lexer: (keywords ((word, symbol), ...), punctuation ((char, symbol), ...),
- *           NAME, NUMBER, STRING, $END, _LBRACE, _RBRACE, _ACTION, _EXTERN,
- *           _MODE, _INITIAL, _ON, _RULE, statement starts (symbol, ...),
- *           mode starts (symbol, ...)) */
+/* make_driver(names, packed, start, end, rules, meta, lexer)
+ *   names:  the symbols' names, a symbol being its index
+ *   packed: the action table, native int32, state * len(names) + symbol
+ *           (lalr.Tables.packed; lalr.NO_ACTION is an error)
+ *   rules:  per rule, (origin, size, callback or None, include, after, grow)
+ *           with include ((index, splice, nones), ...) as in lalr.Tables
+ *   meta:   the span type (source.Span, a named tuple of four ints)
+ *   lexer:  (keywords ((word, symbol), ...), punctuation ((char, symbol), ...),
+ *            NAME, NUMBER, STRING, $END, _LBRACE, _RBRACE, _ACTION, _EXTERN,
+ *            _MODE, _INITIAL, _ON, _RULE, statement starts (symbol, ...),
+ *            mode starts (symbol, ...)) */
 static PyObject *make_driver(PyObject *module, PyObject *args)
 {
-    PyObject *names, *rows, *rules, *meta, *lexer, *keywords, *punctuation, *starts, *modes;
+    PyObject *names, *rules, *meta, *lexer, *keywords, *punctuation, *starts, *modes;
+    Py_buffer packed;
     int start, end, i;
     Py_ssize_t nsyms, nstates, nrules, r;
     DriverObject *d;
     (void)module;
 
-    if (!PyArg_ParseTuple(args, "OOiiOOO", &names, &rows, &start, &end, &rules, &meta, &lexer))
+    if (!PyArg_ParseTuple(args, "Oy*iiOOO", &names, &packed, &start, &end, &rules, &meta,
+                          &lexer))
         return NULL;
     if (!PyType_Check(meta) || !PyType_IsSubtype((PyTypeObject *)meta, &PyTuple_Type)) {
+        PyBuffer_Release(&packed);
         PyErr_SetString(PyExc_TypeError, "meta must be a tuple type");
         return NULL;
     }
     d = PyObject_New(DriverObject, &DriverType);
-    if (d == NULL)
+    if (d == NULL) {
+        PyBuffer_Release(&packed);
         return NULL;
+    }
     d->action = NULL;
     d->rules = NULL;
     d->names = NULL;
     d->kept = d->starts = NULL;
     d->nrules = 0;
+    d->nsyms = 0;
     Py_INCREF(meta);
     d->meta = meta;
     d->start = start;
     d->end = end;
 
     nsyms = PySequence_Size(names);
-    nstates = PySequence_Size(rows);
     nrules = PySequence_Size(rules);
-    if (nsyms < 0 || nstates < 0 || nrules < 0 || nsyms > 10000 || nstates > 100000)
+    if (nsyms <= 0 || nrules < 0 || nsyms > 10000
+            || packed.len % ((Py_ssize_t)sizeof(int32_t) * nsyms) != 0)
         goto bad_size;
-    d->nsyms = (int)nsyms;
+    nstates = packed.len / ((Py_ssize_t)sizeof(int32_t) * nsyms);
+    if (nstates > 100000)
+        goto bad_size;
     d->nstates = (int)nstates;
     d->names = PyMem_Calloc((size_t)nsyms, sizeof(PyObject *));
     d->kept = PyMem_Calloc((size_t)nsyms, 1);
     d->starts = PyMem_Calloc((size_t)nsyms, 1);
-    d->action = PyMem_Malloc((size_t)nsyms * (size_t)nstates * sizeof(int32_t));
+    d->action = PyMem_Malloc((size_t)packed.len);
     if (!d->names || !d->kept || !d->starts || !d->action) {
         PyErr_NoMemory();
         goto fail;
     }
+    d->nsyms = (int)nsyms;
     for (r = 0; r < nsyms; r++) {
         PyObject *name = PySequence_GetItem(names, r);
         if (name == NULL)
             goto fail;
-        if (!PyUnicode_Check(name)) {
+        if (!PyUnicode_Check(name) || PyUnicode_GET_LENGTH(name) == 0) {
             Py_DECREF(name);
-            PyErr_SetString(PyExc_TypeError, "symbol names are str");
+            PyErr_SetString(PyExc_TypeError, "symbol names are non-empty str");
             goto fail;
         }
         PyUnicode_InternInPlace(&name);
@@ -884,32 +894,15 @@ static PyObject *make_driver(PyObject *module, PyObject *args)
         /* lalr._child_filter drops terminals whose names start with `_` */
         d->kept[r] = PyUnicode_READ_CHAR(name, 0) != '_';
     }
-    for (r = 0; r < nsyms * nstates; r++)
-        d->action[r] = NO_ACTION;
-    for (r = 0; r < nstates; r++) {
-        PyObject *row = PySequence_GetItem(rows, r);
-        Py_ssize_t k, len;
-        if (row == NULL)
-            goto fail;
-        len = PySequence_Size(row);
-        for (k = 0; k < len; k++) {
-            PyObject *pair = PySequence_GetItem(row, k);
-            int sym, code;
-            if (pair == NULL || int_item(pair, 0, &sym) < 0 || int_item(pair, 1, &code) < 0) {
-                Py_XDECREF(pair);
-                Py_DECREF(row);
-                goto fail;
-            }
-            Py_DECREF(pair);
-            if (sym < 0 || sym >= nsyms || code >= nstates || -code - 1 >= nrules) {
-                Py_DECREF(row);
-                goto bad_size;
-            }
-            d->action[r * nsyms + sym] = code;
-        }
-        Py_DECREF(row);
-        if (len < 0)
-            goto fail;
+    memcpy(d->action, packed.buf, (size_t)packed.len);
+    PyBuffer_Release(&packed);
+    packed.obj = NULL;
+    if (nrules > 0x7fffffff)
+        goto bad_size;
+    for (r = 0; r < nsyms * nstates; r++) {
+        int32_t code = d->action[r];
+        if (code != NO_ACTION && (code >= nstates || (code < 0 && -(Py_ssize_t)code - 1 >= nrules)))
+            goto bad_size;
     }
     if (start < 0 || start >= nstates || end < 0 || end >= nstates)
         goto bad_size;
@@ -1065,13 +1058,15 @@ static PyObject *make_driver(PyObject *module, PyObject *args)
 bad_size:
     PyErr_SetString(PyExc_ValueError, "inconsistent tables for the C front end");
 fail:
+    if (packed.obj != NULL)
+        PyBuffer_Release(&packed);
     Py_DECREF(d);
     return NULL;
 }
 
 static PyMethodDef module_methods[] = {
     {"make_driver", make_driver, METH_VARARGS,
-     "make_driver(names, rows, start, end, rules, meta, lexer) -> Driver"},
+     "make_driver(names, packed, start, end, rules, meta, lexer) -> Driver"},
     {"maker", make_maker, METH_O,
      "maker(cls) -> f: f(*fields) is a new cls with its slots (cls._fields) set"},
     {NULL, NULL, 0, NULL},

@@ -25,7 +25,8 @@ from operator import itemgetter
 
 from .resources import cache_dir
 
-FORMAT = 1          # bump when the table layout below changes
+FORMAT = 2          # bump when the table layout below changes
+NO_ACTION = -(2 ** 31)  # an empty cell of the packed table
 
 
 class ParseError(Exception):
@@ -49,14 +50,53 @@ class Meta:
 
 
 class Tables:
-    """states: state -> {symbol: code}; a code >= 0 shifts to that state,
-    a code < 0 reduces by rule -code - 1.
+    """names: every symbol's name, a symbol being its index;
+    packed: the action table, one native int32 per state and symbol
+            (state * len(names) + symbol): a code >= 0 shifts to (or, for
+            a rule's symbol, goes to) that state, a code < 0 reduces by
+            rule -code - 1, NO_ACTION is an error;
+    states: the same as state -> {symbol name: code}, made when first used
+            (the C front end reads `packed` as it is);
     rules: (origin, callback name or None to splice, size,
             ((index, splice, nones_before), ...), nones_after)."""
 
     def __init__(self, data):
-        self.states, self.start, self.end, self.rules = data
+        self.names, self.packed, self.start, self.end, self.rules = data
+        self._states = None
         self.bound = {}     # id(callbacks) -> (callbacks, _plan(rules, callbacks))
+
+    @property
+    def states(self) -> dict:
+        if self._states is None:
+            from array import array
+            cells = array("i")
+            cells.frombytes(self.packed)
+            names, width = self.names, len(self.names)
+            self._states = {
+                state: {names[sym]: code for sym, code in
+                        enumerate(cells[state * width:(state + 1) * width]) if code != NO_ACTION}
+                for state in range(len(cells) // width)}
+        return self._states
+
+
+def pack(states: dict, rules, extra=()) -> tuple:
+    """(names, packed) of a table given as state -> {symbol name: code};
+    `extra` names symbols to have a column though the table never uses
+    them."""
+    from array import array
+    names = set(extra)
+    for row in states.values():
+        names.update(row)
+    names.update(rule[0] for rule in rules)
+    names = sorted(names)
+    index = {name: i for i, name in enumerate(names)}
+    if sorted(states) != list(range(len(states))):
+        raise ValueError("the LALR states are not numbered 0..n-1")
+    cells = array("i", [NO_ACTION]) * (len(states) * len(names))
+    for state, row in states.items():
+        for name, code in row.items():
+            cells[state * len(names) + index[name]] = code
+    return names, cells.tobytes()
 
 
 # ---- building the tables with Lark ------------------------------------------------
@@ -115,7 +155,9 @@ def build_tables(grammar: str, start: str):
         for symbol, (action, arg) in actions.items():
             row[str(symbol)] = int(arg) if action is Shift else -index_of(arg) - 1
         states[state] = row
-    return (states, int(table.start_states[start]), int(table.end_states[start]), tuple(rules))
+    rules = tuple(rules)
+    return pack(states, rules) + (int(table.start_states[start]), int(table.end_states[start]),
+                                  rules)
 
 
 # ---- the cache ----------------------------------------------------------------------
@@ -145,12 +187,12 @@ def load_tables(grammar: str, start: str) -> Tables:
     # holds that text itself, compared whole on loading: no hash collision
     # can hand back another grammar's tables (and hashlib, which takes ~3 ms
     # to import, is not needed).
-    key = "\0".join((grammar, start, str(FORMAT), _lark_version(), sys.version))
+    key = "\0".join((grammar, start, str(FORMAT), _lark_version(), sys.version, sys.byteorder))
     path = cache_dir() / f"tables-{zlib.crc32(key.encode('utf-8')):08x}.marshal"
     try:
         with open(path, "rb") as f:
             data = marshal.load(f)
-        if isinstance(data, tuple) and len(data) == 5 and data[0] == key:
+        if isinstance(data, tuple) and len(data) == 6 and data[0] == key:
             return Tables(data[1:])
     except (OSError, EOFError, ValueError, TypeError):
         pass

@@ -328,20 +328,16 @@ def _c_driver():
 
 
 def make_c_driver(front, tables: lalr.Tables, callbacks):
-    """A C driver over `tables` and `callbacks`: every symbol becomes a
-    number, and the lexer's own tables say which word or character is
-    which terminal and which ones start a statement."""
+    """A C driver over `tables` and `callbacks`: the packed table as it is,
+    and the lexer's own tables for which word or character is which
+    terminal and which ones start a statement."""
     from .lexer import MODE_STARTS, PUNCTUATION
-    names = {"NAME", "NUMBER", "STRING", "$END"} | set(KEYWORDS.values()) | set(PUNCTUATION.values())
-    for row in tables.states.values():
-        names.update(row)
-    names.update(rule[0] for rule in tables.rules)
-    names = sorted(names)
+    terminals = {"NAME", "NUMBER", "STRING", "$END"} | set(KEYWORDS.values()) \
+        | set(PUNCTUATION.values())
+    names, packed = tables.names, tables.packed
+    if not terminals <= set(names):     # a terminal the grammar does not use
+        names, packed = lalr.pack(tables.states, tables.rules, terminals)
     sym = {name: i for i, name in enumerate(names)}
-    if sorted(tables.states) != list(range(len(tables.states))):
-        raise ValueError("the LALR states are not numbered 0..n-1")
-    rows = [[(sym[name], code) for name, code in tables.states[state].items()]
-            for state in range(len(tables.states))]
     rules = []
     for (origin, _, size, include, after), (_, _, func, how, arg, _) in zip(
             tables.rules, lalr._plan(tables.rules, callbacks)):
@@ -352,7 +348,7 @@ def make_c_driver(front, tables: lalr.Tables, callbacks):
              sym["_RBRACE"], sym["_ACTION"], sym["_EXTERN"], sym["_MODE"], sym["_INITIAL"],
              sym["_ON"], sym["_RULE"], tuple(sym[t] for t in STATEMENT_STARTS),
              tuple(sym[t] for t in MODE_STARTS))
-    return front.make_driver(names, rows, tables.start, tables.end, rules, Span, lexer)
+    return front.make_driver(names, packed, tables.start, tables.end, rules, Span, lexer)
 
 
 def parse(source: SourceFile, diags: Collector) -> ast.Program:
