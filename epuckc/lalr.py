@@ -155,9 +155,33 @@ def build_tables(grammar: str, start: str):
         for symbol, (action, arg) in actions.items():
             row[str(symbol)] = int(arg) if action is Shift else -index_of(arg) - 1
         states[state] = row
-    rules = tuple(rules)
-    return pack(states, rules) + (int(table.start_states[start]), int(table.end_states[start]),
-                                  rules)
+    return _canonical(states, int(table.start_states[start]), int(table.end_states[start]),
+                      rules)
+
+
+def _canonical(states: dict, start: int, end: int, rules: list) -> tuple:
+    """The tables numbered independently of Lark's (which vary with the
+    interpreter's hash seed), so that the same grammar always gives the
+    same bytes: rules sorted (identical ones merged), states numbered in
+    the order a breadth-first walk from the start state reaches them,
+    symbols in name order."""
+    order = sorted(set(rules), key=repr)
+    new_rule = {i: order.index(rule) for i, rule in enumerate(rules)}
+    number = {start: 0}
+    queue = [start]
+    for state in queue:
+        for name in sorted(states[state]):
+            code = states[state][name]
+            if code >= 0 and code not in number:
+                number[code] = len(number)
+                queue.append(code)
+    if end not in number:
+        raise ValueError("the end state cannot be reached")
+    renumbered = {number[state]: {name: number[code] if code >= 0 else -new_rule[-code - 1] - 1
+                                  for name, code in states[state].items()}
+                  for state in queue}
+    rules = tuple(order)
+    return pack(renumbered, rules) + (0, number[end], rules)
 
 
 # ---- the cache ----------------------------------------------------------------------
@@ -179,8 +203,67 @@ def _lark_version() -> str:
     return lark.__version__
 
 
+# ---- the tables shipped with the package ------------------------------------------
+
+SHIPPED = "_parse_tables.py"
+
+
+def tables_module(grammar: str, start: str) -> str:
+    """The source of epuckc/_parse_tables.py: the tables Lark computes for
+    `grammar`, with the grammar they were computed from. The packed table
+    is kept little-endian, compressed, in base64."""
+    import binascii
+    from array import array
+    names, packed, start_state, end_state, rules = build_tables(grammar, start)
+    if sys.byteorder != "little":
+        cells = array("i")
+        cells.frombytes(packed)
+        cells.byteswap()
+        packed = cells.tobytes()
+    blob = binascii.b2a_base64(zlib.compress(packed, 9), newline=False).decode("ascii")
+    lines = "\n".join(blob[i:i + 76] for i in range(0, len(blob), 76))
+    return (f'''"""The LALR tables of grammar/epuck.lark, as Lark computes them: made by
+`python3 -m epuckc.lalr`, not by hand (see lalr.load_tables), so that
+epuckc neither imports Lark nor builds them when it runs.
+tests/frontend/test_lalr_vs_lark.py checks they are the grammar's."""
+FORMAT = {FORMAT}
+START_SYMBOL = {start!r}
+GRAMMAR = {grammar!r}
+NAMES = {tuple(names)!r}
+START = {start_state}
+END = {end_state}
+RULES = {rules!r}
+PACKED = """
+{lines}
+"""
+''')
+
+
+def _shipped(grammar: str, start: str):
+    """The shipped tables, when they are the tables of `grammar`."""
+    try:
+        from . import _parse_tables as shipped
+    except ImportError:
+        return None
+    if (shipped.FORMAT, shipped.START_SYMBOL, shipped.GRAMMAR) != (FORMAT, start, grammar):
+        return None                 # the grammar was edited: the cache or Lark
+    import binascii
+    packed = zlib.decompress(binascii.a2b_base64(shipped.PACKED))
+    if sys.byteorder != "little":
+        from array import array
+        cells = array("i")
+        cells.frombytes(packed)
+        cells.byteswap()
+        packed = cells.tobytes()
+    return Tables((shipped.NAMES, packed, shipped.START, shipped.END, shipped.RULES))
+
+
 def load_tables(grammar: str, start: str) -> Tables:
-    """The tables for `grammar`, from the cache when it holds them."""
+    """The tables for `grammar`: shipped with the package, or else from the
+    cache when it holds them, or else built with Lark (and cached)."""
+    tables = _shipped(grammar, start)
+    if tables is not None:
+        return tables
     if os.environ.get("EPUCKC_NO_CACHE"):
         return Tables(build_tables(grammar, start))
     # The file is named by a checksum of everything the tables depend on and
@@ -369,3 +452,18 @@ def parse(tables: Tables, tokens, callbacks, meta=Meta) -> object:
             if ttype == "$END" and stack[-1] == end_state:
                 return value
     raise ParseError(token, set())      # not reached with a sound table
+
+
+def main() -> int:
+    """`python3 -m epuckc.lalr`: write epuckc/_parse_tables.py anew from
+    the grammar (after editing grammar/epuck.lark)."""
+    from .output import write_file
+    from .resources import grammar_path
+    path = os.path.join(os.path.dirname(os.path.abspath(__file__)), SHIPPED)
+    write_file(path, tables_module(grammar_path().read_text(encoding="utf-8"), "statement"))
+    print(f"wrote {path}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -165,3 +165,30 @@ def mutated(draw):
 @given(mutated())
 def test_mutated_programs(text):
     compare(text)
+
+
+def test_the_shipped_tables_are_the_grammars():
+    """epuckc/_parse_tables.py is what `python3 -m epuckc.lalr` writes from
+    grammar/epuck.lark now (Lark's tables, numbered the same way whatever
+    the hash seed), and the parser uses it: after editing the grammar, run
+    that command."""
+    from epuckc.resources import grammar_path
+    grammar = grammar_path().read_text(encoding="utf-8")
+    shipped = Path(lalr.__file__).with_name(lalr.SHIPPED)
+    assert shipped.read_text(encoding="utf-8") == lalr.tables_module(grammar, "statement"), \
+        "grammar/epuck.lark changed: run `python3 -m epuckc.lalr`"
+    tables = lalr._shipped(grammar, "statement")
+    assert tables is not None and _tables().packed == tables.packed
+
+
+def test_tables_do_not_depend_on_the_hash_seed():
+    import os
+    import subprocess
+    import sys
+    probe = ("from epuckc import lalr; from epuckc.resources import grammar_path; "
+             "import sys; sys.stdout.write(lalr.tables_module("
+             "grammar_path().read_text(encoding='utf-8'), 'statement'))")
+    outputs = {subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True,
+                              env=dict(os.environ, PYTHONHASHSEED=seed),
+                              check=True).stdout for seed in ("1", "2")}
+    assert len(outputs) == 1
