@@ -30,6 +30,8 @@ HOST_CFLAGS = ["-std=c99", "-Wall", "-Wextra", "-pedantic", "-O2"]
 # figure 2 sets variables it never reads) gets its warnings shown, not fatal.
 GENERATED_CFLAGS = HOST_CFLAGS + ["-Werror"]
 USER_CFLAGS = HOST_CFLAGS
+# How gcc runs, not what it makes: no temporary assembly files.
+BUILD_FLAGS = ["-pipe"]
 # The runtime's files for each target, relative to runtime_c/.
 HOST_SOURCES = ["epuckrt.c", "host/platform_host.c", "host/epuck_stub.c"]
 HOST_INCLUDES = [".", "epuck_api", "host"]
@@ -144,25 +146,47 @@ def _capacity_defines(program: Program) -> list:
 
 # ---- host ---------------------------------------------------------------------
 
+def _compiler_identity() -> str:
+    """The C compiler as a command and as a file: the same name for another
+    compiler (an upgrade, a new alternative) changes the keys."""
+    command = c_compiler()
+    found = shutil.which(command[0]) if command else None
+    if found is None:
+        return " ".join(command) + " (not found)"      # the build says so
+    real = os.path.realpath(found)
+    try:
+        st = os.stat(real)
+    except OSError:
+        return " ".join(command) + " (unreadable)"
+    return f"{' '.join(command)} = {real} {st.st_size} {st.st_mtime_ns}"
+
+
+def _add(h, label: str, data: bytes):
+    h.update(label.encode() + b"\0" + len(data).to_bytes(8, "big") + data)
+
+
+def _add_runtime_sources(h) -> None:
+    """Every C source and header of the runtime (what any of its files may
+    include), by its path inside runtime_c/."""
+    rt = runtime_dir()
+    for path in sorted(rt.rglob("*")):
+        if path.is_file() and path.suffix in (".c", ".h") and "build" not in path.relative_to(rt).parts:
+            _add(h, f"rt:{path.relative_to(rt).as_posix()}", path.read_bytes())
+
+
 def host_build_key(program: Program) -> str:
     """Everything the executable depends on: the program, its header, the
     user's C, the runtime's sources, the compiler and the flags."""
     h = hashlib.sha256()
-    rt = runtime_dir()
-
-    def add(label: str, data: bytes):
-        h.update(label.encode() + b"\0" + len(data).to_bytes(8, "big") + data)
-
-    add("name", program.name.encode("utf-8"))
-    add("program", program.c_text.encode("utf-8") if program.generated else b"")
-    add("header", (program.header_text or "").encode("utf-8"))
+    _add(h, "name", program.name.encode("utf-8"))
+    _add(h, "program", program.c_text.encode("utf-8") if program.generated else b"")
+    _add(h, "header", (program.header_text or "").encode("utf-8"))
     for path in program.user_sources():
-        add(f"user:{os.path.realpath(path)}", Path(path).read_bytes())
-    for path in sorted(rt.rglob("*")):
-        if path.is_file() and path.suffix in (".c", ".h") and "build" not in path.relative_to(rt).parts:
-            add(f"rt:{path.relative_to(rt).as_posix()}", path.read_bytes())
-    add("cc", " ".join(c_compiler() + GENERATED_CFLAGS + USER_CFLAGS
-                       + _capacity_defines(program)).encode())
+        _add(h, f"user:{os.path.realpath(path)}", Path(path).read_bytes())
+    _add_runtime_sources(h)
+    _add(h, "cc", " ".join(c_compiler() + GENERATED_CFLAGS + USER_CFLAGS
+                           + _capacity_defines(program)).encode())
+    _add(h, "compiler", _compiler_identity().encode())
     return h.hexdigest()[:24]
 
 
@@ -176,32 +200,128 @@ def user_compile_command(source: Path, obj: Path, program: Program, generated_di
     """The user's own C, compiled where it is (its messages name it; its own
     #includes are found beside it), warnings shown but not fatal."""
     return (c_compiler() + USER_CFLAGS + list(extra_flags) + _capacity_defines(program)
-            + _includes(program, generated_dir) + ["-x", "c", "-c", str(source), "-o", str(obj)])
+            + _includes(program, generated_dir)
+            + BUILD_FLAGS + ["-x", "c", "-c", str(source), "-o", str(obj)])
 
 
-def host_link_command(generated_dir: Path, objects: list, output: Path, program: Program) -> list:
-    """The generated program and the runtime with -Werror, then the user's
-    objects."""
+def program_compile_command(folder: Path, obj: Path, program: Program, extra_flags=()) -> list:
+    """The generated program, with -Werror."""
+    return (c_compiler() + GENERATED_CFLAGS + list(extra_flags) + _capacity_defines(program)
+            + _includes(program, folder)
+            + BUILD_FLAGS + ["-c", str(folder / f"{program.name}.c"), "-o", str(obj)])
+
+
+def runtime_flags(program: Program, includes=HOST_INCLUDES, extra_flags=()) -> list:
+    """The runtime's own flags: -Werror, the capacities, its own folders
+    (nothing of the program's: its objects serve every program with the
+    same capacities)."""
     rt = runtime_dir()
-    program_c = [str(generated_dir / f"{program.name}.c")] if program.generated else []
-    return (c_compiler() + GENERATED_CFLAGS + _capacity_defines(program)
-            + _includes(program, generated_dir) + program_c
-            + [str(rt / src) for src in HOST_SOURCES]
-            + [str(o) for o in objects] + ["-o", str(output), "-lm"])
+    return (GENERATED_CFLAGS + list(extra_flags) + _capacity_defines(program)
+            + [f"-I{rt / inc}" for inc in includes])
+
+
+def host_link_command(objects: list, output: Path, extra_flags=()) -> list:
+    return c_compiler() + list(extra_flags) + [str(o) for o in objects] + ["-o", str(output), "-lm"]
+
+
+def _compiler_missing(command: list) -> BuildError:
+    return BuildError(f"the C compiler `{command[0]}` was not found; install one "
+                      f"(e.g. `apt-get install gcc`) or set CC")
 
 
 def _run_compiler(command: list, what: str, hint: str = ""):
     try:
         result = subprocess.run(command, capture_output=True, text=True)
     except FileNotFoundError:
-        raise BuildError(f"the C compiler `{command[0]}` was not found; install one "
-                         f"(e.g. `apt-get install gcc`) or set CC") from None
+        raise _compiler_missing(command) from None
     if result.stderr and result.returncode == 0:
         sys.stderr.write(result.stderr)      # warnings in the user's C
     if result.returncode != 0:
         output = (result.stdout + result.stderr).rstrip()
         raise BuildError(f"the C compiler failed to build {what}:\n{output}\n"
                          f"command: {shlex.join(command)}{hint}")
+
+
+@dataclass
+class CompileStep:
+    """One translation unit: its compiler command, what to call it in a
+    message, a hint for when it fails, and its source's size (the biggest
+    start first, so that the longest compile does not start last)."""
+    command: list
+    what: str
+    hint: str = ""
+    size: int = 0
+
+
+def compile_jobs() -> int:
+    """How many compilers run at once: the processors this process may use."""
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except (AttributeError, OSError):
+        return max(1, os.cpu_count() or 1)
+
+
+def run_compile_steps(steps: list, jobs: Optional[int] = None) -> None:
+    """Run the steps, up to `jobs` compilers at once, each to its end.
+    Then, in the steps' order, the warnings of those that succeeded are
+    shown and the first that failed raises BuildError: the same message
+    whichever compiler finished first. An interruption (Ctrl-C, SIGTERM)
+    kills the compilers still running before it goes on."""
+    import threading
+    jobs = jobs or compile_jobs()
+    results = [None] * len(steps)
+    order = sorted(range(len(steps)), key=lambda i: -steps[i].size)
+    lock = threading.Lock()
+    running = []
+    stopped = False
+
+    def worker():
+        while True:
+            with lock:
+                if stopped or not order:
+                    return
+                i = order.pop(0)
+                try:
+                    proc = subprocess.Popen(steps[i].command, stdin=subprocess.DEVNULL,
+                                            stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                                            text=True, errors="replace")
+                except OSError as exc:
+                    results[i] = exc
+                    continue
+                running.append(proc)
+            out, err = proc.communicate()
+            results[i] = (proc.returncode, out, err)
+
+    threads = [threading.Thread(target=worker, daemon=True)
+               for _ in range(min(jobs, len(steps)))]
+    try:
+        for t in threads:
+            t.start()
+        for t in threads:
+            t.join()
+    except BaseException:
+        with lock:
+            stopped = True
+            for proc in running:
+                if proc.poll() is None:
+                    proc.kill()
+        for t in threads:
+            t.join(5)
+        raise
+    for step, result in zip(steps, results):
+        if isinstance(result, FileNotFoundError):
+            raise _compiler_missing(step.command)
+        if isinstance(result, OSError):
+            raise BuildError(f"cannot run the C compiler `{step.command[0]}`: "
+                             f"{result.strerror or result}")
+        status, out, err = result
+        if status == 0:
+            if err:
+                sys.stderr.write(err)        # warnings in the user's C
+            continue
+        output = (out + err).rstrip()
+        raise BuildError(f"the C compiler failed to build {step.what}:\n{output}\n"
+                         f"command: {shlex.join(step.command)}{step.hint}")
 
 
 def _include_hint(program: Program, source: Path) -> str:
@@ -226,20 +346,107 @@ def _write_generated(program: Program, folder: Path, only_if_changed: bool = Fal
                      only_if_changed=only_if_changed)
 
 
-def prepare_sources(program: Program, folder: Path, extra_flags=()) -> list:
-    """Write the generated program and its externs header into `folder`
-    and compile the user's own C there, each file on its own (with
-    `extra_flags`, e.g. -fPIC); returns the user's objects, to be linked
-    with the program and the runtime."""
-    if program.generated:
-        _write_generated(program, folder)
-    objects = []
+def _size(path) -> int:
+    try:
+        return os.stat(path).st_size
+    except OSError:
+        return 0
+
+
+def program_steps(program: Program, folder: Path, extra_flags=()) -> tuple:
+    """Write the generated program and its externs header into `folder`;
+    (the steps that compile the user's own C, each file on its own, and the
+    program, into `folder`, with `extra_flags`, e.g. -fPIC; their objects)."""
+    steps, objects = [], []
     for i, source in enumerate(program.user_sources(), 1):
         obj = folder / f"user{i}.o"
-        command = user_compile_command(source, obj, program, folder, extra_flags)
-        _run_compiler(command, str(source), _include_hint(program, source))
+        steps.append(CompileStep(user_compile_command(source, obj, program, folder, extra_flags),
+                                 str(source), _include_hint(program, source), _size(source)))
         objects.append(obj)
-    return objects
+    if program.generated:
+        _write_generated(program, folder)
+        obj = folder / f"{program.name}.o"
+        steps.append(CompileStep(program_compile_command(folder, obj, program, extra_flags),
+                                 program.name, "", len(program.c_text)))
+        objects.append(obj)
+    return steps, objects
+
+
+class RuntimeObjects:
+    """The runtime's objects for one set of sources and flags.
+
+    With a cache folder they are kept there under a key made of everything
+    they depend on (every runtime source and header, the compiler, the
+    flags): a later build with the same runtime and capacities links them
+    without compiling. Missing, they are compiled (`steps`, run together
+    with the program's) into a temporary folder beside their place, which
+    `commit` renames into it in one step once every compiler succeeded;
+    `discard` removes it. Without a cache folder they are compiled into
+    `folder` and not kept.
+    """
+
+    def __init__(self, sources: list, flags: list, folder: Path, cache: Optional[Path]):
+        rt = runtime_dir()
+        names = [src.replace("/", "_")[:-len(".c")] + ".o" for src in sources]
+        self._tmp = None
+        self._final = None
+        if cache is not None:
+            h = hashlib.sha256()
+            _add(h, "sources", "\n".join(sources).encode())
+            _add(h, "flags", "\n".join(c_compiler() + flags + BUILD_FLAGS).encode())
+            _add(h, "compiler", _compiler_identity().encode())
+            _add_runtime_sources(h)
+            self._final = cache / h.hexdigest()[:24]
+            self.objects = [self._final / n for n in names]
+            if all(o.is_file() for o in self.objects):
+                self.steps = []
+                return
+            cache.mkdir(parents=True, exist_ok=True)
+            sweep_stale(cache)
+            self._tmp = Path(tempfile.mkdtemp(prefix=f"{TEMP_PREFIX}{os.getpid()}-", dir=cache))
+            folder = self._tmp
+        built = [folder / n for n in names]
+        self.steps = [CompileStep(c_compiler() + flags + BUILD_FLAGS
+                                  + ["-c", str(rt / src), "-o", str(obj)],
+                                  f"the runtime ({src})", "", _size(rt / src))
+                      for src, obj in zip(sources, built)]
+        if self._tmp is None:
+            self.objects = built
+
+    def commit(self) -> None:
+        """Every step succeeded: the objects take their place in the cache
+        (or a parallel build's, identical, stay there)."""
+        if self._tmp is None:
+            return
+        try:
+            os.rename(self._tmp, self._final)
+        except OSError:
+            if not all(o.is_file() for o in self.objects):
+                raise
+        finally:
+            self.discard()
+
+    def discard(self) -> None:
+        if self._tmp is not None:
+            shutil.rmtree(self._tmp, ignore_errors=True)
+            self._tmp = None
+
+
+def compile_objects(program: Program, folder: Path, runtime_sources: list, runtime_flags: list,
+                    runtime_cache: Optional[Path], extra_flags=()) -> tuple:
+    """Compile the program, the user's C (each file on its own, with
+    `extra_flags`, e.g. -fPIC) and, unless `runtime_cache` has them, the
+    runtime's sources, all at once on the machine's processors; (the
+    program's and the user's objects, in `folder`; the runtime's). Nothing
+    of a failed build is kept."""
+    steps, objects = program_steps(program, folder, extra_flags)
+    runtime = RuntimeObjects(runtime_sources, runtime_flags, folder, runtime_cache)
+    try:
+        run_compile_steps(steps + runtime.steps)
+        runtime.commit()
+    finally:
+        runtime.discard()
+    return objects, runtime.objects
 
 
 STALE_AFTER_S = 24 * 3600      # a temporary build folder older than this is abandoned
@@ -286,12 +493,20 @@ def sweep_stale(folder: Path) -> None:
             pass
 
 
-def _compile_into(folder: Path, program: Program) -> Path:
-    """Write the generated C into `folder`, compile the user's C there on
-    its own, and link the executable there."""
-    objects = prepare_sources(program, folder)
+def runtime_cache_dir() -> Path:
+    """Where the runtime's objects are kept (see RuntimeObjects)."""
+    return cache_dir() / "runtime"
+
+
+def _compile_into(folder: Path, program: Program, runtime_cache: Optional[Path] = None) -> Path:
+    """Write the generated C into `folder`, compile it (see
+    compile_objects) and link the executable there."""
+    objects, runtime = compile_objects(program, folder, HOST_SOURCES, runtime_flags(program),
+                                       runtime_cache)
     exe = folder / program.name
-    _run_compiler(host_link_command(folder, objects, exe, program), program.name)
+    _run_compiler(host_link_command(objects + runtime, exe), program.name)
+    for obj in objects:             # linked: the executable is what the cache keeps
+        obj.unlink()
     return exe
 
 
@@ -309,7 +524,7 @@ def _cached_build(program: Program) -> Path:
     # killed build leaves only a temporary folder, swept by a later run.
     tmp = Path(tempfile.mkdtemp(prefix=f"{TEMP_PREFIX}{os.getpid()}-", dir=host))
     try:
-        _compile_into(tmp, program)
+        _compile_into(tmp, program, runtime_cache_dir())
         try:
             os.rename(tmp, final)
         except OSError:

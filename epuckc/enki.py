@@ -26,8 +26,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Optional
 
-from .build import (GENERATED_CFLAGS, BuildError, Program, _capacity_defines, _run_compiler,
-                    c_compiler, host_build_key, prepare_sources)
+from .build import (BuildError, Program, _run_compiler, c_compiler, compile_objects,
+                    host_build_key, runtime_cache_dir, runtime_flags)
 from .resources import cache_dir, runtime_dir
 from .world import World, runner_spec
 
@@ -86,19 +86,15 @@ def build_robot(program: Program) -> Path:
     """The program as a robot of a world: a shared object, cached."""
     key = hashlib.sha256(("enki-robot\0" + host_build_key(program)).encode()).hexdigest()[:24]
     lib = cache_dir() / "enki" / key / f"{program.name}.so"
-    rt = runtime_dir()
 
     def produce(out: Path):
-        # as on the host: the user's C on its own, then the generated
-        # program and the runtime with -Werror
-        folder = out.parent
-        objects = prepare_sources(program, folder, ["-fPIC"])
-        program_c = [str(folder / f"{program.name}.c")] if program.generated else []
-        command = (c_compiler() + GENERATED_CFLAGS + _capacity_defines(program)
-                   + ["-fPIC", "-shared", f"-I{folder}"]
-                   + [f"-I{rt / inc}" for inc in ROBOT_INCLUDES]
-                   + program_c + [str(rt / src) for src in ROBOT_SOURCES]
-                   + [str(o) for o in objects]
+        # as on the host: the user's C on its own without -Werror, the
+        # generated program and the runtime with it, all at once; the
+        # runtime's objects (position-independent) kept for the next robot
+        objects, runtime = compile_objects(
+            program, out.parent, ROBOT_SOURCES, runtime_flags(program, ROBOT_INCLUDES, ["-fPIC"]),
+            runtime_cache_dir(), ["-fPIC"])
+        command = (c_compiler() + ["-shared"] + [str(o) for o in objects + runtime]
                    + ["-Wl,--wrap=" + ",--wrap=".join(WRAPPED), "-Wl,-Bsymbolic",
                       "-o", str(out), "-lm"])
         _run_compiler(command, f"{program.name} for the Enki world")

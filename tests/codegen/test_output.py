@@ -193,10 +193,10 @@ def test_full_cache_falls_back_to_a_temporary_folder(prog, tmp_path, monkeypatch
     monkeypatch.setenv("EPUCKC_CACHE_DIR", str(tmp_path / "cache"))
     real = build_module._compile_into
 
-    def full_in_cache(folder, program):
+    def full_in_cache(folder, program, *rest):
         if str(tmp_path / "cache") in str(folder):
             raise OutputError(f"cannot write {folder}/p.c: No space left on device")
-        return real(folder, program)
+        return real(folder, program, *rest)
     monkeypatch.setattr(build_module, "_compile_into", full_in_cache)
     program = load_program(prog, Report())
     with build_module.host_executable(program) as exe:
