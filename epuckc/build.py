@@ -22,7 +22,10 @@ from .output import (TEMP_PREFIX, OutputError, describe_os_error, is_stdout, pre
                      write_file)
 from .resources import cache_dir, runtime_dir
 
-HOST_CFLAGS = ["-std=c99", "-Wall", "-Wextra", "-pedantic", "-O2"]
+# -O1 as on the robot (the dspic Makefile; XC16's free edition stops there)
+# and in the sanitizer builds of the tests: the harness runs no slower than
+# at -O2 (virtual time, a poll a millisecond), and gcc takes 40% less time.
+HOST_CFLAGS = ["-std=c99", "-Wall", "-Wextra", "-pedantic", "-O1"]
 # The -Werror policy, the same on the host and the robot: the C epuckc
 # writes (the generated program, and on the host the runtime) is
 # warning-free by design, so a warning there is a bug in epuckc and fails the
