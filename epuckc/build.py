@@ -264,59 +264,129 @@ def compile_jobs() -> int:
         return max(1, os.cpu_count() or 1)
 
 
-def run_compile_steps(steps: list, jobs: Optional[int] = None) -> None:
-    """Run the steps, up to `jobs` compilers at once, each to its end.
-    Then, in the steps' order, the warnings of those that succeeded are
-    shown and the first that failed raises BuildError: the same message
-    whichever compiler finished first. An interruption (Ctrl-C, SIGTERM)
-    kills the compilers still running before it goes on."""
-    import threading
-    jobs = jobs or compile_jobs()
-    results = [None] * len(steps)
-    order = sorted(range(len(steps)), key=lambda i: -steps[i].size)
-    lock = threading.Lock()
-    running = []
-    stopped = False
+class _Job:
+    """One step given to a pool: its result is (status, stdout, stderr), or
+    the OSError that kept the compiler from starting; None if cancelled."""
 
-    def worker():
-        while True:
-            with lock:
-                if stopped or not order:
-                    return
-                i = order.pop(0)
+    def __init__(self, step: CompileStep, done):
+        self.step = step
+        self.done = done                # a threading.Event
+        self.result = None
+        self.proc = None
+        self.cancelled = False
+
+
+class CompilerPool:
+    """Runs compile steps on `jobs` worker threads, the biggest waiting step
+    first; a job can be waited for or cancelled (which kills its compiler).
+    The workers are daemon threads, idle when there is nothing to do."""
+
+    def __init__(self, jobs: int):
+        import threading
+        self._event = threading.Event
+        self._cond = threading.Condition()
+        self._waiting = []              # a heap of (-size, order, job)
+        self._order = 0
+        for _ in range(jobs):
+            threading.Thread(target=self._work, daemon=True).start()
+
+    def submit(self, step: CompileStep) -> _Job:
+        import heapq
+        job = _Job(step, self._event())
+        with self._cond:
+            self._order += 1
+            heapq.heappush(self._waiting, (-step.size, self._order, job))
+            self._cond.notify()
+        return job
+
+    def cancel(self, job: _Job) -> None:
+        """A job not started never starts; a running one is killed with the
+        processes it started (gcc's cc1 and as: its process group)."""
+        import signal
+        with self._cond:
+            job.cancelled = True
+            if job.proc is not None and job.proc.poll() is None:
                 try:
-                    proc = subprocess.Popen(steps[i].command, stdin=subprocess.DEVNULL,
-                                            stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                                            text=True, errors="replace")
-                except OSError as exc:
-                    results[i] = exc
-                    continue
-                running.append(proc)
-            out, err = proc.communicate()
-            results[i] = (proc.returncode, out, err)
+                    os.killpg(job.proc.pid, signal.SIGKILL)
+                except OSError:
+                    job.proc.kill()
 
-    threads = [threading.Thread(target=worker, daemon=True)
-               for _ in range(min(jobs, len(steps)))]
+    def _work(self):
+        import heapq
+        while True:
+            with self._cond:
+                while not self._waiting:
+                    self._cond.wait()
+                job = heapq.heappop(self._waiting)[2]
+                if job.cancelled:
+                    job.done.set()
+                    continue
+                try:
+                    # a process group of its own, so that cancel stops all of it
+                    job.proc = subprocess.Popen(job.step.command, stdin=subprocess.DEVNULL,
+                                                stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                                                text=True, errors="replace",
+                                                start_new_session=True)
+                except OSError as exc:
+                    job.result = exc
+                    job.done.set()
+                    continue
+            try:
+                out, err = job.proc.communicate()
+                job.result = (job.proc.returncode, out, err)
+            except Exception as exc:        # reported to whoever waits for it
+                job.result = OSError(str(exc))
+            job.done.set()
+
+
+_POOL = None
+
+
+def compiler_pool() -> CompilerPool:
+    """The process's pool: as many compilers at once as it has processors."""
+    global _POOL
+    if _POOL is None:
+        _POOL = CompilerPool(compile_jobs())
+    return _POOL
+
+
+def wait_jobs(jobs: list, pool: CompilerPool) -> list:
+    """The jobs' results, once all are done. An interruption (Ctrl-C,
+    SIGTERM) cancels them all, killing the compilers still running,
+    before it goes on."""
     try:
-        for t in threads:
-            t.start()
-        for t in threads:
-            t.join()
+        for job in jobs:
+            job.done.wait()
     except BaseException:
-        with lock:
-            stopped = True
-            for proc in running:
-                if proc.poll() is None:
-                    proc.kill()
-        for t in threads:
-            t.join(5)
+        cancel_jobs(jobs, pool)
         raise
+    return [job.result for job in jobs]
+
+
+def cancel_jobs(jobs: list, pool: CompilerPool) -> None:
+    """Cancel the jobs and wait until none of their compilers runs."""
+    for job in jobs:
+        pool.cancel(job)
+    for job in jobs:
+        if job.proc is not None:
+            try:
+                job.proc.wait(10)
+            except subprocess.TimeoutExpired:
+                pass
+
+
+def report_results(steps: list, results: list) -> None:
+    """In the steps' order, the warnings of those that succeeded are shown
+    and the first that failed raises BuildError: the same message
+    whichever compiler finished first."""
     for step, result in zip(steps, results):
         if isinstance(result, FileNotFoundError):
             raise _compiler_missing(step.command)
         if isinstance(result, OSError):
             raise BuildError(f"cannot run the C compiler `{step.command[0]}`: "
                              f"{result.strerror or result}")
+        if result is None:
+            raise BuildError(f"the C compiler was stopped before it built {step.what}")
         status, out, err = result
         if status == 0:
             if err:
@@ -325,6 +395,13 @@ def run_compile_steps(steps: list, jobs: Optional[int] = None) -> None:
         output = (out + err).rstrip()
         raise BuildError(f"the C compiler failed to build {step.what}:\n{output}\n"
                          f"command: {shlex.join(step.command)}{step.hint}")
+
+
+def run_compile_steps(steps: list, jobs: Optional[int] = None) -> None:
+    """Run the steps, each to its end, on the process's pool (or on a pool
+    of `jobs` workers); then report_results."""
+    pool = CompilerPool(jobs) if jobs else compiler_pool()
+    report_results(steps, wait_jobs([pool.submit(step) for step in steps], pool))
 
 
 def _include_hint(program: Program, source: Path) -> str:
@@ -375,32 +452,41 @@ def program_steps(program: Program, folder: Path, extra_flags=()) -> tuple:
     return steps, objects
 
 
+def runtime_objects_key(sources: list, flags: list) -> str:
+    """Everything the runtime's objects depend on: every runtime source and
+    header, which sources, the compiler (as a command and as a file) and
+    the flags."""
+    h = hashlib.sha256()
+    _add(h, "sources", "\n".join(sources).encode())
+    _add(h, "flags", "\n".join(c_compiler() + flags + BUILD_FLAGS).encode())
+    _add(h, "compiler", _compiler_identity().encode())
+    _add_runtime_sources(h)
+    return h.hexdigest()[:24]
+
+
 class RuntimeObjects:
     """The runtime's objects for one set of sources and flags.
 
-    With a cache folder they are kept there under a key made of everything
-    they depend on (every runtime source and header, the compiler, the
-    flags): a later build with the same runtime and capacities links them
-    without compiling. Missing, they are compiled (`steps`, run together
-    with the program's) into a temporary folder beside their place, which
-    `commit` renames into it in one step once every compiler succeeded;
-    `discard` removes it. Without a cache folder they are compiled into
+    With a cache folder they are kept there under runtime_objects_key: a
+    later build with the same runtime and capacities links them without
+    compiling. Missing, they are compiled (`start`, on the process's pool)
+    into a temporary folder beside their place, which `commit` renames into
+    it in one step once every compiler succeeded; `discard` stops the
+    compilers and removes it. Without a cache folder they are compiled into
     `folder` and not kept.
     """
 
-    def __init__(self, sources: list, flags: list, folder: Path, cache: Optional[Path]):
+    def __init__(self, sources: list, flags: list, folder: Optional[Path],
+                 cache: Optional[Path]):
         rt = runtime_dir()
         names = [src.replace("/", "_")[:-len(".c")] + ".o" for src in sources]
         self._tmp = None
-        self._final = None
+        self._jobs = None
+        self._pool = None
+        self.final = None
         if cache is not None:
-            h = hashlib.sha256()
-            _add(h, "sources", "\n".join(sources).encode())
-            _add(h, "flags", "\n".join(c_compiler() + flags + BUILD_FLAGS).encode())
-            _add(h, "compiler", _compiler_identity().encode())
-            _add_runtime_sources(h)
-            self._final = cache / h.hexdigest()[:24]
-            self.objects = [self._final / n for n in names]
+            self.final = cache / runtime_objects_key(sources, flags)
+            self.objects = [self.final / n for n in names]
             if all(o.is_file() for o in self.objects):
                 self.steps = []
                 return
@@ -416,13 +502,23 @@ class RuntimeObjects:
         if self._tmp is None:
             self.objects = built
 
+    def start(self) -> None:
+        """The compilers start (once), in the background."""
+        if self._jobs is None:
+            self._pool = compiler_pool()
+            self._jobs = [self._pool.submit(step) for step in self.steps]
+
+    def wait(self) -> list:
+        self.start()
+        return wait_jobs(self._jobs, self._pool)
+
     def commit(self) -> None:
         """Every step succeeded: the objects take their place in the cache
         (or a parallel build's, identical, stay there)."""
         if self._tmp is None:
             return
         try:
-            os.rename(self._tmp, self._final)
+            os.rename(self._tmp, self.final)
         except OSError:
             if not all(o.is_file() for o in self.objects):
                 raise
@@ -430,9 +526,54 @@ class RuntimeObjects:
             self.discard()
 
     def discard(self) -> None:
+        """Stop the compilers still running; remove the temporary folder."""
+        if self._jobs is not None:
+            cancel_jobs(self._jobs, self._pool)
         if self._tmp is not None:
             shutil.rmtree(self._tmp, ignore_errors=True)
             self._tmp = None
+
+
+# Runtime objects whose compilers were started before the program was known
+# (start_host_runtime), by their place in the cache.
+_STARTED = {}
+
+
+def start_host_runtime(generated: bool, max_actions: Optional[int],
+                       max_events: Optional[int]) -> None:
+    """Start compiling the host runtime in the background for a program
+    without user C (a rule file with no `extern`, or hand-written C), while
+    the front end checks and lowers it; the build that follows takes these
+    objects when its flags are the same. A cache that cannot be used, or
+    objects already there, start nothing; stop_started_runtime ends what
+    no build took."""
+    guess = Program("", "", Path("."), [], max_actions, max_events, generated=generated)
+    try:
+        runtime = RuntimeObjects(HOST_SOURCES, runtime_flags(guess), None, runtime_cache_dir())
+    except (OSError, OutputError):
+        return
+    if runtime.steps and runtime.final not in _STARTED:
+        runtime.start()
+        _STARTED[runtime.final] = runtime
+    else:
+        runtime.discard()
+
+
+def stop_started_runtime() -> None:
+    """Stop the compilers that start_host_runtime started and no build took,
+    and remove their folder."""
+    while _STARTED:
+        _STARTED.popitem()[1].discard()
+
+
+def _runtime_objects(sources: list, flags: list, folder: Path,
+                     cache: Optional[Path]) -> RuntimeObjects:
+    """Those already started for these flags, else new ones."""
+    if cache is not None and _STARTED:
+        started = _STARTED.pop(cache / runtime_objects_key(sources, flags), None)
+        if started is not None:
+            return started
+    return RuntimeObjects(sources, flags, folder, cache)
 
 
 def compile_objects(program: Program, folder: Path, runtime_sources: list, runtime_flags: list,
@@ -443,9 +584,12 @@ def compile_objects(program: Program, folder: Path, runtime_sources: list, runti
     program's and the user's objects, in `folder`; the runtime's). Nothing
     of a failed build is kept."""
     steps, objects = program_steps(program, folder, extra_flags)
-    runtime = RuntimeObjects(runtime_sources, runtime_flags, folder, runtime_cache)
+    runtime = _runtime_objects(runtime_sources, runtime_flags, folder, runtime_cache)
     try:
-        run_compile_steps(steps + runtime.steps)
+        runtime.start()
+        pool = compiler_pool()
+        own = wait_jobs([pool.submit(step) for step in steps], pool)
+        report_results(steps + runtime.steps, own + runtime.wait())
         runtime.commit()
     finally:
         runtime.discard()
@@ -552,6 +696,12 @@ class host_executable:
 
     def __enter__(self) -> Path:
         try:
+            return self._build()
+        finally:
+            stop_started_runtime()      # no build takes them now
+
+    def _build(self) -> Path:
+        try:
             return _cached_build(self.program)
         except (OSError, OutputError) as exc:
             reason = str(exc) if isinstance(exc, OutputError) else \
@@ -567,8 +717,12 @@ class host_executable:
                                                "create a temporary folder in")) from None
         try:
             return _compile_into(self._tmp, self.program)
-        except OutputError as exc:
-            raise BuildError(str(exc)) from None
+        except BaseException as exc:
+            # __exit__ is not called when __enter__ fails
+            shutil.rmtree(self._tmp, ignore_errors=True)
+            if isinstance(exc, OutputError):
+                raise BuildError(str(exc)) from None
+            raise
 
     def __exit__(self, *exc_info):
         if self._tmp is not None:

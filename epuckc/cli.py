@@ -226,6 +226,19 @@ def cmd_run(args) -> int:
                                           time_limit_ms=args.time_limit, trace=args.trace)
                 except OSError:
                     pass        # gone since: build it again below
+    from .build import start_host_runtime, stop_started_runtime
+    # The runtime compiles on the other processors while the front end
+    # works, when its flags can be told now: no user C can change them.
+    if not wants_world and (path.suffix == ".c" or (data is not None and b"extern" not in data)):
+        start_host_runtime(path.suffix != ".c", args.max_actions, args.max_events)
+    try:
+        return _load_and_run(args, path, key, data, wants_world)
+    finally:
+        stop_started_runtime()      # what no build took (an error, a build found in the cache)
+
+
+def _load_and_run(args, path: Path, key, data, wants_world: bool) -> int:
+    from . import runcache, world_cli
     from .build import BuildError
     from .diagnostics import Report, render_report
     from .driver import run_host

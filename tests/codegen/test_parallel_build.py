@@ -270,3 +270,121 @@ def test_a_build_in_a_temporary_folder_keeps_no_runtime_objects(tmp_path):
     assert result.returncode == 0, result.stderr
     assert "building in a temporary folder" in result.stderr
     assert list(tmpdir.iterdir()) == []
+
+
+# ---- the runtime started before the program is known -------------------------------------
+
+def _slow_cc(tmp_path: Path) -> tuple:
+    """A C compiler that waits 30 s in a process of its own (as gcc runs cc1),
+    then runs cc; both process ids are recorded."""
+    cc = require_tool("cc")
+    pids = tmp_path / "pids"
+    wrapper = tmp_path / "slowcc"
+    wrapper.write_text(f"#!/bin/sh\necho $$ >> '{pids}'\nsleep 30 &\necho $! >> '{pids}'\n"
+                       f"wait $!\nexec '{cc}' \"$@\"\n")
+    wrapper.chmod(wrapper.stat().st_mode | stat.S_IXUSR)
+    return wrapper, pids
+
+
+def _alive(pid: int) -> bool:
+    try:
+        with open(f"/proc/{pid}/stat") as f:
+            return f.read().rsplit(")", 1)[1].split()[0] not in ("Z", "X")
+    except OSError:
+        return False
+
+
+def _all_gone(pids: Path) -> bool:
+    import time
+    numbers = [int(n) for n in pids.read_text().split()] if pids.exists() else []
+    deadline = time.time() + 5
+    while time.time() < deadline and any(_alive(n) for n in numbers):
+        time.sleep(0.05)
+    return not any(_alive(n) for n in numbers)
+
+
+def test_a_rule_file_with_errors_stops_the_runtime_started_for_it(tmp_path):
+    """The runtime starts compiling while the file is checked; an error
+    stops those compilers at once and keeps nothing of theirs."""
+    cc, pids = _slow_cc(tmp_path)
+    bad = _write(tmp_path, "bad.epk", "on immediate do nothing_such\n")
+    cache = tmp_path / "cache"
+    result = epuckc("run", bad, env={"EPUCKC_CACHE_DIR": str(cache), "CC": str(cc)})
+    assert result.returncode == 1 and "E011" in result.stderr, result.stderr
+    assert _all_gone(pids)
+    assert _entries(cache / "runtime") == []
+
+
+def test_started_runtime_compilers_run_until_stopped(tmp_path, monkeypatch):
+    import time
+    cc, pids = _slow_cc(tmp_path)
+    cache = tmp_path / "cache"
+    monkeypatch.setenv("EPUCKC_CACHE_DIR", str(cache))
+    monkeypatch.setenv("CC", str(cc))
+    build_module.start_host_runtime(True, None, None)
+    try:
+        [started] = build_module._STARTED.values()
+        assert started.final.parent == cache / "runtime"
+        deadline = time.time() + 20
+        while time.time() < deadline and not (pids.exists() and pids.read_text().strip()):
+            time.sleep(0.05)
+        assert pids.exists(), "no compiler started"
+        assert len(_entries(cache / "runtime")) == 1       # its temporary folder
+    finally:
+        build_module.stop_started_runtime()
+    assert build_module._STARTED == {}
+    assert _all_gone(pids)
+    assert _entries(cache / "runtime") == []
+
+
+def test_the_runtime_started_is_the_one_the_build_takes(tmp_path):
+    """A rule file without `extern`, and hand-written C: each runtime source
+    is compiled once, whether started early or not."""
+    cc, log = _logging_cc(tmp_path)
+    env = {"CC": str(cc)}
+    prog = _write(tmp_path, "p.epk", PROGRAM)
+    epuckc("run", prog, env={**env, "EPUCKC_CACHE_DIR": str(tmp_path / "a")}, check=True)
+    assert _compiled(log) == ["epuck_stub.c", "epuckrt.c", "p.c", "platform_host.c"]
+    fig2 = tmp_path / "fig2.c"
+    fig2.write_text((REPO / "tests" / "runtime" / "paper_fig2.c").read_text())
+    epuckc("run", fig2, env={**env, "EPUCKC_CACHE_DIR": str(tmp_path / "b")}, check=True)
+    assert _compiled(log) == ["epuck_stub.c", "epuckrt.c", "fig2.c", "platform_host.c"]
+
+
+def test_a_build_found_in_the_cache_stops_the_runtime_started(tmp_path):
+    """The input cache misses (here: emptied) but the executable is in the
+    build cache: the runtime started early is stopped before the program
+    runs, and not kept."""
+    prog = _write(tmp_path, "p.epk", PROGRAM)
+    cache = tmp_path / "cache"
+    env = {"EPUCKC_CACHE_DIR": str(cache)}
+    first = epuckc("run", prog, env=env, check=True)
+    for folder in ("run", "runtime"):
+        shutil.rmtree(cache / folder)
+    again = epuckc("run", prog, env=env, check=True)
+    assert again.stdout == first.stdout
+    assert _entries(cache / "runtime") == []
+
+
+def test_sigterm_while_compiling_kills_the_compilers_and_keeps_nothing(tmp_path):
+    """SIGTERM during the build: every compiler (with the processes it
+    started) is killed, and no temporary folder stays in the cache."""
+    import signal
+    import subprocess
+    import time
+    cc, pids = _slow_cc(tmp_path)
+    prog = _write(tmp_path, "p.epk", PROGRAM)
+    cache = tmp_path / "cache"
+    env = dict(os.environ, PYTHONPATH=str(REPO), EPUCKC_CACHE_DIR=str(cache), CC=str(cc))
+    proc = subprocess.Popen([sys.executable, "-m", "epuckc", "run", str(prog)], env=env,
+                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    deadline = time.time() + 60
+    while time.time() < deadline and not (pids.exists() and pids.read_text().strip()):
+        time.sleep(0.05)
+    time.sleep(0.3)
+    proc.send_signal(signal.SIGTERM)
+    _, err = proc.communicate(timeout=20)
+    assert proc.returncode != 0 and "Traceback" not in err, err
+    assert _all_gone(pids)
+    for folder in ("host", "runtime"):
+        assert _entries(cache / folder) == [], folder
