@@ -172,13 +172,23 @@ def cmd_compile(args) -> int:
 
 
 def cmd_build(args) -> int:
-    from .build import BuildError
-    from .driver import build
-    from .output import OutputError, describe_os_error, is_stdout
+    from .output import is_stdout
     if args.output is not None and is_stdout(args.output):
         _error("`build -o -`: build writes a folder (the executable and its C, or the dspic "
                "project); `-o -` is for `epuckc compile`")
         return EXIT_USAGE
+    if args.target == "host":
+        _start_runtime_early(Path(args.file), None, args)
+    try:
+        return _load_and_build(args)
+    finally:
+        _stop_runtime_started()
+
+
+def _load_and_build(args) -> int:
+    from .build import BuildError
+    from .driver import build
+    from .output import OutputError, describe_os_error
     program, status = _load(args)
     if program is None:
         return status
@@ -226,15 +236,33 @@ def cmd_run(args) -> int:
                                           time_limit_ms=args.time_limit, trace=args.trace)
                 except OSError:
                     pass        # gone since: build it again below
-    from .build import start_host_runtime, stop_started_runtime
-    # The runtime compiles on the other processors while the front end
-    # works, when its flags can be told now: no user C can change them.
-    if not wants_world and (path.suffix == ".c" or (data is not None and b"extern" not in data)):
-        start_host_runtime(path.suffix != ".c", args.max_actions, args.max_events)
+    if not wants_world:
+        _start_runtime_early(path, data, args)
     try:
         return _load_and_run(args, path, key, data, wants_world)
     finally:
-        stop_started_runtime()      # what no build took (an error, a build found in the cache)
+        _stop_runtime_started()
+
+
+def _start_runtime_early(path: Path, data, args) -> None:
+    """The host runtime compiles on the other processors while the front
+    end works, when its flags can be told now: for hand-written C, and for
+    a rule file without `extern` (no user C can change the capacities)."""
+    if path.suffix != ".c":
+        try:
+            data = path.read_bytes() if data is None else data
+        except OSError:
+            return              # the front end says why
+        if b"extern" in data:
+            return
+    from .build import start_host_runtime
+    start_host_runtime(path.suffix != ".c", args.max_actions, args.max_events)
+
+
+def _stop_runtime_started() -> None:
+    """What no build took (an error in the file, a build found in the cache)."""
+    from .build import stop_started_runtime
+    stop_started_runtime()
 
 
 def _load_and_run(args, path: Path, key, data, wants_world: bool) -> int:

@@ -388,3 +388,20 @@ def test_sigterm_while_compiling_kills_the_compilers_and_keeps_nothing(tmp_path)
     assert _all_gone(pids)
     for folder in ("host", "runtime"):
         assert _entries(cache / folder) == [], folder
+
+
+def test_build_for_the_host_starts_the_runtime_early_too(tmp_path):
+    """`epuckc build`: each runtime source compiled once; an output that is
+    refused stops what was started."""
+    cc, log = _logging_cc(tmp_path)
+    cache = tmp_path / "cache"
+    env = {"CC": str(cc), "EPUCKC_CACHE_DIR": str(cache)}
+    prog = _write(tmp_path, "p.epk", PROGRAM)
+    epuckc("build", prog, "-o", tmp_path / "out", env=env, check=True)
+    assert _compiled(log) == ["epuck_stub.c", "epuckrt.c", "p.c", "platform_host.c"]
+    assert os.access(tmp_path / "out" / "p", os.X_OK)
+    shutil.rmtree(cache / "runtime")
+    (tmp_path / "a-file").write_text("")
+    refused = epuckc("build", prog, "-o", tmp_path / "a-file", env=env)
+    assert refused.returncode == 2 and "a-file" in refused.stderr, refused.stderr
+    assert _entries(cache / "runtime") == []
