@@ -223,8 +223,8 @@ def runtime_flags(program: Program, includes=HOST_INCLUDES, extra_flags=()) -> l
             + [f"-I{rt / inc}" for inc in includes])
 
 
-def host_link_command(objects: list, output: Path, extra_flags=()) -> list:
-    return c_compiler() + list(extra_flags) + [str(o) for o in objects] + ["-o", str(output), "-lm"]
+def host_link_command(objects: list, output: Path) -> list:
+    return c_compiler() + [str(o) for o in objects] + ["-o", str(output), "-lm"]
 
 
 def _compiler_missing(command: list) -> BuildError:
@@ -520,8 +520,9 @@ class RuntimeObjects:
         try:
             os.rename(self._tmp, self.final)
         except OSError:
-            if not all(o.is_file() for o in self.objects):
-                raise
+            if not all(o.is_file() for o in self.objects):     # nor a parallel build's
+                shutil.rmtree(self.final, ignore_errors=True)
+                os.rename(self._tmp, self.final)
         finally:
             self.discard()
 

@@ -405,3 +405,20 @@ def test_build_for_the_host_starts_the_runtime_early_too(tmp_path):
     refused = epuckc("build", prog, "-o", tmp_path / "a-file", env=env)
     assert refused.returncode == 2 and "a-file" in refused.stderr, refused.stderr
     assert _entries(cache / "runtime") == []
+
+
+def test_an_incomplete_runtime_entry_is_rebuilt(tmp_path):
+    """Objects missing from a runtime entry (removed by hand): compiled
+    again and the entry replaced, not an unusable cache."""
+    prog = _write(tmp_path, "p.epk", PROGRAM)
+    cache = tmp_path / "cache"
+    env = {"EPUCKC_CACHE_DIR": str(cache)}
+    epuckc("run", prog, env=env, check=True)
+    [key] = _entries(cache / "runtime")
+    (cache / "runtime" / key / "epuckrt.o").unlink()
+    shutil.rmtree(cache / "host")
+    shutil.rmtree(cache / "run")
+    result = epuckc("run", prog, env=env, check=True)
+    assert "temporary folder" not in result.stderr
+    assert _entries(cache / "runtime") == [key]
+    assert (cache / "runtime" / key / "epuckrt.o").is_file()
