@@ -73,16 +73,14 @@ def _sh(script: str, size: int = 0, what: str = "") -> CompileStep:
     return CompileStep(["/bin/sh", "-c", script], what or script, "", size)
 
 
-def test_steps_run_at_once():
+def test_steps_run_at_once(tmp_path):
     """Two steps that each wait for the other's file finish only if they run
     at the same time."""
     require_tool("sh")
-    import tempfile
-    with tempfile.TemporaryDirectory() as tmp:
-        a, b = Path(tmp) / "a", Path(tmp) / "b"
-        wait = "i=0; while [ ! -e {0} ] && [ $i -lt 100 ]; do sleep 0.05; i=$((i+1)); done; [ -e {0} ]"
-        run_compile_steps([_sh(f"touch {a}; " + wait.format(b)),
-                           _sh(f"touch {b}; " + wait.format(a))], jobs=2)
+    a, b = tmp_path / "a", tmp_path / "b"
+    wait = "i=0; while [ ! -e {0} ] && [ $i -lt 100 ]; do sleep 0.05; i=$((i+1)); done; [ -e {0} ]"
+    run_compile_steps([_sh(f"touch {a}; " + wait.format(b)),
+                       _sh(f"touch {b}; " + wait.format(a))], jobs=2)
 
 
 def test_the_first_failing_step_in_order_is_reported_whichever_fails_first(capsys):
