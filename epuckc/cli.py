@@ -507,10 +507,20 @@ _COMMANDS = {"check": _check_parser, "explain": _explain_parser, "fmt": _fmt_par
              "run": _run_parser, "plot": _plot_parser}
 
 
+def _signal_module():
+    # `signal` is `_signal` with its numbers made enums, which costs ~1 ms
+    # of every command to import; these two calls need only the numbers.
+    try:
+        import _signal as signal
+    except ImportError:         # an interpreter without it
+        import signal
+    return signal
+
+
 def _terminate_cleanly():
     """SIGTERM (a `kill`, a CI timeout) unwinds like Ctrl-C, so temporary
     files and folders are removed on the way out."""
-    import signal
+    signal = _signal_module()
 
     def handler(signum, frame):
         raise SystemExit(128 + signum)
@@ -521,7 +531,7 @@ def _terminate_cleanly():
 
 
 def _restore_sigterm(previous):
-    import signal
+    signal = _signal_module()
     if previous is not None:
         signal.signal(signal.SIGTERM, previous)
 
