@@ -44,9 +44,25 @@ def _code(text: str) -> str:
     return f"`{text}`"
 
 
-def _commands_motors(checker, steps) -> bool:
-    return any(call.kind == "standard" and call.name in MOTOR_ACTIONS
-               for step in flat_steps(checker, steps) for call in step)
+def _commands_motors(checker, steps, named: dict) -> bool:
+    """Whether `steps` call a motor action, themselves or through the named
+    actions they use; `named` memoises the answer of each named action
+    (from its steps spliced as lowering splices them)."""
+    for step in steps:
+        for call in step:
+            kind = call.kind
+            if kind == "standard":
+                if call.name in MOTOR_ACTIONS:
+                    return True
+            elif kind == "named":
+                found = named.get(call.name)
+                if found is None:
+                    found = named[call.name] = any(
+                        c.kind == "standard" and c.name in MOTOR_ACTIONS
+                        for spliced in flat_steps(checker, [[call]]) for c in spliced)
+                if found:
+                    return True
+    return False
 
 
 def _timer_meets(a, b) -> bool:
@@ -130,12 +146,14 @@ def _never_fires(checker, rule) -> bool:
 
 
 def check_program(checker, out) -> None:
+    named: dict = {}
     motor_rules = [r for r in out.rules
-                   if _commands_motors(checker, r.body) and not _never_fires(checker, r)]
+                   if _commands_motors(checker, r.body, named) and not _never_fires(checker, r)]
     reported = 0
     more = 0
     for i, loser in enumerate(motor_rules):
-        for winner in motor_rules[i + 1:]:
+        for j in range(i + 1, len(motor_rules)):    # (no slice: a copy per rule)
+            winner = motor_rules[j]
             if winner.priority != loser.priority or not can_fire_together(loser, winner):
                 continue
             if reported == MAX_REPORTS:

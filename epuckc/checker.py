@@ -403,6 +403,58 @@ class Checker:
 
     # -- values --
 
+    def _plain(self, value, kind: str, lo: Optional[int] = None,
+               hi: Optional[int] = None) -> Optional[int]:
+        """The runtime integer of `value` where `kind` is wanted (lo..hi:
+        the range of a whole number), when `value` is the common case: a
+        number, without a unit or with one of the kind, that converts
+        with nothing to say. None sends it the general way (`_value`, then
+        `_to_runtime` or the caller's own range check), which reports
+        what is wrong; this is that way without the Quantity, with the same
+        float operations, so both give the same integer
+        (tests/frontend/test_plain_numbers.py)."""
+        if value.__class__ is not ast.Number:
+            return None
+        number = value.value
+        if not abs(number) < 1e12:
+            return None
+        unit = value.unit
+        in_steps = False
+        if unit is None:
+            if kind == SPEED:
+                in_steps = True
+            elif kind == DURATION and 0 < number < BARE_DURATION_WARNING:
+                return None                 # W008
+        else:
+            found = UNITS.get(unit)
+            if found is None or found[0] != kind:
+                return None
+            factor = found[1]
+            if factor is None:
+                in_steps = True
+            else:
+                number = number * factor
+        if kind == INT:
+            if number != int(number):
+                return None
+            v = int(number)
+            if INT16_MIN <= v <= INT16_MAX and (lo is None or lo <= v <= hi):
+                return v
+            return None
+        if kind == DISTANCE:
+            v = round_nearest(number if in_steps else number / self.geo.step_mm)
+            return v if INT16_MIN <= v <= INT16_MAX else None
+        if kind == SPEED:
+            v = round_nearest(number if in_steps else number / self.geo.step_mm)
+            return v if abs(v) <= self.geo.max_speed else None
+        if kind == ANGLE:
+            v = round_nearest(number)
+            return v if INT16_MIN <= v <= INT16_MAX else None
+        if kind == DURATION:
+            v = round_nearest(number)
+            return v if 0 < v <= INT32_MAX else None
+        return None                         # CHOICE: names, the general way
+
     def _value(self, value, kind: str, param: str) -> Optional[Quantity]:
         """The quantity a value denotes where `kind` is wanted, or None after
         reporting why it cannot be one."""
@@ -563,6 +615,28 @@ class Checker:
     def _bind(self, call_name: ast.Ident, args, params, what: str) -> Optional[dict]:
         """Match arguments to parameters: positional in the paper's order,
         then named. Returns parameter name -> argument node, or None."""
+        if not args:
+            if not params:
+                return {}
+        elif len(args) == len(params):
+            # The common case first: each parameter given once, the
+            # positional arguments before the named ones. Anything else
+            # takes the general way below, which says what is wrong.
+            bound: dict = {}
+            named = False
+            for p, arg in zip(params, args):
+                cls = arg.__class__
+                if cls is ast.PositionalArg and not named:
+                    bound[p.name] = arg
+                elif cls is ast.NamedArg:
+                    named = True
+                    bound[arg.name.name] = arg
+                else:
+                    break
+            else:
+                if len(bound) == len(params) and (
+                        not named or all(p.name in bound for p in params)):
+                    return bound
         args = args or ()
         bound: dict = {}
         ok = True
@@ -630,6 +704,10 @@ class Checker:
         values, shown, ok = {}, {}, True
         for p in params:
             arg = bound[p.name]
+            v = self._plain(arg.value, p.kind, p.lo, p.hi)
+            if v is not None:
+                values[p.name], shown[p.name] = v, _shown(arg.value)
+                continue
             if p.kind == CHOICE:
                 choice = self._choice(arg.value, p)
                 if choice is None:
@@ -736,6 +814,9 @@ class Checker:
         """A rule's priority: a whole number 0..PRIORITY_MAX, 0 without one."""
         if value is None:
             return 0
+        priority = self._plain(value, INT, 0, PRIORITY_MAX)
+        if priority is not None:
+            return priority
         q = self._value(value, INT, "priority")
         if q is None or not self._whole(value, q.value):
             return None
@@ -951,6 +1032,10 @@ class Checker:
                 ok = False
                 continue
             seen[index] = arg
+            threshold = self._plain(arg.value, INT, 0, THRESHOLD_MAX)
+            if threshold is not None:
+                conditions.append((index, arg.op, threshold))
+                continue
             q = self._value(arg.value, INT, "threshold")
             if q is None or not self._whole(arg.value, q.value):
                 ok = False
