@@ -407,12 +407,21 @@ class Checker:
                hi: Optional[int] = None) -> Optional[int]:
         """The runtime integer of `value` where `kind` is wanted (lo..hi:
         the range of a whole number), when `value` is the common case: a
-        number, without a unit or with one of the kind, that converts
-        with nothing to say. None sends it the general way (`_value`, then
-        `_to_runtime` or the caller's own range check), which reports
-        what is wrong; this is that way without the Quantity, with the same
-        float operations, so both give the same integer
-        (tests/frontend/test_plain_numbers.py)."""
+        number (or a constant that is one), without a unit or with one of
+        the kind, that converts with nothing to say. None sends it the
+        general way (`_value`, then `_to_runtime` or the caller's own range
+        check), which reports what is wrong; this is that way without the
+        Quantity, with the same float operations, so both give the same
+        integer (tests/frontend/test_plain_numbers.py)."""
+        negative = False
+        if value.__class__ is ast.ConstRef:
+            name = value.name.name
+            if name not in self.consts:
+                return None
+            number_node, negated, problem = self._const_chain(name)
+            if problem is not None:
+                return None
+            value, negative = number_node, negated != value.negative
         if value.__class__ is not ast.Number:
             return None
         number = value.value
@@ -434,6 +443,8 @@ class Checker:
                 in_steps = True
             else:
                 number = number * factor
+        if negative:                        # as _const_value negates the Quantity
+            number = -number
         if kind == INT:
             if number != int(number):
                 return None

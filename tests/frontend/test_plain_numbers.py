@@ -55,6 +55,28 @@ def test_plain_numbers_convert_as_the_general_path_does(value, unit, kind, bound
         assert type(fast) is int and type(expected) is int
 
 
+@settings(max_examples=1500, deadline=None)
+@given(numbers, units, st.sampled_from(KINDS), ranges, st.lists(st.booleans(), max_size=3),
+       st.booleans())
+def test_constants_convert_as_the_general_path_does(value, unit, kind, bounds, chain, negative):
+    """`-c` where `const c = -b`, `const b = a`, `const a = NUMBER`: the
+    signs along the chain and at the use, as _const_value applies them."""
+    checker = Checker(ast.Program("t.epk"), Collector(SourceFile("t.epk", "")))
+    lo, hi = bounds if kind == "int" else (None, None)
+    number = ast.Number(value, repr(value), unit, SPAN if unit else None, SPAN)
+    names = [f"c{i}" for i in range(len(chain) + 1)]
+    checker.consts[names[0]] = ast.ConstDef(ast.Ident(names[0], SPAN), number, SPAN)
+    for name, before, negated in zip(names[1:], names, chain):
+        ref = ast.ConstRef(ast.Ident(before, SPAN), negated, SPAN)
+        checker.consts[name] = ast.ConstDef(ast.Ident(name, SPAN), ref, SPAN)
+    use = ast.ConstRef(ast.Ident(names[-1], SPAN), negative, SPAN)
+    param = Param("p", kind, lo=lo, hi=hi)
+    fast = checker._plain(use, kind, lo, hi)
+    checker._const_memo.clear()
+    expected, said = general(checker, use, param)
+    assert fast == (None if said else expected)
+
+
 def test_the_fast_path_is_taken_for_the_common_cases():
     checker = Checker(ast.Program("t.epk"), Collector(SourceFile("t.epk", "")))
 
@@ -71,4 +93,9 @@ def test_the_fast_path_is_taken_for_the_common_cases():
     assert plain(2.0, "cm", "speed") is None            # E019
     assert plain(4096.0, None, "int", 0, 4095) is None  # out of range
     assert plain(1.5, None, "int") is None              # E038
-    assert checker._plain(ast.ConstRef(ast.Ident("c", SPAN), False, SPAN), "int") is None
+    c, minus_c = (ast.ConstRef(ast.Ident("c", SPAN), negative, SPAN) for negative in (False, True))
+    assert checker._plain(c, "int") is None                         # E013
+    checker.consts["c"] = ast.ConstDef(ast.Ident("c", SPAN), ast.Number(5.0, "5", "cm", SPAN, SPAN),
+                                       SPAN)
+    assert checker._plain(c, "distance") == 388
+    assert checker._plain(minus_c, "distance") == -388
