@@ -130,25 +130,26 @@ def event_text(call) -> str:
     return f"{call.name.name}({', '.join(args)})"
 
 
-def _never_fires(checker, rule) -> bool:
-    """The rules W001..W003 report: they race with nothing."""
-    event = rule.event
-    if event.kind != "standard":
-        return False
-    if event.name == "sensor":
-        return "start_sensor" not in checker.called
-    if event.name == "timer":
-        return "set_timer" not in checker.called
-    if event.name == "stop_motor":
-        return not (checker.called & MOTION_ACTIONS) and not any(
-            e.kind == "action" for e in checker.externs.values())
-    return False
+def _events_that_never_occur(checker) -> set:
+    """The standard events of the rules W001..W003 report: they race with
+    nothing."""
+    never = set()
+    if "start_sensor" not in checker.called:
+        never.add("sensor")
+    if "set_timer" not in checker.called:
+        never.add("timer")
+    if not (checker.called & MOTION_ACTIONS) and not any(
+            e.kind == "action" for e in checker.externs.values()):
+        never.add("stop_motor")
+    return never
 
 
 def check_program(checker, out) -> None:
     named: dict = {}
+    never = _events_that_never_occur(checker)
     motor_rules = [r for r in out.rules
-                   if _commands_motors(checker, r.body, named) and not _never_fires(checker, r)]
+                   if _commands_motors(checker, r.body, named)
+                   and not (r.event.kind == "standard" and r.event.name in never)]
     reported = 0
     more = 0
     for i, loser in enumerate(motor_rules):

@@ -92,7 +92,8 @@ def check_program(checker, out, complete: bool = True) -> None:
     for name, node in checker.rule_names.items():
         rule_mode[name] = node.mode.name if node.mode else None
     entered = set()
-    for body in list(checker._resolved_actions.values()) + [r.body for r in out.rules]:
+    for body in (list(checker._resolved_actions.values()) + [r.body for r in out.rules]
+                 if checker.modes else ()):
         for step in body:
             for call in step:
                 if call.kind == "enter":

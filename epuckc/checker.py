@@ -985,10 +985,11 @@ class Checker:
     def _event(self, call: ast.Call) -> Optional[ResolvedEvent]:
         name = call.name.name
         canonical = EVENT_ALIASES.get(name, name)
-        if canonical in STANDARD_EVENTS and STANDARD_EVENTS[canonical].params is None:
+        spec = STANDARD_EVENTS.get(canonical)
+        if spec is not None and spec.params is None:
             return self._sensor(call, canonical)
-        if canonical in STANDARD_EVENTS:
-            params = STANDARD_EVENTS[canonical].params
+        if spec is not None:
+            params = spec.params
             bound = self._bind(call.name, call.args, params, "event")
             converted = self._convert(bound, params) if bound is not None else None
             if converted is None:
@@ -1071,6 +1072,8 @@ class Checker:
                            "add `set_timer` to an action, e.g. `on immediate do set_timer`"),
                  "sensor": ("start_sensor", "W002", "no action runs `start_sensor`",
                             "add `start_sensor` to an action, e.g. `on immediate do start_sensor`")}
+        no_motion = complete and not (self.called & MOTION_ACTIONS) \
+            and not any(e.kind == "action" for e in self.externs.values())
         for rule in out.rules:
             event, node = rule.event, rule.node
             if event.kind != "standard":
@@ -1081,8 +1084,7 @@ class Checker:
                     self.diags.warning(code, node.event.span, f"this rule can never fire: {why}",
                                        help=fix)
             elif event.name == "stop_motor":
-                if complete and not (self.called & MOTION_ACTIONS) \
-                        and not any(e.kind == "action" for e in self.externs.values()):
+                if no_motion:
                     self.diags.warning("W003", node.event.span,
                                        "this rule can never fire: no action starts a motion",
                                        help="`stop_motor` fires when a `start_straight` or "

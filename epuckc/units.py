@@ -41,7 +41,8 @@ def describe_kind(kind: str) -> str:
 
 def round_nearest(x: float) -> int:
     """Round half away from zero, as the runtime's integer conversions do."""
-    return int(math.floor(abs(x) + 0.5)) * (1 if x >= 0 else -1)
+    n = math.floor(abs(x) + 0.5)        # an int
+    return n if x >= 0 else -n
 
 
 @record(frozen=True)
