@@ -31,6 +31,7 @@ DEFAULT_CAPACITY = 32      # frontend.py passes the runtime header's MAX_ACTIONS
 # likely meant in seconds (`timer(2)`), and W008 says so.
 BARE_DURATION_WARNING = 100
 PRIORITY_MAX = 255         # `priority N`: 0 (the default) .. 255
+_SENSOR_INDEX = {name: index for index, name in enumerate(SENSOR_NAMES)}    # ir0 -> 0
 
 
 # ---- the checked program ------------------------------------------------------
@@ -205,7 +206,10 @@ class Checker:
             return True
 
         for stmt in self.program.statements:
-            if isinstance(stmt, ast.ConstDef):
+            if isinstance(stmt, ast.Rule):          # the most of them, first
+                if stmt.name is not None and claim("rule", stmt.name, "rule"):
+                    self.rule_names[stmt.name.name] = stmt
+            elif isinstance(stmt, ast.ConstDef):
                 if claim("const", stmt.name, "constant"):
                     self.consts[stmt.name.name] = stmt
             elif isinstance(stmt, ast.ActionDef):
@@ -215,9 +219,6 @@ class Checker:
                     self.actions[stmt.name.name] = stmt
             elif isinstance(stmt, ast.ExternDef):
                 self._extern(stmt, claim)
-            elif isinstance(stmt, ast.Rule) and stmt.name is not None:
-                if claim("rule", stmt.name, "rule"):
-                    self.rule_names[stmt.name.name] = stmt
         check_modes.declare(self, claim)
 
     def _clashes_with_standard(self, ident: ast.Ident, namespace: str) -> bool:
@@ -1022,7 +1023,6 @@ class Checker:
                              help=f"write e.g. `{event}(ir0 > 300, ir7 > 300)`")
             return None
         conditions, seen, ok = [], {}, True
-        sensors = SENSOR_NAMES
         for arg in call.args:
             if not isinstance(arg, ast.ConditionArg):
                 self.diags.error("E024", arg.span, f"`{event}` takes conditions such as `ir0 > 300`",
@@ -1030,13 +1030,13 @@ class Checker:
                 ok = False
                 continue
             sensor = arg.sensor.name
-            if sensor not in sensors:
+            index = _SENSOR_INDEX.get(sensor)
+            if index is None:
                 self.diags.error("E031", arg.sensor.span, f"unknown sensor {_code(sensor)}",
-                                 help=_then(did_you_mean(arg.sensor, sensors),
+                                 help=_then(did_you_mean(arg.sensor, SENSOR_NAMES),
                                             "the e-puck's proximity sensors are ir0..ir7"))
                 ok = False
                 continue
-            index = int(sensor[2:])
             if index in seen:
                 self.diags.error("E025", arg.span, f"{_code(sensor)} is listed twice",
                                  help="each sensor has one threshold; keep one condition",
