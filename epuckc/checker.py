@@ -15,7 +15,6 @@ from pathlib import Path
 from typing import Optional
 
 from . import ast, check_arbitration, check_modes
-from .cnames import extern_name_problem, parameter_name_problem
 from .diagnostics import Collector, Fix, Note
 from .records import field, record
 from .resources import runtime_dir
@@ -232,6 +231,8 @@ class Checker:
         return False
 
     def _extern(self, stmt: ast.ExternDef, claim):
+        # only for externs: a program without them is checked without it
+        from .cnames import extern_name_problem, parameter_name_problem
         if self._clashes_with_standard(stmt.name, stmt.kind):
             return
         # an extern is a C function of exactly this name, its parameters the
@@ -518,6 +519,13 @@ class Checker:
         A loop, not recursion, so a chain of thousands of constants is
         fine; memoised, so each constant is followed once per file."""
         memo = self._const_memo
+        if name in memo:
+            return memo[name]
+        value = self.consts[name].value
+        if isinstance(value, ast.Number):       # most constants: the loop's first step
+            self.const_used.add(name)
+            memo[name] = (value, False, None)
+            return memo[name]
         path = []                   # (name, the ConstRef that led on from it)
         negated = False
         current = name

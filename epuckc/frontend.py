@@ -77,7 +77,9 @@ def check_file(path: Path, report: Report, shown_name: Optional[str] = None,
                     help="save the file as UTF-8 text; rule files are plain text (.epk)")
         report.extend(diags.items)
         return FrontEndResult(source, None)
-    default_actions, default_events = runtime_capacity()
+    # the runtime header's defaults, read only when they are needed
+    max_actions = max_actions or runtime_capacity()[0]
+    max_events = max_events or runtime_capacity()[1]
     # The AST has no reference cycles, and the cyclic garbage collector,
     # run again and again over a growing heap of nodes, doubled the time
     # of large files; it is paused while they are built.
@@ -87,8 +89,7 @@ def check_file(path: Path, report: Report, shown_name: Optional[str] = None,
         program = parse(source, diags)
         checked = check(program, diags,
                         base_dir=path.parent if text is None or path.exists() else None,
-                        max_actions=max_actions or default_actions,
-                        max_events=max_events or default_events)
+                        max_actions=max_actions, max_events=max_events)
     finally:
         if collecting:
             gc.enable()
