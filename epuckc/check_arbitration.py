@@ -76,19 +76,26 @@ def _timer_meets(a, b) -> bool:
     return once % every == 0
 
 
+def _at_first_poll_only(rule) -> bool:
+    """A one-shot `immediate` rule outside modes."""
+    return rule.event.name == "immediate" and not rule.repeat and rule.mode is None
+
+
 def can_fire_together(a, b) -> bool:
-    if a.mode is not None and b.mode is not None and a.mode != b.mode:
+    ma, mb = a.mode, b.mode
+    if ma is not None and mb is not None and ma != mb:
         return False
     ea, eb = a.event, b.event
     if ea.kind != "standard" or eb.kind != "standard":
         return True
-    for first, second in ((a, b), (b, a)):
-        if first.event.name == "immediate" and not first.repeat and first.mode is None \
-                and second.event.name in ("stop_motor", "timer"):
-            return False
-    if ea.name == "timer" and eb.name == "timer" and a.mode is None and b.mode is None:
+    na, nb = ea.name, eb.name
+    # (stop_motor and timer events cannot occur at the first poll)
+    if (nb in ("stop_motor", "timer") and _at_first_poll_only(a)) or (
+            na in ("stop_motor", "timer") and _at_first_poll_only(b)):
+        return False
+    if na == "timer" and nb == "timer" and ma is None and mb is None:
         return _timer_meets(a, b)
-    if a.mode is not None and a.mode == b.mode:
+    if ma is not None and ma == mb:
         for first, second in ((a, b), (b, a)):
             if first.event.name != "enter":
                 continue
