@@ -144,9 +144,9 @@ class Checker:
 
     def check(self) -> CheckedProgram:
         self._declare()
-        self._robot()
-        out = CheckedProgram(self.program.file, self.geo,
-                             robot_given=bool(self.program.of_type(ast.RobotBlock)))
+        robot_blocks = self.program.of_type(ast.RobotBlock)
+        self._robot(robot_blocks)
+        out = CheckedProgram(self.program.file, self.geo, robot_given=bool(robot_blocks))
         out.externs = self.externs
         self._resolve_actions(out)
         out.modes, out.initial_mode = list(self.modes), self.initial_mode
@@ -305,8 +305,7 @@ class Checker:
 
     # -- the robot block --
 
-    def _robot(self):
-        blocks = self.program.of_type(ast.RobotBlock)
+    def _robot(self, blocks: list):
         for extra in blocks[1:]:
             self.diags.error("E022", extra.span, "the robot is described twice",
                              help="merge the two `robot { ... }` blocks into one",
@@ -1116,7 +1115,7 @@ class Checker:
             if name not in self.const_used:
                 self.diags.warning("W007", node.name.span, f"constant {_code(name)} is never used",
                                    help="use it or remove it")
-        if not self.program.of_type(ast.Rule):
+        if not any(isinstance(s, ast.Rule) for s in self.program.statements):
             self.diags.warning("W006", Span(1, 1, 1, 1), "this program has no rules: it does nothing",
                                help="add a rule, e.g. `on immediate do start_straight(200, 10 cm)`")
 
