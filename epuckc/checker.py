@@ -961,14 +961,14 @@ class Checker:
         values, shown = converted
         geo = self.geo
         if name == "start_curve":
-            radius = self._value(bound["radius"].value, DISTANCE, "radius")
-            if radius.mm(geo) < 0:
+            radius = self._value(bound["radius"].value, DISTANCE, "radius").mm(geo)
+            if radius < 0:
                 self.diags.error("E036", bound["radius"].value.span,
                                  f"`radius` cannot be negative (`{shown['radius']}`)",
                                  help="a positive `degrees` turns left, a negative one right")
                 return None
             degrees = self._value(bound["degrees"].value, ANGLE, "degrees").value
-            outer, inner = curve_wheels(radius.mm(geo), degrees, values["speed"], geo)
+            outer, inner = curve_wheels(radius, degrees, values["speed"], geo)
             outer_steps = self._fits16(round_nearest(outer), bound["degrees"].value,
                                        "degrees", " steps of the outer wheel")
             if outer_steps is None:
@@ -980,7 +980,7 @@ class Checker:
                                  f"above the robot's maximum of {geo.max_speed:.0f}",
                                  help="lower `speed`")
                 return None
-            values["radius"] = self._fits16(round_nearest(radius.mm(geo)), bound["radius"].value,
+            values["radius"] = self._fits16(round_nearest(radius), bound["radius"].value,
                                             "radius", " mm")
             if values["radius"] is None:
                 return None
