@@ -641,7 +641,7 @@ class Checker:
             # The common case first: each parameter given once, the
             # positional arguments before the named ones. Anything else
             # takes the general way below, which says what is wrong.
-            bound: dict = {}
+            bound = {}
             named = False
             for p, arg in zip(params, args):
                 cls = arg.__class__
