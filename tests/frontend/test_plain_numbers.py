@@ -40,7 +40,7 @@ def general(checker: Checker, number: ast.Number, param: Param):
     return v, bool(checker.diags.items)
 
 
-@settings(max_examples=3000, deadline=None)
+@settings(max_examples=2000, deadline=None)
 @given(numbers, units, st.sampled_from(KINDS), ranges, geometries)
 def test_plain_numbers_convert_as_the_general_path_does(value, unit, kind, bounds, geo):
     checker = Checker(ast.Program("t.epk"), Collector(SourceFile("t.epk", "")))
@@ -55,7 +55,7 @@ def test_plain_numbers_convert_as_the_general_path_does(value, unit, kind, bound
         assert type(fast) is int and type(expected) is int
 
 
-@settings(max_examples=1500, deadline=None)
+@settings(max_examples=1000, deadline=None)
 @given(numbers, units, st.sampled_from(KINDS), ranges, st.lists(st.booleans(), max_size=3),
        st.booleans())
 def test_constants_convert_as_the_general_path_does(value, unit, kind, bounds, chain, negative):
