@@ -25,7 +25,6 @@ from .units import (ANGLE, ARTICLE, DISTANCE, DURATION, INT, INT16_MAX, INT16_MI
                     KIND_UNITS, SPEED, UNITS, Geometry, Quantity, curve_wheels,
                     describe_kind, quantity, round_nearest)
 
-DEFAULT_CAPACITY = 32      # frontend.py passes the runtime header's MAX_ACTIONS/MAX_EVENTS
 # A duration written without a unit is in ms; below this many it was very
 # likely meant in seconds (`timer(2)`), and W008 says so.
 BARE_DURATION_WARNING = 100
@@ -114,13 +113,10 @@ def _shown(value) -> str:
 
 class Checker:
     def __init__(self, program: ast.Program, diags: Collector,
-                 base_dir: Optional[Path] = None,
-                 max_actions: int = DEFAULT_CAPACITY, max_events: int = DEFAULT_CAPACITY):
+                 base_dir: Optional[Path] = None):
         self.program = program
         self.diags = diags
         self.base_dir = base_dir
-        self.max_actions = max_actions
-        self.max_events = max_events
         self.geo = Geometry()
         self.consts: dict = {}           # name -> ConstDef
         self.const_used: set = set()
@@ -164,7 +160,6 @@ class Checker:
             self._unused()
         check_modes.check_program(self, out, complete)
         check_arbitration.check_program(self, out)
-        self._capacity(out)
         return out
 
     # Resolving the named actions and each rule are the steps that the
@@ -1118,26 +1113,6 @@ class Checker:
         if not any(isinstance(s, ast.Rule) for s in self.program.statements):
             self.diags.warning("W006", Span(1, 1, 1, 1), "this program has no rules: it does nothing",
                                help="add a rule, e.g. `on immediate do start_straight(200, 10 cm)`")
-
-    def _capacity(self, out: CheckedProgram):
-        # A program registers at most one action and one event per rule
-        # (tests/codegen/test_runcache.py holds lowering to that), so a
-        # program that fits by that bound needs no exact count, and `check`
-        # does not import lowering at all.
-        if len(out.rules) <= min(self.max_actions, self.max_events):
-            return
-        from .lower import count_registrations
-        actions, events = count_registrations(out)
-        for count, limit, what, option in ((actions, self.max_actions, "actions", "--max-actions"),
-                                           (events, self.max_events, "events", "--max-events")):
-            if count > limit:
-                rules = out.rules
-                span = rules[-1].node.span if rules else Span(1, 1, 1, 1)
-                self.diags.error("E039", span,
-                                 f"this program registers {count} {what}, but the runtime's array "
-                                 f"holds {limit}",
-                                 help=f"raise the capacity with `{option} {count}` (RAM permitting) "
-                                      f"or merge rules")
 
 
 @lru_cache(maxsize=1)

@@ -83,8 +83,7 @@ def cmd_check(args) -> int:
             report.diagnostics.append(c_file_diagnostic(shown))
             continue
         try:
-            check_file(Path(name), report, shown_name=shown,
-                       max_actions=args.max_actions, max_events=args.max_events)
+            check_file(Path(name), report, shown_name=shown)
         except InputError as exc:
             unreadable = True
             report.diagnostics.append(exc.diagnostic(shown))

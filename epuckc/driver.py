@@ -34,8 +34,7 @@ def load_program(path: Path, report: Report, max_actions: Optional[int] = None,
             raise InputError(f"cannot read {shown}: it is not UTF-8 text") from None
         return Program(name, text, path.parent, [], max_actions, max_events,
                        generated=False, source_path=path, inputs=[path])
-    result = check_file(path, report, shown_name=shown,
-                        max_actions=max_actions, max_events=max_events)
+    result = check_file(path, report, shown_name=shown)
     if result.checked is None:
         return None
     from .emit import emit_program

@@ -2,8 +2,6 @@
 from __future__ import annotations
 
 import gc
-import re
-from functools import lru_cache
 from pathlib import Path
 from typing import Optional
 
@@ -11,17 +9,7 @@ from .checker import CheckedProgram, check
 from .diagnostics import ERROR, Collector, Diagnostic, Report
 from .parser import parse
 from .records import record
-from .resources import runtime_dir
 from .source import SourceFile, Span
-
-
-@lru_cache(maxsize=1)
-def runtime_capacity() -> tuple[int, int]:
-    """The default MAX_ACTIONS and MAX_EVENTS of the runtime header, so the
-    compiler and the runtime cannot disagree."""
-    header = (runtime_dir() / "epuckrt.h").read_text(encoding="utf-8")
-    found = dict(re.findall(r"#define\s+(MAX_ACTIONS|MAX_EVENTS)\s+(\d+)", header))
-    return int(found["MAX_ACTIONS"]), int(found["MAX_EVENTS"])
 
 
 @record
@@ -56,7 +44,6 @@ def read_error(name: str, exc: OSError) -> InputError:
 
 
 def check_file(path: Path, report: Report, shown_name: Optional[str] = None,
-               max_actions: Optional[int] = None, max_events: Optional[int] = None,
                text: Optional[str] = None) -> FrontEndResult:
     """Parse and check one rule file, adding its diagnostics to `report`.
     `text` replaces the file's contents (an editor's unsaved buffer)."""
@@ -77,9 +64,6 @@ def check_file(path: Path, report: Report, shown_name: Optional[str] = None,
                     help="save the file as UTF-8 text; rule files are plain text (.epk)")
         report.extend(diags.items)
         return FrontEndResult(source, None)
-    # the runtime header's defaults, read only when they are needed
-    max_actions = max_actions or runtime_capacity()[0]
-    max_events = max_events or runtime_capacity()[1]
     # The AST has no reference cycles, and the cyclic garbage collector,
     # run again and again over a growing heap of nodes, doubled the time
     # of large files; it is paused while they are built.
@@ -88,8 +72,7 @@ def check_file(path: Path, report: Report, shown_name: Optional[str] = None,
     try:
         program = parse(source, diags)
         checked = check(program, diags,
-                        base_dir=path.parent if text is None or path.exists() else None,
-                        max_actions=max_actions, max_events=max_events)
+                        base_dir=path.parent if text is None or path.exists() else None)
     finally:
         if collecting:
             gc.enable()

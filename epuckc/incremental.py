@@ -484,13 +484,9 @@ class Analysis:
 class Analyzer:
     """Analyses successive versions of one document (see the module's doc)."""
 
-    def __init__(self, name: str, base_dir: Optional[Path] = None,
-                 max_actions: Optional[int] = None, max_events: Optional[int] = None):
-        from .frontend import runtime_capacity
-        default_actions, default_events = runtime_capacity()
+    def __init__(self, name: str, base_dir: Optional[Path] = None):
         self.name = name
-        self.options = dict(base_dir=base_dir, max_actions=max_actions or default_actions,
-                            max_events=max_events or default_events)
+        self.options = dict(base_dir=base_dir)
         # the last version's text and statements (see _chunks)
         self._prev: Optional[tuple] = None
         self._next_id = 1

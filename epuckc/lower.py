@@ -6,9 +6,8 @@ register_program, the rules' sensor conditions compiled into one function
 the runtime calls once per poll, and only the state that changes in RAM.
 
 Every C name and initialiser is decided here; the template only prints.
-The checker asks count_registrations() how many entries of the runtime's
-dynamic arrays (MAX_ACTIONS, MAX_EVENTS) a program needs: none, since the
-rules are tables.
+A rule file needs no entry of the runtime's dynamic arrays (MAX_ACTIONS,
+MAX_EVENTS): its rules are tables. Only the user's C registers more.
 
 Generated names never collide with each other, C, the runtime or the
 user's C: every name epuckc makes up (tables, state, the conditions
@@ -55,13 +54,6 @@ def externs_header_name(program_name: str) -> str:
     """The header that declares a program's externs, for the user's C:
     `#include "<program>_externs.h"`."""
     return f"{program_name}_externs.h"
-
-
-def count_registrations(program: CheckedProgram) -> tuple[int, int]:
-    """(actions, events) that the program registers in the runtime's dynamic
-    arrays: none, a rule file's rules are const tables (register_program),
-    however many there are.  Only the user's C can register more."""
-    return 0, 0
 
 
 # ---- the C-shaped program ------------------------------------------------------

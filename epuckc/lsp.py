@@ -113,8 +113,7 @@ class Document:
         self.text = text
         self.version = version
         self.path = _path_of(uri)
-        self.analyzer = Analyzer(self.path.name if self.path else uri,
-                                 max_actions=server.max_actions, max_events=server.max_events)
+        self.analyzer = Analyzer(self.path.name if self.path else uri)
         self.analysis: Optional[Analysis] = None
         self.analysed_text: Optional[str] = None
         self.published = None       # the text whose diagnostics were published
@@ -215,8 +214,6 @@ class EpuckServer(LanguageServer):
                          text_document_sync_kind=lsp.TextDocumentSyncKind.Incremental)
         self.docs: dict = {}
         self.debounce = DEBOUNCE_S
-        self.max_actions: Optional[int] = None
-        self.max_events: Optional[int] = None
 
     @property
     def encoding(self) -> str:
@@ -350,10 +347,6 @@ def create_server() -> EpuckServer:
             debounce = options.get("debounceMs")
             if isinstance(debounce, (int, float)) and 0 <= debounce <= 10_000:
                 ls.debounce = debounce / 1000
-            for key, attr in (("maxActions", "max_actions"), ("maxEvents", "max_events")):
-                value = options.get(key)
-                if isinstance(value, int) and value > 0:
-                    setattr(ls, attr, value)
 
     @notification(lsp.TEXT_DOCUMENT_DID_OPEN)
     def did_open(ls: EpuckServer, params: lsp.DidOpenTextDocumentParams):
