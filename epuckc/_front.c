@@ -362,8 +362,12 @@ static PyObject *make_span(DriverObject *d, Py_ssize_t line, Py_ssize_t column,
     if ((item = PyLong_FromSsize_t(column)) == NULL)
         goto fail;
     PyTuple_SET_ITEM(span, 1, item);
-    if ((item = PyLong_FromSsize_t(end_line)) == NULL)
+    if (end_line == line) {     /* nearly always: one int for both */
+        item = PyTuple_GET_ITEM(span, 0);
+        Py_INCREF(item);
+    } else if ((item = PyLong_FromSsize_t(end_line)) == NULL) {
         goto fail;
+    }
     PyTuple_SET_ITEM(span, 2, item);
     if ((item = PyLong_FromSsize_t(end_column)) == NULL)
         goto fail;
@@ -374,16 +378,34 @@ fail:
     return NULL;
 }
 
-static PyObject *make_token(DriverObject *d, PyObject *text, const Lexeme *lx)
+/* The span of tokens[i] (a new reference), made once per parse: a token
+ * and every rule that covers just that token share it. */
+static PyObject *token_span(DriverObject *d, const Lexeme *tokens, PyObject **spans,
+                            Py_ssize_t i)
+{
+    if (spans[i] == NULL) {
+        const Lexeme *lx = &tokens[i];
+        spans[i] = make_span(d, lx->line, lx->column, lx->line,
+                             lx->column + (lx->end - lx->start));
+        if (spans[i] == NULL)
+            return NULL;
+    }
+    Py_INCREF(spans[i]);
+    return spans[i];
+}
+
+static PyObject *make_token(DriverObject *d, PyObject *text, const Lexeme *tokens,
+                            PyObject **spans, Py_ssize_t i)
 {
     TokenObject *tok = PyObject_New(TokenObject, &TokenType);
+    const Lexeme *lx = &tokens[i];
     const Py_ssize_t end_column = lx->column + (lx->end - lx->start);
     if (tok == NULL)
         return NULL;
     tok->type = d->names[lx->sym];
     Py_INCREF(tok->type);
     tok->value = PyUnicode_Substring(text, lx->start, lx->end);
-    tok->span = make_span(d, lx->line, lx->column, lx->line, end_column);
+    tok->span = token_span(d, tokens, spans, i);
     if (tok->value == NULL || tok->span == NULL) {
         Py_DECREF(tok);
         return NULL;
@@ -446,7 +468,7 @@ static PyObject *gather(const Rule *rule, PyObject **args)
  * reference); NULL with no exception set means a syntax error (which the
  * Python front end then reports), NULL with one set a real failure. */
 static PyObject *parse_statement(DriverObject *d, PyObject *text, const Lexeme *tokens,
-                                 Py_ssize_t from, Py_ssize_t to, Stack *s)
+                                 PyObject **spans, Py_ssize_t from, Py_ssize_t to, Stack *s)
 {
     const int nsyms = d->nsyms;
     Py_ssize_t index;
@@ -477,7 +499,7 @@ static PyObject *parse_statement(DriverObject *d, PyObject *text, const Lexeme *
                     return PyErr_NoMemory();
                 }
                 if (d->kept[sym]) {
-                    shifted = make_token(d, text, &tokens[index]);
+                    shifted = make_token(d, text, tokens, spans, index);
                     if (shifted == NULL) {
                         stack_clear(s);
                         return NULL;
@@ -517,6 +539,8 @@ static PyObject *parse_statement(DriverObject *d, PyObject *text, const Lexeme *
                     PyObject *meta, *call[2];
                     if (first == index) {           /* the rule matched no token */
                         meta = make_span(d, 1, 1, 1, 1);
+                    } else if (first == index - 1) {
+                        meta = token_span(d, tokens, spans, first);
                     } else {
                         const Lexeme *head = &tokens[first], *tail = &tokens[index - 1];
                         meta = make_span(d, head->line, head->column, tail->line,
@@ -576,6 +600,7 @@ static PyObject *driver_parse(DriverObject *d, PyObject *text)
 {
     Lexemes lx = {NULL, 0, 0};
     Stack s = {NULL, NULL, NULL, -1, 0};
+    PyObject **spans = NULL;
     PyObject *result = NULL;
     Py_ssize_t i, begin = 0;
     int depth = 0, seen_on = 0, status;
@@ -591,6 +616,11 @@ static PyObject *driver_parse(DriverObject *d, PyObject *text)
             return NULL;
         Py_RETURN_NONE;
     }
+    spans = PyMem_Calloc((size_t)lx.count + 1, sizeof(PyObject *));
+    if (spans == NULL) {
+        PyErr_NoMemory();
+        goto done;
+    }
     result = PyList_New(0);
     if (result == NULL)
         goto done;
@@ -598,7 +628,7 @@ static PyObject *driver_parse(DriverObject *d, PyObject *text)
     /* lexer.iter_statements, over index ranges: a statement is
      * tokens[begin, i) when token i starts the next one. */
 #define EMIT(from, to) do { \
-        PyObject *v_ = parse_statement(d, text, lx.items, (from), (to), &s); \
+        PyObject *v_ = parse_statement(d, text, lx.items, spans, (from), (to), &s); \
         if (v_ == NULL) goto give_up; \
         if (PyList_Append(result, v_) < 0) { Py_DECREF(v_); goto give_up; } \
         Py_DECREF(v_); } while (0)
@@ -652,6 +682,11 @@ give_up:
         result = Py_None;
     }
 done:
+    if (spans != NULL) {
+        for (i = 0; i < lx.count; i++)
+            Py_XDECREF(spans[i]);
+        PyMem_Free(spans);
+    }
     PyMem_Free(lx.items);
     PyMem_Free(s.state);
     PyMem_Free(s.value);
