@@ -186,6 +186,8 @@ def host_build_key(program: Program) -> str:
     _add(h, "header", (program.header_text or "").encode("utf-8"))
     for path in program.user_sources():
         _add(h, f"user:{os.path.realpath(path)}", Path(path).read_bytes())
+    for _, header, _ in user_headers(program):
+        _add(h, f"user header:{os.path.realpath(header)}", header.read_bytes())
     _add_runtime_sources(h)
     _add(h, "cc", " ".join(c_compiler() + GENERATED_CFLAGS + USER_CFLAGS
                            + _capacity_defines(program)).encode())
@@ -437,6 +439,9 @@ def program_steps(program: Program, folder: Path, extra_flags=()) -> tuple:
     """Write the generated program and its externs header into `folder`;
     (the steps that compile the user's own C, each file on its own, and the
     program, into `folder`, with `extra_flags`, e.g. -fPIC; their objects)."""
+    stale = stale_externs_header(program)
+    if stale is not None:
+        raise BuildError(stale)
     steps, objects = [], []
     for i, source in enumerate(program.user_sources(), 1):
         obj = folder / f"user{i}.o"
@@ -771,6 +776,87 @@ def dspic_user_copies(program: Program) -> list:
     return copies
 
 
+_QUOTED_INCLUDE = re.compile(rb'^[ \t]*#[ \t]*include[ \t]*"([^"\n]+)"', re.MULTILINE)
+
+
+def user_headers(program: Program) -> list:
+    """(header, its path relative to the folder of the user's C file that
+    includes it, first or through other headers) for every header the
+    user's C includes with quotes that is found where the compiler looks
+    first, beside the including file; followed through the headers it
+    includes. A quoted include found nowhere there (the program's own
+    externs header, the runtime's, the e-puck library's) is left to the
+    include paths. The builds depend on these headers as on the C."""
+    found = []
+    for source in program.user_sources():
+        source = Path(source)
+        home = os.path.dirname(os.path.abspath(source))
+        queue, seen = [source], set()
+        while queue:
+            including = queue.pop(0)
+            try:
+                data = including.read_bytes()
+            except OSError:
+                continue            # the compiler says why
+            for match in _QUOTED_INCLUDE.finditer(data):
+                name = match.group(1).decode("utf-8", "surrogateescape")
+                header = Path(os.path.normpath(os.path.join(including.parent, name)))
+                if name == program.header_name:
+                    continue        # generated (a file beside it: stale_externs_header)
+                if header in seen or not header.is_file():
+                    continue
+                seen.add(header)
+                found.append((source, header,
+                              Path(os.path.relpath(os.path.abspath(header), home)).as_posix()))
+                queue.append(header)
+    return found
+
+
+def stale_externs_header(program: Program) -> Optional[str]:
+    """A file named like the program's externs header beside the user's C
+    that is not that header (written by an earlier `epuckc compile`,
+    before the externs changed): the compiler would read it instead of the
+    current one, since a quoted include looks beside the including file
+    first. The message that says so, or None."""
+    if not program.header_name:
+        return None
+    for source in program.user_sources():
+        beside = Path(source).parent / program.header_name
+        try:
+            if beside.is_file() and beside.read_text(encoding="utf-8") != program.header_text:
+                return (f"{beside} is not the externs header of this program (an earlier "
+                        f"`epuckc compile` wrote it, before the externs changed), and "
+                        f"{Path(source).name} would include it instead of the current one: "
+                        f"delete it, or run `epuckc compile` again to rewrite it")
+        except (OSError, UnicodeDecodeError):
+            continue
+    return None
+
+
+def dspic_user_headers(program: Program) -> list:
+    """(a header, its copy's path inside the project) for each of
+    user_headers: the C is copied into user/, so its headers go there at
+    the same place relative to it. One that climbs out of the C's folder,
+    or two different headers that would land on the same copy, cannot be
+    laid out so: BuildError."""
+    copies: dict = {}               # path in the project -> (header, its bytes)
+    for source, header, rel in user_headers(program):
+        if rel.startswith("../") or rel == ".." or os.path.isabs(rel):
+            raise BuildError(
+                f"{source} includes {header}, a header outside its folder; the dspic project "
+                f"copies your C into {DSPIC_USER}/ with the headers beside it or below it "
+                f"only: move {header.name} next to {source.name}", status=EXIT_USAGE)
+        target = f"{DSPIC_USER}/{rel}"
+        content = header.read_bytes()
+        if target in copies and copies[target][1] != content:
+            raise BuildError(
+                f"two different headers would both be {target} in the dspic project: "
+                f"{copies[target][0]} and {header}; give them different names",
+                status=EXIT_USAGE)
+        copies[target] = (header, content)
+    return [(header, target) for target, (header, _) in sorted(copies.items())]
+
+
 def write_dspic_project(program: Program, out_dir: Path, template_render) -> None:
     """A self-contained project inside out_dir: the program (and its
     externs header) at the top, the runtime files the robot needs in
@@ -779,18 +865,22 @@ def write_dspic_project(program: Program, out_dir: Path, template_render) -> Non
     rebuilds only what changed."""
     rt = runtime_dir()
     copies = dspic_user_copies(program)
+    headers = dspic_user_headers(program)
     generated = [f"{program.name}.c"] if program.generated else []
     if program.generated and program.header_name:
         generated.append(program.header_name)
     runtime_files = [f"{DSPIC_RUNTIME}/{rel}" for rel in ROBOT_FILES]
-    targets = generated + runtime_files + [copy for _, copy in copies] + ["Makefile"]
-    check_outputs([out_dir / t for t in targets], program.inputs, inside=out_dir)
+    targets = (generated + runtime_files + [copy for _, copy in copies + headers]
+               + ["Makefile"])
+    check_outputs([out_dir / t for t in targets],
+                  program.inputs + [header for header, _ in headers], inside=out_dir)
     out_dir = prepare_directory(out_dir)
     if program.generated:
         _write_generated(program, out_dir, only_if_changed=True)
     for rel in ROBOT_FILES:
         write_atomic(out_dir / DSPIC_RUNTIME / rel, (rt / rel).read_bytes(), only_if_changed=True)
-    for source, copy in copies:
+    for source, copy in copies + headers:
+        (out_dir / copy).parent.mkdir(parents=True, exist_ok=True)
         write_atomic(out_dir / copy, source.read_bytes(),
                      mode=stat.S_IMODE(source.stat().st_mode), only_if_changed=True)
     # the robot has no trace: the name labels are not even stored
@@ -800,7 +890,8 @@ def write_dspic_project(program: Program, out_dir: Path, template_render) -> Non
         header=program.header_name if program.generated else None,
         runtime=DSPIC_RUNTIME, runtime_sources=[f"{DSPIC_RUNTIME}/{r}" for r in ROBOT_SOURCES],
         runtime_headers=[f"{DSPIC_RUNTIME}/{r}" for r in ROBOT_HEADERS],
-        user_sources=[copy for _, copy in copies], defines=defines), only_if_changed=True)
+        user_sources=[copy for _, copy in copies], user_headers=[copy for _, copy in headers],
+        defines=defines), only_if_changed=True)
 
 
 def run_make(out_dir: Path, xc16: Path) -> None:

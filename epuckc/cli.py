@@ -289,7 +289,9 @@ def _load_and_run(args, path: Path, key, data, wants_world: bool) -> int:
         except OSError:
             unchanged = False
         if unchanged:
-            runcache.record(key, exe, program.user_files,
+            from .build import user_headers
+            runcache.record(key, exe, program.user_files
+                            + [header for _, header, _ in user_headers(program)],
                             render_report(report, "human"),
                             render_report(report, "human", colour=True), report.warning_count)
     try:

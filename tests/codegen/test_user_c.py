@@ -265,3 +265,116 @@ def test_compile_to_standard_output_says_where_the_header_is(tmp_path):
     assert '#include "prog_externs.h"' in result.stdout
     assert "prog_externs.h" in result.stderr and "note" in result.stderr
     assert not (tmp_path / "prog_externs.h").exists()
+
+
+def _with_headers(folder: Path, name="prog", stale=False):
+    """spin.c including a header beside it, which includes one below it;
+    with `stale`, an old copy of the generated externs header beside it."""
+    rules, c_file, _ = make_program(folder, name, "spin.c")
+    c_file.write_text('#include "spin_util.h"\n' + c_file.read_text()
+                      .replace("360 * p->turns", "SPIN_DEGREES(p->turns)"))
+    (folder / "spin_util.h").write_text('#include "sub/deep.h"\n'
+                                        "#define SPIN_DEGREES(t) (DEGREES_PER_TURN * (t))\n")
+    (folder / "sub").mkdir()
+    (folder / "sub" / "deep.h").write_text("#define DEGREES_PER_TURN 360\n")
+    if stale:
+        (folder / f"{name}_externs.h").write_text("#error a stale header, not this program's\n")
+    return rules, c_file
+
+
+def test_dspic_project_carries_the_headers_the_users_c_includes(tmp_path):
+    """The C is copied into user/: the headers it includes from beside it
+    come along at the same place relative to it, and the project compiles
+    as the host build does (which runs the program)."""
+    rules, c_file = _with_headers(tmp_path / "app")
+    records, _ = run_program(rules, tmp_path / "app")
+    assert records[-1]["kind"] == "exit"
+    out = tmp_path / "proj"
+    result = epuckc("build", rules, "--target", "dspic", "-o", out,
+                    env={"PATH": "/usr/bin:/bin", "XC16_DIR": ""})
+    assert result.returncode == 3, result.stderr                # no XC16 here
+    app = tmp_path / "app"
+    assert (out / "user" / "spin_util.h").read_bytes() == (app / "spin_util.h").read_bytes()
+    assert (out / "user" / "sub" / "deep.h").read_bytes() == (app / "sub" / "deep.h").read_bytes()
+    makefile = (out / "Makefile").read_text()
+    assert "USER_HEADERS = user/spin_util.h user/sub/deep.h" in makefile
+    cc = require_tool("cc")
+    api = Path(__file__).resolve().parents[2] / "runtime_c" / "epuck_api"
+    subprocess.run([cc, "-std=c99", "-Wall", "-c", str(out / "user" / "1_spin.c"), f"-I{out}",
+                    f"-I{out / 'runtime'}", f"-I{api}", "-o", str(tmp_path / "spin.o")],
+                   check=True)
+
+
+def test_dspic_project_with_an_edited_header_rebuilds_the_users_c(tmp_path, fake_toolchain):
+    env, log = fake_toolchain
+    make = require_tool("make")
+    rules, c_file = _with_headers(tmp_path / "app")
+    out = tmp_path / "proj"
+    epuckc("build", rules, "--target", "dspic", "-o", out, env=env, check=True)
+    log.write_text("")
+    deep = tmp_path / "app" / "sub" / "deep.h"
+    deep.write_text(deep.read_text() + "/* edited */\n")
+    epuckc("build", rules, "--target", "dspic", "-o", out, env=env, check=True)
+    compiles = [c for c in log.read_text().splitlines() if " -c " in c]
+    assert len(compiles) == 1 and "user/1_spin.c" in compiles[0]
+    assert make
+
+
+@pytest.mark.parametrize("layout", ["climbs", "clash"])
+def test_dspic_project_refuses_headers_it_cannot_lay_out(tmp_path, layout):
+    """A header above the C's folder, or two different headers that would
+    be the same copy: a clear message, exit 2, and no project."""
+    app = tmp_path / "app"
+    rules, c_file, _ = make_program(app, "prog", "spin.c")
+    if layout == "climbs":
+        (tmp_path / "common.h").write_text("#define X 1\n")
+        c_file.write_text('#include "../common.h"\n' + c_file.read_text())
+        expected = "a header outside its folder"
+    else:
+        rules.write_text(rules.read_text() + 'extern action wave() from "other/wave.c"\n'
+                         "on stop_motor do wave\n")
+        (app / "other").mkdir()
+        (app / "other" / "wave.c").write_text('#include "util.h"\nvoid wave(void *p) { (void)p; }\n')
+        (app / "other" / "util.h").write_text("#define U 2\n")
+        (app / "util.h").write_text("#define U 1\n")
+        c_file.write_text('#include "util.h"\n' + c_file.read_text())
+        expected = "two different headers"
+    out = tmp_path / "proj"
+    result = epuckc("build", rules, "--target", "dspic", "-o", out,
+                    env={"PATH": "/usr/bin:/bin", "XC16_DIR": ""})
+    assert result.returncode == 2, result.stdout + result.stderr
+    assert expected in result.stderr and "Traceback" not in result.stderr
+    assert not out.exists()
+
+
+def test_a_stale_externs_header_beside_the_c_is_named_not_compiled(tmp_path):
+    """An externs header an earlier `epuckc compile` left beside the C
+    would be read instead of the current one: the host build says so; the
+    dspic project does not copy it (its own is at the top)."""
+    rules, c_file = _with_headers(tmp_path / "app", stale=True)
+    result = epuckc("run", rules, cwd=tmp_path)
+    assert result.returncode == 1, result.stdout + result.stderr
+    assert "is not the externs header of this program" in result.stderr
+    assert "prog_externs.h" in result.stderr and "Traceback" not in result.stderr
+    out = tmp_path / "proj"
+    result = epuckc("build", rules, "--target", "dspic", "-o", out,
+                    env={"PATH": "/usr/bin:/bin", "XC16_DIR": ""})
+    assert result.returncode == 3, result.stderr
+    assert not (out / "user" / "prog_externs.h").exists()
+    assert (out / "user" / "spin_util.h").exists()
+    # rewritten by compile: the host build takes it
+    epuckc("compile", rules, "-o", tmp_path / "app" / "prog.c", check=True)
+    records, _ = run_program(rules, tmp_path / "app")
+    assert records[-1]["kind"] == "exit"
+
+
+def test_an_edited_header_of_the_users_c_is_built_again(tmp_path):
+    """The host build and the run cache depend on the headers the user's
+    C includes, not only on the C: the edit is seen."""
+    rules, c_file = _with_headers(tmp_path / "app")
+    first, _ = run_program(rules, tmp_path / "app")
+    deep = tmp_path / "app" / "sub" / "deep.h"
+    deep.write_text("#define DEGREES_PER_TURN 720\n")
+    second, _ = run_program(rules, tmp_path / "app")
+    assert first[-1]["kind"] == second[-1]["kind"] == "exit"
+    assert second[-1]["t_ms"] > first[-1]["t_ms"]   # twice the turning takes longer
