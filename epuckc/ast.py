@@ -7,7 +7,7 @@ plain classes with `__slots__`: a 1,000-rule file makes some 20,000 nodes,
 and a frozen dataclass costs four times as much to build, and its module
 ten milliseconds to import. `_fields` lists a node's fields in order.
 
-The parser builds nodes without calling `__init__` (see `builder`), which
+The parser builds nodes without calling `__init__` (see `maker`), which
 is why the fields are also listed as `__slots__` and nothing else happens
 in `__init__`.
 """
@@ -49,7 +49,7 @@ class Node:
 
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
-        if cls.__slots__:           # not for a builder(), which adds no field
+        if cls.__slots__:           # not for a subclass that adds no field
             cls._fields = cls.__match_args__ = tuple(cls.__slots__)
             cls.__record_fields__ = tuple((f, _MISSING, _MISSING) for f in cls._fields)
 

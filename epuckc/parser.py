@@ -178,10 +178,6 @@ _ConstDef = ast.maker(ast.ConstDef)
 _ActionDef = ast.maker(ast.ActionDef)
 
 
-def _tok_span(tok) -> Span:
-    return tok.span
-
-
 def _ident(tok) -> ast.Ident:
     return _Ident(tok.value, tok.span)
 
