@@ -85,15 +85,21 @@ def sensor_rules(n: int) -> list:
     return [(i % 8, 1000 + i) for i in range(n)]
 
 
-def sensor_program(n: int) -> str:
+PRIORITY_LEVELS = 4
+
+
+def sensor_program(n: int, priorities: bool = False) -> str:
     """The rules share one action, so that 1,000 of them fit the AVR's RAM
     (avr-gcc copies const tables to RAM); what a rule would do does not
-    change the cost of a poll where none fires."""
+    change the cost of a poll where none fires. With `priorities`, the
+    rules take PRIORITY_LEVELS levels in turn, which makes the runtime poll
+    one event at a time, level by level, instead of sixteen at a time."""
     lines = [f"# {n} sensor rules that stay armed and never fire (bench/robot_bench.py)",
              "action turn = start_curve(5 cm, 90 deg, 300)",
              "on immediate do start_sensor"]
-    for sensor, threshold in sensor_rules(n):
-        lines.append(f"on sensor(ir{sensor} > {threshold}) repeat do turn")
+    for i, (sensor, threshold) in enumerate(sensor_rules(n)):
+        level = f" priority {i % PRIORITY_LEVELS}" if priorities else ""
+        lines.append(f"on sensor(ir{sensor} > {threshold}) repeat{level} do turn")
     return "\n".join(lines) + "\n"
 
 
@@ -254,14 +260,16 @@ def simavr_misdecodes(elf: Path) -> list:
     return found
 
 
-def bench_simavr(sizes, work: Path) -> list:
+def bench_simavr(sizes, work: Path, priorities: bool = False) -> list:
     harness = work / "simavr_polls"
-    run(["cc", "-std=c99", "-O2", BENCH / "avr" / "simavr_polls.c", "-o", harness, "-lsimavr"])
+    if not harness.exists():
+        run(["cc", "-std=c99", "-O2", BENCH / "avr" / "simavr_polls.c", "-o", harness,
+             "-lsimavr"])
     rows = []
     for n in sizes:
-        d = work / f"sim{n}"
-        d.mkdir()
-        c, defines = compile_epk(sensor_program(n), d, f"sensors{n}")
+        d = work / (f"sim{n}" + ("p" if priorities else ""))
+        d.mkdir(exist_ok=True)
+        c, defines = compile_epk(sensor_program(n, priorities), d, f"sensors{n}")
         elf = d / f"sensors{n}.elf"
         res = subprocess.run(["avr-gcc", *AVR_CFLAGS, f"-mmcu={SIM_MCU}", *defines, f"-I{RT}",
                               f"-I{RT / 'epuck_api'}", f"-I{BENCH / 'avr'}", str(c),
@@ -307,7 +315,8 @@ def machine() -> str:
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--only", default="callgrind,ram,simavr",
-                    help="comma-separated parts: callgrind, ram, simavr")
+                    help="comma-separated parts: callgrind, ram, simavr, priorities (simavr's "
+                         "programs with and without priorities, side by side)")
     ap.add_argument("--sizes", default="10,100,1000", help="rule counts (default 10,100,1000)")
     ap.add_argument("--keep", type=Path, help="keep the generated files in this folder")
     args = ap.parse_args()
@@ -360,6 +369,22 @@ def main() -> int:
                     print(f"{n:>6} {'-':>8} {'-':>10}   {note}")
                 else:
                     print(f"{n:>6} {cyc:>8} {100 * cyc / BUDGET_CYCLES:>9.1f}%   {note}")
+    if "priorities" in parts:
+        if missing("avr-gcc", "cc") or not Path("/usr/include/simavr/sim_avr.h").exists():
+            print("priorities: skipped, needs avr-gcc and libsimavr-dev")
+            status = 1
+        else:
+            print(f"\n== AVR cycles per poll ({SIM_MCU}, simavr), N armed sensor rules that never"
+                  f" fire, without and with {PRIORITY_LEVELS} priority levels; budget"
+                  f" {BUDGET_CYCLES}")
+            print(f"{'rules':>6} {'plain':>8} {'priorities':>11} {'ratio':>7} {'of budget':>10}")
+            plain = bench_simavr(sizes, work)
+            levels = bench_simavr(sizes, work, priorities=True)
+            for (n, a, note_a), (_, b, note_b) in zip(plain, levels):
+                if a is None or b is None:
+                    print(f"{n:>6}   {note_a if a is None else note_b}")
+                else:
+                    print(f"{n:>6} {a:>8} {b:>11} {b / a:>6.2f}x {100 * b / BUDGET_CYCLES:>9.1f}%")
     return status
 
 

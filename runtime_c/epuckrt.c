@@ -10,6 +10,7 @@
  * 32767 is long; products that can pass 2^31 are long long.
  * docs/runtime.md describes the semantics implemented here.
  */
+#include <limits.h>
 #include <stddef.h>
 
 #include "epuckrt.h"
@@ -405,6 +406,19 @@ int register_program(const rt_program *p)
                 || (e->memory != RT_NO_MEMORY && (e->memory < 0 || p->memory == NULL))
                 || e->mode < 0)
             return -1;
+    }
+    /* the order, strictly increasing by (priority downwards, id): then it
+     * holds every event once */
+    for (k = 0; p->order != NULL && k < p->n_events; k++) {
+        int id = p->order[k], before;
+        if (id < 0 || id >= p->n_events)
+            return -1;
+        if (k > 0) {
+            before = p->order[k - 1];
+            if (p->events[before].priority < p->events[id].priority
+                    || (p->events[before].priority == p->events[id].priority && before >= id))
+                return -1;
+        }
     }
     words_a = RT_WORDS(p->n_actions);
     words_e = RT_WORDS(p->n_events);
@@ -1288,6 +1302,78 @@ static void poll_static_one(int k)
         fire_static(k);
 }
 
+/* The highest priority below `below` among the armed array events; 0
+ * when there is none. */
+static int next_dynamic_level(int below, int *level)
+{
+    int i, found = 0;
+
+    for (i = 0; i < n_events; i++) {
+        int p = event_ext[i].priority;
+        if (p >= below || !dynamic_armed(i))
+            continue;
+        if (!found || p > *level)
+            *level = p;
+        found = 1;
+    }
+    return found;
+}
+
+/* Polls the armed array events of priority `level`, in id order. */
+static int poll_dynamic_level(int level)
+{
+    int i;
+
+    /* n_events is re-read: an action may register events, polled at once */
+    for (i = 0; i < n_events; i++) {
+        event *e = &events[i];
+        if (event_ext[i].priority != level || !dynamic_armed(i))
+            continue;
+        e->status.occurred = 0;
+        e->event_function(e->event_param, &e->status);
+        if (e->status.occurred)
+            fire_dynamic(i);
+        if (exit_requested)
+            return 1;
+    }
+    return 0;
+}
+
+/* poll_ranked with the table's order (rt_program.order): one pass over the
+ * table, the array events of each level after the table's. The levels are
+ * those of the table's events and of the armed array events, highest
+ * first, as poll_ranked's. */
+static int poll_ordered(void)
+{
+    const int *order = prog->order;
+    int j = 0, level = 0, done = 0, found;
+
+    while (1) {
+        int dyn_level = 0, have_dyn;
+        /* the next level: the table's next event's, or an array event's */
+        have_dyn = next_dynamic_level(done ? level : INT_MAX, &dyn_level);
+        found = 0;
+        if (j < s_events) {
+            level = prog->events[order[j]].priority;
+            found = 1;
+        }
+        if (have_dyn && (!found || dyn_level > level))
+            level = dyn_level;
+        if (!found && !have_dyn)
+            return 0;
+        for (; j < s_events && prog->events[order[j]].priority == level; j++) {
+            if (static_armed(order[j])) {
+                poll_static_one(order[j]);
+                if (exit_requested)
+                    return 1;
+            }
+        }
+        if (n_events > 0 && poll_dynamic_level(level))
+            return 1;
+        done = 1;
+    }
+}
+
 /* Phase (5) with priorities or modes: the armed events (in no mode or in
  * the current one), highest priority first, in id order within a priority
  * (the table's, then the arrays').  Returns 1 when exit_main ran. */
@@ -1296,6 +1382,8 @@ static int poll_ranked(void)
     int i, level = 0, more;
 
     mode_entered_in_poll = 0;
+    if (prog != NULL && prog->order != NULL)
+        return poll_ordered();
     more = next_level(0, 0, &level);
     while (more) {
         /* s_events + n_events is re-read: an action may register events,

@@ -149,6 +149,11 @@ typedef struct {
     unsigned sensors;           /* bit n: conditions reads ir[n] */
     unsigned *state;            /* RAM, RT_STATE_WORDS(n_actions, n_events) */
     long *memory;               /* RAM, one per memory index used, or NULL */
+    /* The events' ids (n_events of them) by priority, highest first, in id
+     * order within a priority, or NULL: with priorities, mainloop then
+     * polls the table in one pass over it instead of one pass per
+     * priority level. */
+    const int *order;
 } rt_program;
 
 /* The state is bit planes of 16-bit words (unsigned is at least 16 bits). */
@@ -161,7 +166,7 @@ typedef struct {
  * nothing) when a program or anything else was registered before, or a
  * table is inconsistent (an action_id out of range, a NULL action function,
  * a NULL event function without conditions, a NULL state, a negative
- * mode). */
+ * mode, an order that is not the events by priority then id). */
 int register_program(const rt_program *program);
 
 /* ---- Paper table 2: standard actions and their parameters -------------- */

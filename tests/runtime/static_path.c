@@ -34,6 +34,7 @@ static long memory[CAP];
 static unsigned state[RT_STATE_WORDS(CAP, CAP)];
 static int n_acts, n_evs, recording = 1;
 static rt_program program;
+static int order[CAP];          /* the events by priority, as epuckc emits it */
 
 /* The sensor conditions, evaluated like event_sensor's (a generic version
  * of what epuckc generates per program). */
@@ -73,6 +74,24 @@ static void flush(void)
     program.sensors = 0xFF;
     program.state = state;
     program.memory = memory;
+    /* with priorities, the order epuckc's programs give (rt_program.order):
+     * by priority, highest first, then id (an insertion sort keeps ties in
+     * id order) */
+    program.order = NULL;
+    for (k = 0; k < n_evs; k++) {
+        if (evs[k].priority != 0)
+            program.order = order;
+    }
+    if (program.order != NULL) {
+        for (k = 0; k < n_evs; k++) {
+            int j = k;
+            while (j > 0 && evs[order[j - 1]].priority < evs[k].priority) {
+                order[j] = order[j - 1];
+                j--;
+            }
+            order[j] = k;
+        }
+    }
     if (register_program(&program) != 0) {
         fprintf(stderr, "static_path: register_program refused the tables\n");
         exit(99);

@@ -1,6 +1,7 @@
 """Priorities, modes and the rest of the robot (LEDs, sound, selector,
 microphones, accelerometer, remote control, ambient light), each a small C
 program run on the host harness, checked on its JSON trace."""
+import pytest
 from rt_helpers import PROGRAMS, build_and_run
 
 from test_runtime_events import fired
@@ -97,15 +98,20 @@ def test_all_priorities_equal_is_the_paper_s_order(tmp_path):
     assert fired(plain) == fired(same) and plain.stdout == same.stdout
 
 
-def test_static_tables_with_priorities_and_modes(tmp_path):
+@pytest.mark.parametrize("defines", [(), ("WITH_ORDER",)], ids=["levels", "order"])
+def test_static_tables_with_priorities_and_modes(tmp_path, defines):
     """register_program with priorities and modes in the table: the walk by
     priority levels over table and dynamic events, compiled conditions in
     it, enter_mode re-arming a mode's table entries (latches and memories
     reset) but not a cancelled one, disarm_event until the next entry, and
-    set_event_priority/set_event_mode ignoring table ids."""
-    r = build_and_run(tmp_path, "static_ranked.c", env={"EPUCK_QUIET": "1"})
+    set_event_priority/set_event_mode ignoring table ids. The same with the
+    table's events given in priority order (rt_program.order, one pass
+    instead of one per level); an order that is not by priority then id is
+    refused."""
+    r = build_and_run(tmp_path, "static_ranked.c", defines=defines, env={"EPUCK_QUIET": "1"})
     assert r.returncode == 0, r.stderr
-    assert r.stdout.splitlines() == ["negative mode -1", "register 0", "dynamic 11"]
+    assert r.stdout.splitlines() == ["bad order -1 -1", "negative mode -1", "register 0",
+                                     "dynamic 11"]
     assert [(x["id"], x["t_ms"]) for x in r.records("event")] == [
         # the dynamic event of priority 5 first; the mode-1 entry event
         # enters mode 2: no mode's event fires in the rest of the poll

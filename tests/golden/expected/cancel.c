@@ -60,7 +60,8 @@ static long epk_event_memory[3];
 
 static const rt_program epk_program = {
     epk_action_table, 4, epk_event_table, 4,
-    NULL, 0x00, epk_event_state, epk_event_memory
+    NULL, 0x00, epk_event_state, epk_event_memory,
+    NULL
 };
 
 int main(void)

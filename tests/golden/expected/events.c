@@ -85,7 +85,8 @@ static long epk_event_memory[2];
 
 static const rt_program epk_program = {
     epk_action_table, 5, epk_event_table, 5,
-    epk_event_conditions, 0x24, epk_event_state, epk_event_memory
+    epk_event_conditions, 0x24, epk_event_state, epk_event_memory,
+    NULL
 };
 
 int main(void)

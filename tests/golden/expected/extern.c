@@ -57,7 +57,8 @@ static long epk_event_memory[1];
 
 static const rt_program epk_program = {
     epk_action_table, 2, epk_event_table, 2,
-    NULL, 0x00, epk_event_state, epk_event_memory
+    NULL, 0x00, epk_event_state, epk_event_memory,
+    NULL
 };
 
 int main(void)

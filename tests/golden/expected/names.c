@@ -55,7 +55,8 @@ static unsigned epk_event_state[RT_STATE_WORDS(2, 2)];
 
 static const rt_program epk_program = {
     epk_action_table, 2, epk_event_table, 2,
-    NULL, 0x00, epk_event_state, NULL
+    NULL, 0x00, epk_event_state, NULL,
+    NULL
 };
 
 int main(void)

@@ -130,13 +130,20 @@ static const rt_event epk_event_table[] = {
     {event_selector, &epk_when_r12, 11, 0, 9, 0, 0},
 };
 
+/* The events by priority, highest first, in id order within a priority:
+ * the order mainloop polls them in. */
+static const int epk_event_order[12] = {
+    3, 2, 0, 1, 4, 5, 6, 7, 8, 9, 10, 11
+};
+
 /* What changes while the program runs, the only part in RAM. */
 static unsigned epk_event_state[RT_STATE_WORDS(12, 12)];
 static long epk_event_memory[10];
 
 static const rt_program epk_program = {
     epk_action_table, 12, epk_event_table, 12,
-    epk_event_conditions, 0x81, epk_event_state, epk_event_memory
+    epk_event_conditions, 0x81, epk_event_state, epk_event_memory,
+    epk_event_order
 };
 
 int main(void)

@@ -54,7 +54,8 @@ static unsigned epk_event_state[RT_STATE_WORDS(1, 1)];
 
 static const rt_program epk_program = {
     epk_action_table, 1, epk_event_table, 1,
-    NULL, 0x00, epk_event_state, NULL
+    NULL, 0x00, epk_event_state, NULL,
+    NULL
 };
 
 int main(void)

@@ -77,10 +77,24 @@ static long memory[3];
 int main(void)
 {
     static const rt_event bad_mode[] = {{immediate, NULL, 0, 0, RT_NO_MEMORY, 0, -1}};
-    rt_program bad = {actions, 6, bad_mode, 1, NULL, 0, state, NULL};
-    rt_program p = {actions, 6, events, 11, conditions, 0x01, state, memory};
+    rt_program bad = {actions, 6, bad_mode, 1, NULL, 0, state, NULL, NULL};
+    rt_program p = {actions, 6, events, 11, conditions, 0x01, state, memory, NULL};
+    /* the events by priority, highest first, then id (rt_program.order) */
+    static const int order[] = {5, 2, 7, 8, 6, 0, 1, 3, 4, 9, 10};
+    static const int ties_reversed[] = {5, 8, 7, 2, 6, 0, 1, 3, 4, 9, 10};
+    static const int twice[] = {5, 2, 7, 8, 6, 0, 1, 3, 4, 9, 9};
     int e;
 
+    p.order = ties_reversed;
+    printf("bad order %d", register_program(&p));
+    p.order = twice;
+    printf(" %d\n", register_program(&p));
+#ifdef WITH_ORDER
+    p.order = order;
+#else
+    p.order = NULL;
+    (void)order;
+#endif
     printf("negative mode %d\n", register_program(&bad));
     printf("register %d\n", register_program(&p));
     set_event_priority(1, 9);           /* a table id: its entry's priority counts */

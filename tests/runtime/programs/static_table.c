@@ -59,7 +59,7 @@ int main(void)
 {
     static rt_event bad_events[1] = {{immediate, NULL, 0, 0, RT_NO_MEMORY, 0, 0}};
     static const rt_action bad_action[] = {{NULL, NULL}};
-    rt_program p = {actions, 5, events, 19, conditions, 0x03, state, memory};
+    rt_program p = {actions, 5, events, 19, conditions, 0x03, state, memory, NULL};
     rt_program bad = p;
 
     printf("refuse %d", register_program(NULL));
