@@ -154,7 +154,7 @@ class CProgram:
     sensors: str = "0x00"                             # the IRs the conditions read
     watched: list = field(default_factory=list)       # ... as sensor numbers
     memory_slots: int = 0                             # longs of epk_event_memory
-    order: list = field(default_factory=list)   # lines of event ids by priority, if any
+    order: list = field(default_factory=list)   # lines of event ids by priority (ranked programs)
     geometry: Optional[str] = None   # set_robot_geometry arguments, for a robot block
     modes: list = field(default_factory=list)       # (id, C string of its name)
     initial_mode: Optional[tuple] = None            # (id, name)
@@ -464,8 +464,9 @@ class _Lowerer:
                 priority=rule.priority or 0,
                 mode=self.mode_ids[rule.mode] if rule.mode is not None else 0))
         out.conditions = [CConditionWord(w, terms) for w, terms in sorted(conditions.items())]
-        if any(e.priority for e in out.events):
-            # mainloop polls the table in this order (rt_program.order)
+        if any(e.priority or e.mode for e in out.events):
+            # mainloop polls the table in this order (rt_program.order); with
+            # modes alone it is the ids' order, still one pass instead of three
             ids = sorted(range(len(out.events)), key=lambda i: (-out.events[i].priority, i))
             out.order = [", ".join(map(str, ids[i:i + 16])) for i in range(0, len(ids), 16)]
         out.sensors = f"0x{sum(1 << n for n in self.sensors):02x}"
