@@ -10,7 +10,6 @@
  * 32767 is long; products that can pass 2^31 are long long.
  * docs/runtime.md describes the semantics implemented here.
  */
-#include <limits.h>
 #include <stddef.h>
 
 #include "epuckrt.h"
@@ -1265,24 +1264,6 @@ static int dynamic_armed(int i)
            && mode_ok(event_ext[i].mode);
 }
 
-/* The highest priority below `below` among the armed events (all of them
- * when !bounded); returns 0 when there is none. */
-static int next_level(int bounded, int below, int *level)
-{
-    int i, found = 0;
-
-    for (i = 0; i < s_events + n_events; i++) {
-        int p = event_priority(i);
-        if ((bounded && p >= below)
-                || !(i < s_events ? static_armed(i) : dynamic_armed(i - s_events)))
-            continue;
-        if (!found || p > *level)
-            *level = p;
-        found = 1;
-    }
-    return found;
-}
-
 /* Polls one table event (the ranked walk's, one at a time). */
 static void poll_static_one(int k)
 {
@@ -1302,15 +1283,31 @@ static void poll_static_one(int k)
         fire_static(k);
 }
 
-/* The highest priority below `below` among the armed array events; 0
- * when there is none. */
-static int next_dynamic_level(int below, int *level)
+/* The highest priority below `below` (any, when !bounded) among the armed
+ * array events; 0 when there is none. */
+static int next_dynamic_level(int bounded, int below, int *level)
 {
     int i, found = 0;
 
     for (i = 0; i < n_events; i++) {
         int p = event_ext[i].priority;
-        if (p >= below || !dynamic_armed(i))
+        if ((bounded && p >= below) || !dynamic_armed(i))
+            continue;
+        if (!found || p > *level)
+            *level = p;
+        found = 1;
+    }
+    return found;
+}
+
+/* The same among all the armed events, the table's too. */
+static int next_level(int bounded, int below, int *level)
+{
+    int i, found = next_dynamic_level(bounded, below, level);
+
+    for (i = 0; i < s_events; i++) {
+        int p = prog->events[i].priority;
+        if ((bounded && p >= below) || !static_armed(i))
             continue;
         if (!found || p > *level)
             *level = p;
@@ -1339,27 +1336,18 @@ static int poll_dynamic_level(int level)
     return 0;
 }
 
-/* poll_ranked with the table's order (rt_program.order): one pass over the
- * table, the array events of each level after the table's. The levels are
- * those of the table's events and of the armed array events, highest
- * first, as poll_ranked's. */
+/* The ranked walk over the table's order (rt_program.order): one pass
+ * over the table, the array events of each level after the table's. */
 static int poll_ordered(void)
 {
     const int *order = prog->order;
-    int j = 0, level = 0, done = 0, found;
+    int j = 0, level = 0, bounded = 0;
 
-    while (1) {
-        int dyn_level = 0, have_dyn;
-        /* the next level: the table's next event's, or an array event's */
-        have_dyn = next_dynamic_level(done ? level : INT_MAX, &dyn_level);
-        found = 0;
-        if (j < s_events) {
+    for (;;) {
+        int dynamic = next_dynamic_level(bounded, level, &level);
+        if (j < s_events && (!dynamic || prog->events[order[j]].priority > level))
             level = prog->events[order[j]].priority;
-            found = 1;
-        }
-        if (have_dyn && (!found || dyn_level > level))
-            level = dyn_level;
-        if (!found && !have_dyn)
+        else if (!dynamic)
             return 0;
         for (; j < s_events && prog->events[order[j]].priority == level; j++) {
             if (static_armed(order[j])) {
@@ -1368,15 +1356,17 @@ static int poll_ordered(void)
                     return 1;
             }
         }
-        if (n_events > 0 && poll_dynamic_level(level))
+        if (poll_dynamic_level(level))
             return 1;
-        done = 1;
+        bounded = 1;
     }
 }
 
 /* Phase (5) with priorities or modes: the armed events (in no mode or in
  * the current one), highest priority first, in id order within a priority
- * (the table's, then the arrays').  Returns 1 when exit_main ran. */
+ * (the table's, then the arrays'); the levels are re-read after each, since
+ * an action may arm, disarm or register events.  Without the table's order
+ * the table is scanned once per level.  Returns 1 when exit_main ran. */
 static int poll_ranked(void)
 {
     int i, level = 0, more;
@@ -1386,27 +1376,15 @@ static int poll_ranked(void)
         return poll_ordered();
     more = next_level(0, 0, &level);
     while (more) {
-        /* s_events + n_events is re-read: an action may register events,
-         * polled at once */
-        for (i = 0; i < s_events + n_events; i++) {
-            if (event_priority(i) != level)
-                continue;
-            if (i < s_events) {
-                if (!static_armed(i))
-                    continue;
+        for (i = 0; i < s_events; i++) {
+            if (prog->events[i].priority == level && static_armed(i)) {
                 poll_static_one(i);
-            } else {
-                event *e = &events[i - s_events];
-                if (!dynamic_armed(i - s_events))
-                    continue;
-                e->status.occurred = 0;
-                e->event_function(e->event_param, &e->status);
-                if (e->status.occurred)
-                    fire_dynamic(i - s_events);
+                if (exit_requested)
+                    return 1;
             }
-            if (exit_requested)
-                return 1;
         }
+        if (poll_dynamic_level(level))
+            return 1;
         more = next_level(1, level, &level);
     }
     return 0;
