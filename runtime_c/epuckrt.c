@@ -1344,7 +1344,7 @@ static int poll_ordered(void)
     int j = 0, level = 0, bounded = 0;
 
     for (;;) {
-        int dynamic = next_dynamic_level(bounded, level, &level);
+        int dynamic = n_events > 0 && next_dynamic_level(bounded, level, &level);
         if (j < s_events && (!dynamic || prog->events[order[j]].priority > level))
             level = prog->events[order[j]].priority;
         else if (!dynamic)
@@ -1356,7 +1356,7 @@ static int poll_ordered(void)
                     return 1;
             }
         }
-        if (poll_dynamic_level(level))
+        if (n_events > 0 && poll_dynamic_level(level))
             return 1;
         bounded = 1;
     }
