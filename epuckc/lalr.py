@@ -213,14 +213,9 @@ def tables_module(grammar: str, start: str) -> str:
     `grammar`, with the grammar they were computed from. The packed table
     is kept little-endian, compressed, in base64."""
     import binascii
-    from array import array
     names, packed, start_state, end_state, rules = build_tables(grammar, start)
-    if sys.byteorder != "little":
-        cells = array("i")
-        cells.frombytes(packed)
-        cells.byteswap()
-        packed = cells.tobytes()
-    blob = binascii.b2a_base64(zlib.compress(packed, 9), newline=False).decode("ascii")
+    blob = binascii.b2a_base64(zlib.compress(_little_endian(packed), 9),
+                               newline=False).decode("ascii")
     lines = "\n".join(blob[i:i + 76] for i in range(0, len(blob), 76))
     return (f'''"""The LALR tables of grammar/epuck.lark, as Lark computes them: made by
 `python3 -m epuckc.lalr`, not by hand (see lalr.load_tables), so that
@@ -248,14 +243,19 @@ def _shipped(grammar: str, start: str):
     if (shipped.FORMAT, shipped.START_SYMBOL, shipped.GRAMMAR) != (FORMAT, start, grammar):
         return None                 # the grammar was edited: the cache or Lark
     import binascii
-    packed = zlib.decompress(binascii.a2b_base64(shipped.PACKED))
-    if sys.byteorder != "little":
-        from array import array
-        cells = array("i")
-        cells.frombytes(packed)
-        cells.byteswap()
-        packed = cells.tobytes()
+    packed = _little_endian(zlib.decompress(binascii.a2b_base64(shipped.PACKED)))
     return Tables((shipped.NAMES, packed, shipped.START, shipped.END, shipped.RULES))
+
+
+def _little_endian(packed: bytes) -> bytes:
+    """A packed table, native <-> little-endian (the same swap both ways)."""
+    if sys.byteorder == "little":
+        return packed
+    from array import array
+    cells = array("i")
+    cells.frombytes(packed)
+    cells.byteswap()
+    return cells.tobytes()
 
 
 def load_tables(grammar: str, start: str) -> Tables:
