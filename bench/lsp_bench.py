@@ -8,7 +8,7 @@ The file is bench/check_bench.py's generated program. Each edit changes one
 rule the way typing does (a misspelt action, a changed number, a new line
 inside the rule, the change undone), then the server's work for a
 `didChange` is timed: splice the change into the text, analyse it
-(epuckc/incremental.py) and turn the diagnostics into LSP objects. The
+(epuckc/ide/incremental.py) and turn the diagnostics into LSP objects. The
 reference is `frontend.check_file` on the same text (parse and check
 everything; what `epuckc check` does after start-up). Edits to a
 declaration (a constant), after which every rule is checked again, are
@@ -34,8 +34,8 @@ sys.path.insert(0, str(REPO / "bench"))
 from check_bench import generate  # noqa: E402
 
 from epuckc.diagnostics import Report  # noqa: E402
-from epuckc.frontend import check_file  # noqa: E402
-from epuckc.lsp import Document, EpuckServer, Lines  # noqa: E402
+from epuckc.check.frontend import check_file  # noqa: E402
+from epuckc.ide.lsp import Document, EpuckServer, Lines  # noqa: E402
 from lsprotocol import types as lsp  # noqa: E402
 
 

@@ -35,7 +35,7 @@ sys.path.insert(0, str(REPO / "bench"))
 from check_bench import generate  # noqa: E402
 
 LOAD = {
-    "epuckc driver": "from epuckc.parser import _tables; _tables()",
+    "epuckc driver": "from epuckc.syntax.parser import _tables; _tables()",
     "Lark, cache=FILE": ("import sys; sys.path.insert(0, {repo!r}); "
                          "from tests.frontend.lark_reference import lark_parser; "
                          "lark_parser(cache={cache!r})"),
@@ -79,11 +79,11 @@ def main(argv=None) -> int:
             loads[name].append(cpu_of([sys.executable, "-c", code], env))
 
     # ---- parse: one process ----------------------------------------------------
-    from epuckc import lalr
+    from epuckc.syntax import lalr
     from epuckc.diagnostics import Collector
-    from epuckc.lexer import iter_statements, iter_tokens
-    from epuckc.parser import _CALLBACKS, _tables
-    from epuckc.source import SourceFile, Span
+    from epuckc.syntax.lexer import iter_statements, iter_tokens
+    from epuckc.syntax.parser import _CALLBACKS, _tables
+    from epuckc.base.source import SourceFile, Span
     from tests.frontend.lark_reference import (TO_AST, lark_parser, lark_tokens,
                                                standalone_parser, to_ast_transformer)
 

@@ -37,7 +37,7 @@ def update_goldens(request) -> bool:
 def require_enki():
     """Enki's headers and library and a C++ compiler (the world runner's
     build); skips without them, fails in CI, like require_tool."""
-    from epuckc.enki import ENKI_MISSING, enki_available
+    from epuckc.sim.enki import ENKI_MISSING, enki_available
     if enki_available():
         return
     if os.environ.get("EPUCKC_REQUIRE_ALL_TOOLS"):

@@ -3,7 +3,7 @@
  *
  *   epuck-world SPEC RESULTS
  *
- * SPEC is the world as epuckc/world.py resolved it (all lengths in cm,
+ * SPEC is the world as epuckc/sim/world.py resolved it (all lengths in cm,
  * angles in radians, one item per line):
  *
  *   arena square W H | arena none        walls of a W x H cm arena, corner (0,0)

@@ -207,9 +207,9 @@ def check_one(program: Program, work: Path, cc: str, avr: str, runtime: list) ->
     """Check a program; if accepted, build it both ways and run it. Raises
     AssertionError with the evidence when an accepted program fails."""
     from epuckc.diagnostics import Report
-    from epuckc.driver import _program_name
-    from epuckc.emit import emit_program
-    from epuckc.frontend import check_file
+    from epuckc.cli.driver import _program_name
+    from epuckc.emit.program import emit_program
+    from epuckc.check.frontend import check_file
 
     work.mkdir(parents=True, exist_ok=True)
     rules = work / f"{program.stem}.epk"

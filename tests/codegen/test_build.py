@@ -219,7 +219,7 @@ def test_wheel_in_a_fresh_virtual_environment_runs_an_example(tmp_path):
                    check=True, capture_output=True)
     [wheel] = dist.glob("epuckc-*.whl")
     with zipfile.ZipFile(wheel) as archive:     # the C front end is built into it
-        assert any(n.startswith("epuckc/_front.") and n.endswith(".so") for n in archive.namelist())
+        assert any(n.startswith("epuckc/syntax/_front.") and n.endswith(".so") for n in archive.namelist())
     venv = tmp_path / "venv"
     subprocess.run([sys.executable, "-m", "venv", str(venv)], check=True)
     pip = venv / "bin" / "pip"
@@ -234,7 +234,7 @@ def test_wheel_in_a_fresh_virtual_environment_runs_an_example(tmp_path):
                             env=env, capture_output=True, text=True)
     assert result.returncode == 0, result.stdout + result.stderr
     assert "exit at" in result.stdout
-    probe = "from epuckc import parser; print(parser._c_driver() is not None)"
+    probe = "from epuckc.syntax import parser; print(parser._c_driver() is not None)"
     used = subprocess.run([str(venv / "bin" / "python"), "-c", probe], cwd=work, env=env,
                           capture_output=True, text=True)
     assert used.stdout.strip() == "True", used.stderr

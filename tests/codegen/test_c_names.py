@@ -5,8 +5,8 @@ rule file."""
 import re
 import subprocess
 
-from epuckc.cnames import KEYWORDS, visible_names
-from epuckc.lower import PREFIX, c_comment, c_string
+from epuckc.check.cnames import KEYWORDS, visible_names
+from epuckc.lower.program import PREFIX, c_comment, c_string
 from tests.conftest import require_tool
 
 from .helpers import EXAMPLES, REPO, epuckc

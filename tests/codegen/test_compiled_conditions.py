@@ -19,8 +19,8 @@ from hypothesis import strategies as st
 
 from conftest import require_tool
 from epuckc.diagnostics import Report
-from epuckc.emit import emit_c
-from epuckc.frontend import check_file
+from epuckc.emit.program import emit_c
+from epuckc.check.frontend import check_file
 
 from .helpers import REPO
 

@@ -1,4 +1,4 @@
-"""Every file epuckc writes goes through epuckc/output.py: standard output
+"""Every file epuckc writes goes through epuckc/base/output.py: standard output
 for `-`, links followed, device nodes never replaced, the whole file or
 nothing, and messages that name the path. And the host-build cache: an
 unusable one means a temporary folder, killed runs leave nothing behind."""
@@ -14,9 +14,9 @@ from pathlib import Path
 
 import pytest
 
-from epuckc import build as build_module
-from epuckc import output
-from epuckc.output import OutputError, write_file
+from epuckc.build import host as build_module
+from epuckc.base import output
+from epuckc.base.output import OutputError, write_file
 from tests.conftest import require_tool
 
 from .helpers import epuckc
@@ -189,7 +189,7 @@ def test_run_with_an_unusable_cache_builds_in_a_temporary_folder(prog, tmp_path,
 def test_full_cache_falls_back_to_a_temporary_folder(prog, tmp_path, monkeypatch, capsys):
     require_tool("cc")
     from epuckc.diagnostics import Report
-    from epuckc.driver import load_program
+    from epuckc.cli.driver import load_program
     monkeypatch.setenv("EPUCKC_CACHE_DIR", str(tmp_path / "cache"))
     real = build_module._compile_into
 
@@ -265,7 +265,7 @@ def test_trace_dash_writes_json_lines_to_standard_output(prog, tmp_path):
 
 
 def test_fmt_on_a_full_disk_names_the_file_and_keeps_it(tmp_path, monkeypatch, capsys):
-    from epuckc import fmt
+    from epuckc.ide import fmt
     path = tmp_path / "messy.epk"
     path.write_text("on immediate do   stop_motor\n")
 

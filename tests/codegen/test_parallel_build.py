@@ -1,4 +1,4 @@
-"""The host build (epuckc/build.py): translation units compiled at once on
+"""The host build (epuckc/build/host.py): translation units compiled at once on
 the machine's processors, the runtime's objects kept in a cache of their
 own keyed on what they are made of, and a failure anywhere reported as one
 clean message with nothing left in the cache."""
@@ -12,8 +12,9 @@ from pathlib import Path
 
 import pytest
 
-from epuckc import build as build_module
-from epuckc.build import BuildError, CompileStep, run_compile_steps
+from epuckc.build import host as build_module
+from epuckc.build.common import BuildError
+from epuckc.build.parallel import CompileStep, run_compile_steps
 from tests.conftest import require_tool
 
 from .helpers import REPO, epuckc
@@ -133,7 +134,7 @@ def test_a_failing_runtime_unit_reports_it_and_caches_nothing(tmp_path, monkeypa
     no executable and no runtime objects."""
     require_tool("cc")
     from epuckc.diagnostics import Report
-    from epuckc.driver import load_program
+    from epuckc.cli.driver import load_program
     runtime = tmp_path / "rt"
     shutil.copytree(REPO / "runtime_c", runtime, ignore=shutil.ignore_patterns("build"))
     stub = runtime / "host" / "epuck_stub.c"
@@ -208,7 +209,7 @@ def test_the_runtime_objects_follow_the_runtime_sources_and_the_compiler(tmp_pat
     """Keyed on every runtime source and header (content, not time), the
     compiler as a command and as a file, and the flags."""
     from epuckc.diagnostics import Report
-    from epuckc.driver import load_program
+    from epuckc.cli.driver import load_program
     require_tool("cc")
     runtime = tmp_path / "rt"
     shutil.copytree(REPO / "runtime_c", runtime, ignore=shutil.ignore_patterns("build"))

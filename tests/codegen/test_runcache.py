@@ -1,5 +1,5 @@
 """`epuckc run` of a rule file built before goes straight to its executable
-(epuckc/runcache.py): the same output as the first run, without importing
+(epuckc/build/runcache.py): the same output as the first run, without importing
 the front end or Jinja2, and never a stale build."""
 import os
 import shutil
@@ -43,13 +43,13 @@ def program(tmp_path):
 def test_second_run_prints_the_same_and_skips_the_front_end(program):
     first, first_modules, first_err = imported("run", program.name, cwd=program.parent)
     assert first.returncode == 0, first_err
-    assert "W007" in first_err and "epuckc.checker" in first_modules
+    assert "W007" in first_err and "epuckc.check.checker" in first_modules
     second, modules, second_err = imported("run", program.name, cwd=program.parent)
     assert second.returncode == 0, second_err
     assert second.stdout == first.stdout
     assert second_err == first_err                  # the warning is shown again
-    for name in ("jinja2", "epuckc.checker", "epuckc.parser", "epuckc.lower", "epuckc.emit",
-                 "epuckc.frontend"):
+    for name in ("jinja2", "epuckc.check.checker", "epuckc.syntax.parser", "epuckc.lower.program", "epuckc.emit.program",
+                 "epuckc.check.frontend"):
         assert name not in modules, name
 
 
@@ -62,7 +62,7 @@ def test_werror_fails_on_cached_warnings(program):
 def _run(program):
     result, modules, err = imported("run", program.name, cwd=program.parent)
     assert result.returncode == 0, err
-    return result.stdout, "epuckc.checker" in modules
+    return result.stdout, "epuckc.check.checker" in modules
 
 
 def test_an_edited_rule_file_is_built_again(program):
@@ -96,11 +96,11 @@ def test_capacity_options_are_part_of_the_key(program):
     _run(program)
     result, modules, err = imported("run", program.name, "--max-events", "1", cwd=program.parent)
     assert result.returncode == 0, err      # the rules are tables: no capacity to exceed
-    assert "epuckc.checker" in modules      # another key: checked and built, not the cached run
+    assert "epuckc.check.checker" in modules      # another key: checked and built, not the cached run
 
 
 def test_the_key_follows_the_runtime_and_the_compiler(program, tmp_path, monkeypatch):
-    from epuckc import runcache
+    from epuckc.build import runcache
     runtime = tmp_path / "rt"
     shutil.copytree(REPO / "runtime_c", runtime, ignore=shutil.ignore_patterns("build"))
     monkeypatch.setattr(runcache, "runtime_dir", lambda: runtime)
@@ -129,7 +129,7 @@ def test_check_imports_neither_lark_nor_jinja2_nor_lowering():
     imported("check", example)                  # the tables are in the cache now
     result, modules, err = imported("check", example)
     assert result.returncode == 0, err
-    for name in ("lark", "jinja2", "epuckc.lower", "epuckc.emit", "json", "difflib", "hashlib"):
+    for name in ("lark", "jinja2", "epuckc.lower.program", "epuckc.emit.program", "json", "difflib", "hashlib"):
         assert name not in modules, f"`epuckc check` imports {name}: import it where it is used"
     for name in ("dataclasses", "inspect"):
         assert name not in modules, (

@@ -13,13 +13,13 @@ from pathlib import Path
 
 import pytest
 
-from epuckc import ast
+from epuckc.syntax import ast
 from epuckc.diagnostics import Collector
-from epuckc.lexer import KEYWORDS, iter_tokens
-from epuckc.parser import parse
-from epuckc.source import SourceFile
-from epuckc.stdlib import ACTION_ALIASES, EVENT_ALIASES, STANDARD_ACTIONS, STANDARD_EVENTS
-from epuckc.units import UNITS
+from epuckc.syntax.lexer import KEYWORDS, iter_tokens
+from epuckc.syntax.parser import parse
+from epuckc.base.source import SourceFile
+from epuckc.stdlib.table import ACTION_ALIASES, EVENT_ALIASES, STANDARD_ACTIONS, STANDARD_EVENTS
+from epuckc.stdlib.units import UNITS
 
 from tests.conftest import require_tool
 

@@ -12,10 +12,10 @@ from pathlib import Path
 import pytest
 
 from epuckc.diagnostics import Collector
-from epuckc.lexer import KEYWORDS, iter_tokens
-from epuckc.source import SourceFile
-from epuckc.stdlib import ACTION_ALIASES, EVENT_ALIASES, STANDARD_ACTIONS, STANDARD_EVENTS
-from epuckc.units import UNITS
+from epuckc.syntax.lexer import KEYWORDS, iter_tokens
+from epuckc.base.source import SourceFile
+from epuckc.stdlib.table import ACTION_ALIASES, EVENT_ALIASES, STANDARD_ACTIONS, STANDARD_EVENTS
+from epuckc.stdlib.units import UNITS
 from tests.conftest import require_tool
 from tests.frontend.helpers import run_cli
 

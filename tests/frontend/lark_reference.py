@@ -1,5 +1,5 @@
 """Lark's own LALR parser over epuckc's grammar and tokens: the reference
-that the hand-written driver (epuckc/lalr.py) is held to, and the
+that the hand-written driver (epuckc/syntax/lalr.py) is held to, and the
 alternatives that bench/parser_bench.py times against it.
 
 Lark parses each statement's tokens (epuckc's lexer makes them) with its
@@ -14,9 +14,9 @@ from lark import Lark, Token, Transformer
 from lark.exceptions import UnexpectedInput, UnexpectedToken
 from lark.lexer import Lexer
 
-from epuckc.parser import _CALLBACKS
-from epuckc.resources import grammar_path
-from epuckc.source import Span
+from epuckc.syntax.parser import _CALLBACKS
+from epuckc.base.resources import grammar_path
+from epuckc.base.source import Span
 
 
 class TokenList(Lexer):

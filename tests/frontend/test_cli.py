@@ -11,9 +11,10 @@ from pathlib import Path
 
 import pytest
 
-from epuckc.codes import CODES, explanation
-from epuckc.diagnostics import Report, render_report
-from epuckc.frontend import check_file
+from epuckc.diagnostics.codes import CODES, explanation
+from epuckc.diagnostics import Report
+from epuckc.diagnostics.render import render_report
+from epuckc.check.frontend import check_file
 
 from .helpers import CASES, run_cli
 

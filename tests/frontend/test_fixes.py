@@ -8,8 +8,8 @@ from pathlib import Path
 import pytest
 
 from epuckc.diagnostics import Report
-from epuckc.frontend import check_file
-from epuckc.incremental import line_starts
+from epuckc.check.frontend import check_file
+from epuckc.ide.incremental import line_starts
 
 CASES = Path(__file__).resolve().parent / "cases"
 

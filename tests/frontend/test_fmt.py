@@ -17,13 +17,13 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from epuckc.diagnostics import Collector, Report
-from epuckc.fmt import WIDTH, FormatError, format_text
-from epuckc.frontend import check_file
-from epuckc.lexer import iter_tokens
-from epuckc.lower import lower
-from epuckc.source import SourceFile
-from epuckc.stdlib import STANDARD_ACTIONS
-from epuckc.units import UNITS
+from epuckc.ide.fmt import WIDTH, FormatError, format_text
+from epuckc.check.frontend import check_file
+from epuckc.syntax.lexer import iter_tokens
+from epuckc.lower.program import lower
+from epuckc.base.source import SourceFile
+from epuckc.stdlib.table import STANDARD_ACTIONS
+from epuckc.stdlib.units import UNITS
 
 from .helpers import run_cli
 

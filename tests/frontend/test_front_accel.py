@@ -1,4 +1,4 @@
-"""The C front end (epuckc/_front.c) against the Python one (lexer.py,
+"""The C front end (epuckc/syntax/_front.c) against the Python one (lexer.py,
 lalr.py): for every file, either the C front end gives up (and then the
 Python one has something to report) or both give the same program (same
 nodes, fields and spans) and the same diagnostics. Over the corpus, over
@@ -17,10 +17,14 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from epuckc import accel, ast, parser
+from epuckc.syntax import accel
+
+from epuckc.syntax import ast
+
+from epuckc.syntax import parser
 from epuckc.diagnostics import Collector
-from epuckc.records import FrozenInstanceError
-from epuckc.source import SourceFile
+from epuckc.base.records import FrozenInstanceError
+from epuckc.base.source import SourceFile
 
 from .test_lalr_vs_lark import CORPUS, body, call, mutated, names
 from .test_lalr_vs_lark import statement as any_statement
@@ -31,14 +35,14 @@ REPO = Path(__file__).resolve().parents[2]
 
 def _front():
     try:
-        from epuckc import _front
+        from epuckc.syntax import _front
     except ImportError:
         reason = "the C front end is not built (`pip install -e .` builds it; CI must have it)"
         if os.environ.get("EPUCKC_REQUIRE_ALL_TOOLS"):
             pytest.fail(reason)
         pytest.skip(reason)
     assert not accel.stale(_front.__file__), \
-        "epuckc/_front.c changed after it was built: run `pip install -e .` again"
+        "epuckc/syntax/_front.c changed after it was built: run `pip install -e .` again"
     return _front
 
 
@@ -211,7 +215,7 @@ def test_programs_with_characters_put_in(driver, text):
 def test_check_uses_the_c_front_end_unless_told_not_to(driver):
     """`EPUCKC_PURE_PYTHON=1` runs the Python front end, and both give the
     same output on a file with a mistake and on one without."""
-    probe = ("import sys; from epuckc import parser; "
+    probe = ("import sys; from epuckc.syntax import parser; "
              "print(parser._c_driver() is not None)")
     env = dict(os.environ, PYTHONPATH=str(REPO))
     env.pop("EPUCKC_PURE_PYTHON", None)

@@ -11,7 +11,7 @@ import json
 
 import pytest
 
-from epuckc.codes import CODES, explanation
+from epuckc.diagnostics.codes import CODES, explanation
 
 from .helpers import CASES, case_args, run_cli
 
@@ -78,7 +78,7 @@ def test_every_code_has_a_case_and_an_explanation(code):
     else:
         assert any(code in _codes_of(c) for c in named), f"{named[0].name} does not produce {code}"
     text = explanation(code)
-    assert text, f"epuckc/explanations/{code}.md is missing"
+    assert text, f"epuckc/diagnostics/explanations/{code}.md is missing"
     assert text.startswith(f"# {code}:"), "an explanation starts with `# CODE: title`"
 
 

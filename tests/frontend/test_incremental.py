@@ -1,4 +1,4 @@
-"""The language server's incremental checking (epuckc/incremental.py) must
+"""The language server's incremental checking (epuckc/ide/incremental.py) must
 report exactly what `epuckc check` reports, edit after edit, and splitting
 resumed at a statement start must cut as the whole file's split does."""
 from __future__ import annotations
@@ -10,10 +10,10 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from epuckc.diagnostics import Collector, Report
-from epuckc.frontend import check_file
-from epuckc.incremental import VLINE, Analyzer, line_starts, split_statements
-from epuckc.lexer import MAX_LEXICAL_ERRORS, iter_statements, iter_tokens
-from epuckc.source import SourceFile
+from epuckc.check.frontend import check_file
+from epuckc.ide.incremental import VLINE, Analyzer, line_starts, split_statements
+from epuckc.syntax.lexer import MAX_LEXICAL_ERRORS, iter_statements, iter_tokens
+from epuckc.base.source import SourceFile
 
 REPO = Path(__file__).resolve().parents[2]
 PROGRAMS = [p.read_text(encoding="utf-8") for p in sorted((REPO / "examples").glob("*.epk"))] + [
@@ -71,7 +71,7 @@ def test_edit_after_edit_equals_a_full_check():
 @settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(st.lists(st.sampled_from(FRAGMENTS), max_size=40), st.integers(0, 100))
 def test_splitting_resumed_at_a_statement_start_cuts_as_the_whole_file(pieces, which):
-    from epuckc.incremental import _boundaries
+    from epuckc.ide.incremental import _boundaries
     text = "".join(pieces)
     source = SourceFile("x", text)
     bad = Collector(source)
@@ -100,7 +100,7 @@ def test_random_edit_sequences(program, edits):
 
 
 def test_unchanged_statements_are_not_parsed_or_checked_again(monkeypatch):
-    import epuckc.incremental as inc
+    import epuckc.ide.incremental as inc
     program = "\n".join(f"rule r{i}: on timer({i + 1} s) repeat do set_timer, start_straight(300, {i} cm)"
                         for i in range(200)) + "\non immediate do set_timer\n"
     analyzer = Analyzer("prog.epk")
@@ -127,7 +127,7 @@ def test_many_bad_characters_fall_back_to_the_whole_file():
 
 
 def test_a_changed_constant_rechecks_only_the_rules_that_use_it(monkeypatch):
-    import epuckc.incremental as inc
+    import epuckc.ide.incremental as inc
     program = ("const far = 50 cm\n"
                + "\n".join(f"on timer({i + 1} s) do set_timer, start_straight(300, {i + 1} cm)"
                            for i in range(100))

@@ -1,4 +1,4 @@
-"""The hand-written LALR driver (epuckc/lalr.py) against Lark's own LALR
+"""The hand-written LALR driver (epuckc/syntax/lalr.py) against Lark's own LALR
 parser with its tree builder, statement by statement: the same AST (same
 nodes, fields and spans) where a statement parses, the same unexpected
 token and the same expected terminals where it does not. Over the corpus
@@ -13,11 +13,11 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from epuckc import lalr
+from epuckc.syntax import lalr
 from epuckc.diagnostics import Collector
-from epuckc.lexer import iter_statements, iter_tokens
-from epuckc.parser import _CALLBACKS, _tables
-from epuckc.source import SourceFile, Span
+from epuckc.syntax.lexer import iter_statements, iter_tokens
+from epuckc.syntax.parser import _CALLBACKS, _tables
+from epuckc.base.source import SourceFile, Span
 
 from .lark_reference import lark_parser, parse_with_lark
 from .test_robustness import WORDS
@@ -168,15 +168,15 @@ def test_mutated_programs(text):
 
 
 def test_the_shipped_tables_are_the_grammars():
-    """epuckc/_parse_tables.py is what `python3 -m epuckc.lalr` writes from
+    """epuckc/syntax/_parse_tables.py is what `python3 -m epuckc.syntax.lalr` writes from
     grammar/epuck.lark now (Lark's tables, numbered the same way whatever
     the hash seed), and the parser uses it: after editing the grammar, run
     that command."""
-    from epuckc.resources import grammar_path
+    from epuckc.base.resources import grammar_path
     grammar = grammar_path().read_text(encoding="utf-8")
     shipped = Path(lalr.__file__).with_name(lalr.SHIPPED)
     assert shipped.read_text(encoding="utf-8") == lalr.tables_module(grammar, "statement"), \
-        "grammar/epuck.lark changed: run `python3 -m epuckc.lalr`"
+        "grammar/epuck.lark changed: run `python3 -m epuckc.syntax.lalr`"
     tables = lalr._shipped(grammar, "statement")
     assert tables is not None and _tables().packed == tables.packed
 
@@ -185,7 +185,7 @@ def test_tables_do_not_depend_on_the_hash_seed():
     import os
     import subprocess
     import sys
-    probe = ("from epuckc import lalr; from epuckc.resources import grammar_path; "
+    probe = ("from epuckc.syntax import lalr; from epuckc.base.resources import grammar_path; "
              "import sys; sys.stdout.write(lalr.tables_module("
              "grammar_path().read_text(encoding='utf-8'), 'statement'))")
     outputs = {subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True,

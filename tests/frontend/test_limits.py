@@ -72,7 +72,7 @@ def test_long_cycles_are_one_error_each(work, capsys):
 
 
 def test_a_constant_used_many_times_is_resolved_once(work, capsys, monkeypatch):
-    from epuckc import checker
+    from epuckc.check import checker
     calls = []
     real = checker.Checker._const_chain
 

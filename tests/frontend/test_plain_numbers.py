@@ -9,12 +9,12 @@ import math
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from epuckc import ast
-from epuckc.checker import Checker
+from epuckc.syntax import ast
+from epuckc.check.checker import Checker
 from epuckc.diagnostics import Collector
-from epuckc.source import SourceFile, Span
-from epuckc.stdlib import Param
-from epuckc.units import KINDS, UNITS, Geometry
+from epuckc.base.source import SourceFile, Span
+from epuckc.stdlib.table import Param
+from epuckc.stdlib.units import KINDS, UNITS, Geometry
 
 SPAN = Span(1, 1, 1, 2)
 

@@ -1,4 +1,4 @@
-"""Records (epuckc/records.py) and AST nodes (epuckc/ast.py) behave as the
+"""Records (epuckc/base/records.py) and AST nodes (epuckc/syntax/ast.py) behave as the
 frozen dataclasses they replace, and answer to the dataclasses module."""
 import copy
 import dataclasses
@@ -6,9 +6,9 @@ import pickle
 
 import pytest
 
-from epuckc import ast
-from epuckc.records import FrozenInstanceError, field, record
-from epuckc.source import Span
+from epuckc.syntax import ast
+from epuckc.base.records import FrozenInstanceError, field, record
+from epuckc.base.source import Span
 
 
 @record(frozen=True)
@@ -99,8 +99,8 @@ def test_ast_nodes_behave_as_frozen_dataclasses():
 
 def test_parsed_nodes_are_frozen_and_of_the_public_classes():
     from epuckc.diagnostics import Collector
-    from epuckc.parser import parse
-    from epuckc.source import SourceFile
+    from epuckc.syntax.parser import parse
+    from epuckc.base.source import SourceFile
     source = SourceFile("x.epk", "on sensor(ir0 > 300) repeat do stop_motor, go\n")
     program = parse(source, Collector(source))
     rule = program.statements[0]

@@ -13,10 +13,11 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from epuckc.codes import CODES
-from epuckc.diagnostics import Report, render_report
-from epuckc.frontend import check_file
-from epuckc.lexer import KEYWORDS, PUNCTUATION
+from epuckc.diagnostics.codes import CODES
+from epuckc.diagnostics import Report
+from epuckc.diagnostics.render import render_report
+from epuckc.check.frontend import check_file
+from epuckc.syntax.lexer import KEYWORDS, PUNCTUATION
 
 from .helpers import run_cli
 

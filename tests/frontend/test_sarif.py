@@ -9,7 +9,7 @@ from pathlib import Path
 import jsonschema           # in the test extra (pyproject.toml)
 import pytest
 
-from epuckc.codes import CODES, explanation
+from epuckc.diagnostics.codes import CODES, explanation
 
 from .helpers import CASES, case_args, run_cli
 

@@ -3,8 +3,8 @@ reference prints it, the runtime declares every function it names, and the
 codes it cites exist."""
 import re
 
-from epuckc import stdlib
-from epuckc.codes import CODES
+from epuckc.stdlib import table as stdlib
+from epuckc.diagnostics.codes import CODES
 from tests.conftest import REPO
 
 
@@ -13,7 +13,7 @@ def test_language_reference_prints_the_table():
     start = doc.index("### 3.1 Actions")
     end = doc.index("<!-- end of generated tables -->")
     assert doc[start:end] == stdlib.reference_markdown(), \
-        "docs/language.md section 3 is stale: paste `python3 -m epuckc.stdlib` over it"
+        "docs/language.md section 3 is stale: paste `python3 -m epuckc.stdlib.table` over it"
 
 
 def test_every_runtime_name_is_declared_by_the_runtime():

@@ -1,8 +1,8 @@
 """The editor's answers about priorities, modes and the rest of the robot,
-from epuckc/ide.py directly: hover on an enumerated argument, completion
+from epuckc/ide/features.py directly: hover on an enumerated argument, completion
 of LED names and modes, document symbols and definitions of modes."""
-from epuckc import ide
-from epuckc.incremental import Analyzer
+from epuckc.ide import features as ide
+from epuckc.ide.incremental import Analyzer
 
 TEXT = """\
 const urgent = 3

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from lsprotocol.types import Position
 
-from epuckc.lsp import Lines, line_edits
+from epuckc.ide.lsp import Lines, line_edits
 
 TEXT = "on é\r\nx😀y\rlast\n"
 

@@ -38,7 +38,7 @@ def _epuckc_position(text: str, p: lsp.Position) -> tuple:
     count characters."""
     import bisect
     import re
-    from epuckc.incremental import line_starts
+    from epuckc.ide.incremental import line_starts
     starts = [0] + [m.end() for m in re.finditer(r"\r\n|\r|\n", text)]
     offset = starts[p.line]
     units = 0
@@ -74,7 +74,7 @@ def from_check(items, text: str = None) -> list:
     if text is not None:
         # LSP has no position between the \r and the \n of a line end: such
         # a position can only be sent as the one before the \r
-        from epuckc.incremental import line_starts
+        from epuckc.ide.incremental import line_starts
         starts = line_starts(text)
         for d in items:
             for line, column in (("line", "column"), ("end_line", "end_column")):
@@ -394,7 +394,7 @@ async def test_unknown_documents_bad_positions_and_bad_requests(client, tmp_path
 
 
 async def test_formatting(client, tmp_path):
-    from epuckc.fmt import format_text
+    from epuckc.ide.fmt import format_text
     text = ("# a messy file\n"
             "const   D=50 cm\n\n\n"
             "on immediate do start_straight( 300 steps / s,D ) # go\n"

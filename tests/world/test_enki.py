@@ -244,11 +244,11 @@ def test_the_portable_coroutine_switch_gives_the_same_run(tmp_path):
     swapcontext elsewhere (-DEPUCK_WORLD_UCONTEXT): the same run either way."""
     import shutil
     import subprocess
-    from epuckc import enki
+    from epuckc.sim import enki
     from epuckc.diagnostics import Report
-    from epuckc.driver import load_program
-    from epuckc.resources import runtime_dir
-    from epuckc.world import parse_world, runner_spec
+    from epuckc.cli.driver import load_program
+    from epuckc.base.resources import runtime_dir
+    from epuckc.sim.world import parse_world, runner_spec
     fast = enki.build_runner()
     portable = tmp_path / "portable"
     rt = runtime_dir() / "enki"

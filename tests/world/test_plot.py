@@ -1,11 +1,11 @@
-"""Pictures of a run (epuckc/plot.py): the SVG is parsed and what it shows
+"""Pictures of a run (epuckc/sim/plot.py): the SVG is parsed and what it shows
 is checked against the trace it was drawn from."""
 import json
 import re
 
 import pytest
 
-from epuckc.plot import PlotError, plot_trace
+from epuckc.sim.plot import PlotError, plot_trace
 
 from .helpers import EXAMPLES, by_class, epuckc, run, svg
 

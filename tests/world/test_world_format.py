@@ -1,10 +1,10 @@
-"""The world file format (epuckc/world.py): what it accepts, what it
+"""The world file format (epuckc/sim/world.py): what it accepts, what it
 rejects and how it says so."""
 import math
 
 import pytest
 
-from epuckc.world import WorldError, parse_world, runner_spec
+from epuckc.sim.world import WorldError, parse_world, runner_spec
 
 from .helpers import EXAMPLES, epuckc
 

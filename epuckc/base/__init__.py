@@ -1,0 +1,9 @@
+"""The ground floor: what every stage uses and nothing above it.
+
+- records.py: `@record`, light dataclass-like classes with slots;
+- source.py: `SourceFile` and `Span` (1-based line and column);
+- resources.py: where the grammar, templates, runtime and cache are;
+- output.py: writing a file whole or not at all, `-` for standard output.
+
+May import: nothing of epuckc.
+"""

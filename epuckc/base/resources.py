@@ -1,0 +1,40 @@
+"""Where the grammar, templates and C runtime are.
+
+In a checkout they sit at the top of the repository; an installed wheel
+carries them inside the package (see pyproject.toml), so both places are
+tried, the package first.
+"""
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+_PACKAGE = Path(__file__).resolve().parent.parent   # epuckc/
+
+
+def resource_dir(name: str) -> Path:
+    for candidate in (_PACKAGE / name, _PACKAGE.parent / name):
+        if candidate.is_dir() and any(candidate.iterdir()):
+            return candidate
+    raise FileNotFoundError(f"epuckc is installed without its {name}/ directory")
+
+
+def grammar_path() -> Path:
+    return resource_dir("grammar") / "epuck.lark"
+
+
+def templates_dir() -> Path:
+    return resource_dir("templates")
+
+
+def runtime_dir() -> Path:
+    return resource_dir("runtime_c")
+
+
+def cache_dir() -> Path:
+    """Where epuckc keeps what it can rebuild (parse tables, host builds):
+    $EPUCKC_CACHE_DIR, else $XDG_CACHE_HOME/epuckc, else ~/.cache/epuckc."""
+    if os.environ.get("EPUCKC_CACHE_DIR"):
+        return Path(os.environ["EPUCKC_CACHE_DIR"])
+    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    return Path(base) / "epuckc"

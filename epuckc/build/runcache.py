@@ -1,0 +1,140 @@
+"""`epuckc run` of a rule file that was built before: straight to the
+executable, keyed on the inputs rather than on the generated C.
+
+The host build cache (build.py) is keyed on the generated C, so reaching it
+means checking the file, lowering it and rendering the Jinja2 template,
+which is most of a cached run's time. This cache sits in front of it: after
+a successful build, `record` stores under a key made of everything that
+decides the executable and the messages printed on the way,
+
+  - the rule file: its bytes, its path (the folder of its extern C files)
+    and its name as given (diagnostics show it),
+  - epuckc itself: its version and the size and modification time of every
+    file of the compiler (epuckc/*.py, the grammar, the templates), so an
+    edited compiler never reuses an old build,
+  - the runtime's sources (size and modification time),
+  - the C compiler ($CC) and the capacities (--max-actions, --max-events),
+
+the path of the executable, the bytes of every extern C file the program
+includes (compared whole on a hit), and the diagnostics as they were
+printed (warnings: only a program without errors is built), with and
+without colour. `lookup` returns that entry when the key matches and the
+executable and extern files are unchanged; the next run prints the same
+warnings and runs the executable without importing the front end or
+Jinja2. Anything unexpected (a missing or unreadable entry, another
+format) is a miss: the normal path runs and records again.
+"""
+from __future__ import annotations
+
+import marshal
+import os
+import sys
+import zlib
+from pathlib import Path
+from typing import Optional
+
+from .. import __version__
+from ..base.resources import cache_dir, grammar_path, runtime_dir, templates_dir
+
+FORMAT = 1
+_PACKAGE = Path(__file__).resolve().parent.parent     # epuckc/, every stage's folder
+
+
+def _stat_lines(folder: Path, suffixes: tuple, recursive: bool) -> list:
+    """`relative path, size, mtime` of the files with these suffixes."""
+    lines = []
+    walker = os.walk(folder) if recursive else [(str(folder), [], os.listdir(folder))]
+    for base, dirs, files in walker:
+        dirs[:] = sorted(d for d in dirs if d not in ("build", "__pycache__"))
+        for name in sorted(files):
+            if name.endswith(suffixes):
+                path = os.path.join(base, name)
+                st = os.stat(path)
+                lines.append(f"{os.path.relpath(path, folder)} {st.st_size} {st.st_mtime_ns}")
+    return lines
+
+
+def input_key(path: Path, data: bytes, shown_name: str, max_actions,
+              max_events) -> Optional[bytes]:
+    """Everything a `run` of this rule file depends on, as one byte string;
+    None when some of it cannot be read (the normal path will say why)."""
+    try:
+        return _input_key(path, data, shown_name, max_actions, max_events)
+    except OSError:
+        return None
+
+
+def _input_key(path: Path, data: bytes, shown_name: str, max_actions, max_events) -> bytes:
+    parts = [f"format {FORMAT}", f"epuckc {__version__}", f"python {sys.version}",
+             f"file {path.resolve()}", f"shown {shown_name}",
+             f"cc {os.environ.get('CC') or 'cc'}",
+             f"capacity {max_actions} {max_events}"]
+    parts += _stat_lines(_PACKAGE, (".py", ".so"), recursive=True)
+    parts.append(f"grammar {grammar_path()}")
+    parts += _stat_lines(grammar_path().parent, (".lark",), recursive=False)
+    parts += _stat_lines(templates_dir(), (".j2",), recursive=False)
+    parts += _stat_lines(runtime_dir(), (".c", ".h"), recursive=True)
+    return "\n".join(parts).encode("utf-8") + b"\n\0" + data
+
+
+def _entry_path(key: bytes) -> Path:
+    return cache_dir() / "run" / f"{zlib.crc32(key):08x}.marshal"
+
+
+class Entry:
+    """A recorded build: the executable, its extern files, what was printed."""
+
+    def __init__(self, exe: str, user_files: tuple, shown: str, shown_colour: str,
+                 warnings: int):
+        self.exe = exe
+        self.user_files = user_files        # ((absolute path, bytes), ...)
+        self.shown = shown                  # the diagnostics, as printed
+        self.shown_colour = shown_colour
+        self.warnings = warnings
+
+
+def lookup(key: bytes) -> Optional[Entry]:
+    try:
+        with open(_entry_path(key), "rb") as f:
+            data = marshal.load(f)
+    except (OSError, EOFError, ValueError, TypeError):
+        return None
+    if not (isinstance(data, tuple) and len(data) == 7 and data[0] == FORMAT
+            and data[1] == key):
+        return None
+    entry = Entry(*data[2:])
+    if not os.access(entry.exe, os.X_OK):
+        return None
+    for name, content in entry.user_files:
+        try:
+            with open(name, "rb") as f:
+                if f.read() != content:
+                    return None
+        except OSError:
+            return None
+    return entry
+
+
+def record(key: bytes, exe: Path, user_files: list, shown: str, shown_colour: str,
+           warnings: int) -> None:
+    """Remember a build; a cache that cannot be written is not an error."""
+    try:
+        exe = Path(exe).resolve()
+        if cache_dir().resolve() not in exe.parents:
+            return          # a build outside the cache (e.g. a temporary folder) does not last
+        files = tuple((str(Path(p).resolve()), Path(p).read_bytes()) for p in user_files)
+        path = _entry_path(key)
+        path.parent.mkdir(parents=True, exist_ok=True)
+    except (OSError, ValueError):
+        return
+    # Written aside and renamed: a parallel run reads all of it or nothing.
+    tmp = path.with_name(f"{path.name}.{os.getpid()}.tmp")
+    try:
+        with open(tmp, "wb") as f:
+            marshal.dump((FORMAT, key, str(exe), files, shown, shown_colour, warnings), f)
+        os.replace(tmp, path)
+    except (OSError, ValueError):
+        try:
+            os.unlink(tmp)
+        except OSError:
+            pass

@@ -1,0 +1,14 @@
+"""The checker: names, values and units, the robot block, externs, calls,
+events and rules, modes and arbitration; the second stage.
+
+checker.py is the orchestrator: `Checker` holds the state and the order of
+work, and takes its methods from one mixin per concern (names.py,
+values.py, robot.py, externs.py, calls.py, rules.py); modes.py and
+arbitration.py are the whole-program analyses (modes entered, W009 races).
+program.py is its output, a `CheckedProgram` whose calls carry runtime
+integers; messages.py the shared wording; cnames.py the C names a user's
+extern may not take; splice.py how named actions splice into steps;
+frontend.py runs read + parse + check as one call (`check_file`).
+
+May import: base, diagnostics, stdlib, syntax.
+"""

@@ -1,0 +1,225 @@
+"""Calls: binding arguments to parameters (by position or name), converting
+them, and resolving a call to a standard action, an extern, a named action,
+`enter` or `cancel`."""
+from __future__ import annotations
+
+from typing import Optional
+
+from ..base.source import Span
+from ..diagnostics import Fix, Note
+from ..stdlib.table import ACTION_ALIASES, CHOICE, STANDARD_ACTIONS
+from ..stdlib.units import ANGLE, DISTANCE, curve_wheels, round_nearest
+from ..syntax import ast
+from . import modes
+from .messages import _code, _count, _shown, _signature_help, did_you_mean
+from .program import ResolvedCall
+
+
+class Calls:
+    """The checker's calls of actions (a part of Checker)."""
+
+    def _bind(self, call_name: ast.Ident, args, params, what: str) -> Optional[dict]:
+        """Match arguments to parameters: positional in the paper's order,
+        then named. Returns parameter name -> argument node, or None."""
+        if not args:
+            if not params:
+                return {}
+        elif len(args) == len(params):
+            # The common case first: each parameter given once, the
+            # positional arguments before the named ones. Anything else
+            # takes the general way below, which says what is wrong.
+            bound = {}
+            named = False
+            for p, arg in zip(params, args):
+                cls = arg.__class__
+                if cls is ast.PositionalArg and not named:
+                    bound[p.name] = arg
+                elif cls is ast.NamedArg:
+                    named = True
+                    bound[arg.name.name] = arg
+                else:
+                    break
+            else:
+                if len(bound) == len(params) and (
+                        not named or all(p.name in bound for p in params)):
+                    return bound
+        args = args or ()
+        bound: dict = {}
+        ok = True
+        seen_named = False
+        positional = 0
+        by_name = {p.name: p for p in params}
+        extra = []                  # positional arguments beyond the parameters
+        for arg in args:
+            if isinstance(arg, ast.ConditionArg):
+                self.diags.error("E024", arg.span,
+                                 f"a condition such as `{arg.sensor.name} {arg.op} ...` "
+                                 f"can only be given to `sensor` or `ambient`",
+                                 help=_signature_help(call_name.name, params))
+                ok = False
+                continue
+            if isinstance(arg, ast.NamedArg):
+                seen_named = True
+                pname = arg.name.name
+                if pname not in by_name:
+                    names = [p.name for p in params]
+                    self.diags.error("E014", arg.name.span,
+                                     f"{what} {_code(call_name.name)} has no parameter {_code(pname)}",
+                                     help=did_you_mean(arg.name, names) or (
+                                         "its parameters are " + ", ".join(map(_code, names))
+                                         if names else "it takes no arguments"))
+                    ok = False
+                    continue
+                if pname in bound:
+                    self.diags.error("E018", arg.span, f"{_code(pname)} is given twice",
+                                     notes=[Note("first given here", bound[pname].span)])
+                    ok = False
+                    continue
+                bound[pname] = arg
+                continue
+            if seen_named:
+                self.diags.error("E021", arg.span, "a positional argument cannot follow a named one",
+                                 help="give the positional arguments first, or name this one too")
+                ok = False
+                continue
+            if positional >= len(params):
+                extra.append(arg)
+                positional += 1
+                continue
+            bound[params[positional].name] = arg
+            positional += 1
+        if extra:
+            given = sum(not isinstance(a, ast.NamedArg) for a in args)
+            self.diags.error("E016", Span.of(extra[0], extra[-1]),
+                             f"{what} {_code(call_name.name)} takes {_count(len(params))}, "
+                             f"but {given} are given",
+                             help=_signature_help(call_name.name, params))
+            ok = False
+        missing = [p.name for p in params if p.name not in bound]
+        if missing and ok:
+            span = call_name.span if not args else Span.of(call_name, args[-1])
+            self.diags.error("E017", span,
+                             f"{what} {_code(call_name.name)} is missing "
+                             f"{' and '.join(map(_code, missing))}",
+                             help=_signature_help(call_name.name, params))
+            ok = False
+        return bound if ok else None
+
+    def _convert(self, bound: dict, params) -> Optional[tuple[dict, dict]]:
+        """Check and convert each bound argument to its runtime integer."""
+        values, shown, ok = {}, {}, True
+        for p in params:
+            arg = bound[p.name]
+            v = self._plain(arg.value, p.kind, p.lo, p.hi)
+            if v is not None:
+                values[p.name], shown[p.name] = v, _shown(arg.value)
+                continue
+            if p.kind == CHOICE:
+                choice = self._choice(arg.value, p)
+                if choice is None:
+                    ok = False
+                    continue
+                values[p.name], shown[p.name] = choice, _shown(arg.value)
+                continue
+            q = self._value(arg.value, p.kind, p.name)
+            if q is None:
+                ok = False
+                continue
+            shown[p.name] = _shown(arg.value)
+            v = self._to_runtime(q, p, arg.value)
+            if v is None:
+                ok = False
+                continue
+            values[p.name] = v
+        return (values, shown) if ok else None
+
+    def _call(self, call) -> Optional[ResolvedCall]:
+        if isinstance(call, ast.EnterCall):
+            return modes.enter_call(self, call)
+        if isinstance(call, ast.CancelCall):
+            name = call.rule.name
+            if name not in self.rule_names:
+                self.diags.error("E012", call.rule.span, f"unknown rule {_code(name)}",
+                                 help=did_you_mean(call.rule, self.rule_names) or
+                                 f"name the rule to cancel: `rule {name}: on ...`")
+                return None
+            return ResolvedCall("cancel", name, {}, {}, call)
+        name = call.name.name
+        canonical = ACTION_ALIASES.get(name, name)
+        if canonical in STANDARD_ACTIONS:
+            self.called.add(canonical)
+            return self._standard_action(canonical, call)
+        if name in self.externs and self.externs[name].kind == "action":
+            info = self.externs[name]
+            self.used_actions.add(name)
+            bound = self._bind(call.name, call.args, info.params, "action")
+            converted = self._convert(bound, info.params) if bound is not None else None
+            if converted is None:
+                return None
+            return ResolvedCall("extern", name, converted[0], converted[1], call)
+        if name in self.actions:
+            self.used_actions.add(name)
+            if call.args:
+                self.diags.error("E016", call.span, f"action {_code(name)} takes no arguments",
+                                 help=Fix(call.span, name, f"write `{name}` alone; named actions "
+                                                           "have no parameters"),
+                                 notes=[Note(f"{_code(name)} is defined here", self.actions[name].span)])
+                return None
+            if id(call) in self._cycle_calls:
+                self.diags.error("E023", call.name.span,
+                                 f"action {_code(name)} is defined in terms of itself",
+                                 help="an action cannot run itself; use a `repeat` rule to do something again")
+                return None
+            return ResolvedCall("named", name, {}, {}, call)
+        if self.broken_externs.get(name) == "action":
+            return None               # its declaration is already reported
+        if name in self.externs:      # an extern event used as an action
+            self.diags.error("E011", call.name.span,
+                             f"{_code(name)} is an event, not an action",
+                             notes=[Note("declared here", self.externs[name].node.span)])
+            return None
+        candidates = set(STANDARD_ACTIONS) | set(self.actions) | {
+            n for n, e in self.externs.items() if e.kind == "action"}
+        self.diags.error("E011", call.name.span, f"unknown action {_code(name)}",
+                         help=did_you_mean(call.name, candidates) or
+                         f"define it with `action {name} = ...` or declare it with "
+                         f"`extern action {name}(...) from \"{name}.c\"`")
+        return None
+
+    def _standard_action(self, name: str, call: ast.Call) -> Optional[ResolvedCall]:
+        params = STANDARD_ACTIONS[name].params
+        bound = self._bind(call.name, call.args, params, "action")
+        if bound is None:
+            return None
+        converted = self._convert(bound, params)
+        if converted is None:
+            return None
+        values, shown = converted
+        geo = self.geo
+        if name == "start_curve":
+            radius = self._value(bound["radius"].value, DISTANCE, "radius").mm(geo)
+            if radius < 0:
+                self.diags.error("E036", bound["radius"].value.span,
+                                 f"`radius` cannot be negative (`{shown['radius']}`)",
+                                 help="a positive `degrees` turns left, a negative one right")
+                return None
+            degrees = self._value(bound["degrees"].value, ANGLE, "degrees").value
+            outer, inner = curve_wheels(radius, degrees, values["speed"], geo)
+            outer_steps = self._fits16(round_nearest(outer), bound["degrees"].value,
+                                       "degrees", " steps of the outer wheel")
+            if outer_steps is None:
+                return None
+            inner_speed = round_nearest(inner)
+            if abs(inner_speed) > geo.max_speed:
+                self.diags.error("E035", call.span,
+                                 f"this curve drives the inner wheel at {abs(inner_speed)} steps/s, "
+                                 f"above the robot's maximum of {geo.max_speed:.0f}",
+                                 help="lower `speed`")
+                return None
+            values["radius"] = self._fits16(round_nearest(radius), bound["radius"].value,
+                                            "radius", " mm")
+            if values["radius"] is None:
+                return None
+            values["outer_steps"] = outer_steps
+            values["inner_speed"] = inner_speed
+        return ResolvedCall("standard", name, values, shown, call)

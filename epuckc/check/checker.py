@@ -1,0 +1,115 @@
+"""Semantic checks: names, arguments, kinds, ranges, rules that cannot fire.
+
+The checker finds every problem it can in one run and resolves what is
+right into a CheckedProgram: each call with its arguments converted to the
+integers the runtime uses (steps, steps/s, degrees, ms). Code generation
+starts from that and never re-derives a value.
+"""
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Optional
+
+from ..diagnostics import Collector
+from ..stdlib.units import Geometry
+from ..syntax import ast
+from . import arbitration, modes
+from .calls import Calls
+from .externs import Externs
+from .names import Names
+from .program import CheckedProgram
+from .robot import RobotSettings
+from .rules import Rules
+from .values import Values
+
+
+class Checker(Names, Externs, RobotSettings, Values, Calls, Rules):
+    """The checker's state and its order of work; each concern's methods live in
+    the mixin of its module (names.py, externs.py, robot.py, values.py,
+    calls.py, rules.py), the whole-program analyses in modes.py and
+    arbitration.py."""
+
+    def __init__(self, program: ast.Program, diags: Collector,
+                 base_dir: Optional[Path] = None):
+        self.program = program
+        self.diags = diags
+        self.base_dir = base_dir
+        self.geo = Geometry()
+        self.consts: dict = {}           # name -> ConstDef
+        self.const_used: set = set()
+        self.actions: dict = {}          # name -> ActionDef
+        self.externs: dict = {}          # name -> ExternInfo
+        self.broken_externs: dict = {}   # name -> kind, of externs with bad declarations
+        self.extern_c_names: dict = {}   # name -> first ExternDef: one C namespace
+        self.rule_names: dict = {}       # name -> Rule
+        self.used_actions: set = set()
+        self.called: set = set()         # standard actions called anywhere
+        self._cycle_calls: set = set()   # ids of calls that close a cycle of named actions
+        self._const_memo: dict = {}      # constant -> (Number, negated, problem)
+        self._const_reported: set = set()
+        self._const_diagnostics: set = set()
+        self._resolved_actions: dict = {}
+        self._flat_actions: dict = {}    # named action -> flattened steps (modes.flat_steps)
+        self.modes: dict = {}            # name -> ModeDef
+        self.initial_mode: Optional[str] = None
+
+    # -- entry point --
+
+    def check(self) -> CheckedProgram:
+        self._declare()
+        robot_blocks = self.program.of_type(ast.RobotBlock)
+        self._robot(robot_blocks)
+        out = CheckedProgram(self.program.file, self.geo, robot_given=bool(robot_blocks))
+        out.externs = self.externs
+        self._resolve_actions(out)
+        out.modes, out.initial_mode = list(self.modes), self.initial_mode
+        for rule in self.program.of_type(ast.Rule):
+            resolved = self._rule(rule)
+            if resolved is not None:
+                out.rules.append(resolved)
+        # Warnings that conclude from an absence ("no action runs set_timer",
+        # "never used") are drawn only from a complete program: a statement
+        # or call dropped by an error may be the very one that was missing,
+        # and a warning caused by an error is noise (a cascade).
+        complete = not self.diags.has_errors
+        self._never_fire(out, complete)
+        if complete:
+            self._unused()
+        modes.check_program(self, out, complete)
+        arbitration.check_program(self, out)
+        return out
+
+    # Resolving the named actions and each rule are the steps that the
+    # language server's incremental checker (epuckc/ide/incremental.py) reuses
+    # from one keystroke to the next.
+
+    def _resolve_actions(self, out: CheckedProgram):
+        self._resolve_named_actions()
+        for name, node in self.actions.items():
+            out.actions[name] = self._named_action(name)
+            out.action_nodes[name] = node
+
+
+    # -- declarations --
+
+
+    # -- the robot block --
+
+
+    # -- values --
+
+
+    # -- arguments --
+
+
+    # -- actions --
+
+
+    # -- events --
+
+
+    # -- whole-program warnings --
+
+
+def check(program: ast.Program, diags: Collector, **options) -> CheckedProgram:
+    return Checker(program, diags, **options).check()

@@ -1,0 +1,65 @@
+"""Wording shared by the checker's concerns: names in backquotes, suggestions,
+examples of a kind's values, counts."""
+from __future__ import annotations
+
+from typing import Optional
+
+from ..diagnostics import Fix
+from ..stdlib.table import Param
+from ..stdlib.units import ANGLE, DISTANCE, DURATION, INT, SPEED
+from ..syntax import ast
+
+
+def did_you_mean(ident: ast.Ident, candidates) -> Optional[Fix]:
+    """The closest of `candidates` to a misspelt name, as a fix that
+    replaces the name (its help reads "did you mean `start_straight`?")."""
+    import difflib  # only for a misspelt name: `check` starts faster without it
+    close = difflib.get_close_matches(ident.name, sorted(candidates), n=1, cutoff=0.6)
+    return Fix(ident.span, close[0], f"did you mean `{close[0]}`?") if close else None
+
+
+def _code(text: str) -> str:
+    return f"`{text}`"
+
+
+def _shown(value) -> str:
+    if isinstance(value, ast.Number):
+        return value.text + (f" {value.unit}" if value.unit else "")
+    return ("-" if value.negative else "") + value.name.name
+
+
+def _clip(text: str, limit: int = 24) -> str:
+    return text if len(text) <= limit else text[:limit] + "..."
+
+
+def _article(word: str) -> str:
+    return "an" if word[:1] in "aeiouAEIOU" or word == "LED" else "a"
+
+
+def _then(fix: Optional[Fix], more: str):
+    """A fix followed by more help, or the help alone."""
+    return fix.then(more) if fix is not None else more
+
+
+def _either(names) -> str:
+    names = [_code(n) for n in names]
+    return names[0] if len(names) == 1 else ", ".join(names[:-1]) + " or " + names[-1]
+
+
+def _count(n: int) -> str:
+    return {0: "no arguments", 1: "1 argument"}.get(n, f"{n} arguments")
+
+
+def _signature_help(name: str, params) -> str:
+    if not params:
+        return f"write `{name}` with no arguments"
+    return f"write `{name}({', '.join(f'{p.name}: {_example_of(p)}' for p in params)})`"
+
+
+def _example_of(p: Param) -> str:
+    return p.choices.values[0].name if p.choices is not None else _example(p.kind)
+
+
+def _example(kind: str) -> str:
+    return {DISTANCE: "10 cm", SPEED: "300 steps/s", ANGLE: "90 deg",
+            DURATION: "2 s", INT: "3"}[kind]

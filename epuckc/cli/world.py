@@ -1,0 +1,107 @@
+"""The command line of worlds and pictures: `epuckc run --world/--svg/
+--pose-interval` and `epuckc plot`. Kept apart from cli.py, which only
+registers these options and hands over."""
+from __future__ import annotations
+
+import argparse
+import sys
+import tempfile
+from pathlib import Path
+
+EXIT_USAGE = 2
+DEFAULT_SVG_POSE_MS = 100
+
+
+def _error(message: str):
+    print(f"epuckc: error: {message}", file=sys.stderr)
+
+
+def add_run_options(p: argparse.ArgumentParser, duration):
+    p.add_argument("--world", metavar="FILE.world",
+                   help="run in an Enki world (arena, obstacles, several robots; docs/world.md) "
+                        "instead of replaying a scenario")
+    p.add_argument("--svg", metavar="OUT.svg",
+                   help="also draw the run: world, paths, rule firings, a timeline")
+    p.add_argument("--pose-interval", type=duration, metavar="DURATION",
+                   help=f"add a pose record to the trace every DURATION (default with --svg: "
+                        f"{DEFAULT_SVG_POSE_MS}ms; otherwise none)")
+
+
+def add_plot_parser(sub, run):
+    p = sub.add_parser("plot", help="draw a saved trace as an SVG picture",
+                       description="Draw a trace written by `epuckc run --trace` (the world, each "
+                                   "robot's path, markers where rules fired labelled file:line, "
+                                   "the final poses, and a timeline with one row per rule).")
+    p.add_argument("trace", metavar="TRACE.jsonl")
+    p.add_argument("-o", "--output", metavar="OUT.svg", required=True)
+    p.add_argument("--title", help="a title above the picture (default: the trace's file name)")
+    p.set_defaults(run=run)
+
+
+def wants_extension(args) -> bool:
+    return bool(getattr(args, "world", None) or getattr(args, "svg", None)
+                or getattr(args, "pose_interval", None))
+
+
+def run(args, program, load_program_file, run_host) -> int:
+    """`epuckc run` with a world, a picture or pose records."""
+    from ..build.common import BuildError
+    from ..sim.world import WorldError, parse_world
+    if args.world and args.scenario:
+        _error("--world and --scenario cannot be combined: in a world the proximity readings "
+               "come from Enki's sensors, not from a scenario")
+        return EXIT_USAGE
+    pose_ms = args.pose_interval or (DEFAULT_SVG_POSE_MS if args.svg else None)
+    world = None
+    if args.world:
+        try:
+            world = parse_world(Path(args.world), shown=args.world)
+        except WorldError as exc:
+            print(exc, file=sys.stderr)
+            return EXIT_USAGE
+    with tempfile.TemporaryDirectory(prefix="epuckc-run-") as tmp:
+        trace = Path(args.trace) if args.trace else (Path(tmp) / "trace.jsonl" if args.svg else None)
+        try:
+            if world is not None:
+                from ..sim.enki import run_world
+                status = run_world(world, program, load_program_file, args.time_limit,
+                                   trace.resolve() if trace else None, pose_ms)
+            else:
+                status = run_host(program, scenario=args.scenario, time_limit_ms=args.time_limit,
+                                  trace=str(trace) if trace else None, pose_ms=pose_ms)
+        except BuildError as exc:
+            _error(str(exc))
+            return exc.status
+        if args.svg:
+            plot_status = _plot(trace, Path(args.svg), title=Path(args.file).name)
+            if plot_status:
+                return plot_status
+    return status
+
+
+def _plot(trace: Path, out: Path, title: str) -> int:
+    from ..base.output import write_atomic
+    from ..sim.plot import PlotError, plot_trace
+    try:
+        text = trace.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        _error(f"the trace {trace} does not exist")
+        return EXIT_USAGE
+    except (OSError, UnicodeDecodeError) as exc:
+        _error(f"cannot read {trace}: {getattr(exc, 'strerror', None) or exc}")
+        return EXIT_USAGE
+    try:
+        svg = plot_trace(text, title=title, source=str(trace))
+    except PlotError as exc:
+        _error(str(exc))
+        return EXIT_USAGE
+    try:
+        write_atomic(out, svg)
+    except OSError as exc:
+        _error(f"cannot write {out}: {exc.strerror or exc}")
+        return EXIT_USAGE
+    return 0
+
+
+def cmd_plot(args) -> int:
+    return _plot(Path(args.trace), Path(args.output), title=args.title or Path(args.trace).name)

@@ -1,0 +1,680 @@
+"""`epuckc fmt`: the one canonical layout of a rule file.
+
+The layout is a function of the program alone (its syntax tree, read by the
+parser), of its comments (kept next to the token they were next to) and of
+where blank lines separated top-level statements, never of the original
+spacing. So formatting is idempotent, and two files that differ only in
+layout format to the same text.
+
+The rules (docs/formatting.md has them with examples):
+
+- one statement per line, starting in column 0; runs of blank lines between
+  statements (and top-level comments) become one blank line, and a file
+  ends with exactly one newline;
+- single spaces between words; `name: value`, `a, b`, `f(x)`, `300 steps/s`,
+  `ir0 > 300`, `-5 cm`, `const X = 1`, `robot { axle: 53 mm }`;
+- a statement longer than WIDTH characters is wrapped with a hanging indent
+  of INDENT spaces: first a rule's `do` goes to the next line, then each
+  `then` starts a line, then the calls of a step go one per line after their
+  `,` (one more indent), and last an argument list fills its lines, breaking
+  after a `,` (one more indent);
+- a robot block that does not fit on a line, or whose last setting is
+  followed by a comma, has one setting per line, each with a comma;
+- a comment at the end of a line stays at the end of the line of the same
+  token (two spaces before `#`); a comment on its own line stays on its own
+  line before the same token. Trailing spaces in comments are dropped.
+
+The formatter works on the token stream of the lexer and the syntax tree of
+the parser: it walks the tree, takes the tokens off the stream one by one
+as it prints them (so nothing can be lost or reordered), and builds a
+document of groups that a Wadler-style printer lays out in WIDTH columns.
+"""
+from __future__ import annotations
+
+import re
+import sys
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Optional
+
+from ..syntax import ast
+from ..diagnostics import Collector
+from ..syntax.lexer import iter_statements, iter_tokens
+from ..syntax.parser import parse
+from ..base.source import SourceFile
+
+WIDTH = 88          # the longest line the formatter makes, when it can
+INDENT = 4          # the hanging indent of a wrapped statement
+
+
+class FormatError(Exception):
+    """The text has syntax errors; `diagnostics` are the front end's."""
+
+    def __init__(self, diagnostics: list):
+        self.diagnostics = list(diagnostics)
+        first = self.diagnostics[0] if self.diagnostics else None
+        where = f"{first.file}:{first.span.line}:{first.span.column}: " if first else ""
+        super().__init__(f"{where}cannot format a file with syntax errors")
+
+
+# ---- the document ------------------------------------------------------------------
+
+class _Line:
+    """A space when its group is flat, a new line when it is broken."""
+    __slots__ = ()
+
+
+class _Hard:
+    """Always a new line; the groups around it are broken."""
+    __slots__ = ()
+
+
+LINE, HARD = _Line(), _Hard()
+
+
+@dataclass
+class _Comment:
+    """Comment text: printed as it is, but not counted when deciding whether
+    a group fits (a long comment never rearranges the code around it)."""
+    text: str
+
+
+@dataclass
+class _IfBreak:
+    broken: str
+    flat: str = ""
+
+
+@dataclass
+class _Group:
+    items: list = field(default_factory=list)
+    broken: bool = False
+
+
+@dataclass
+class _Indent:
+    items: list = field(default_factory=list)
+
+
+@dataclass
+class _Fill:
+    """Items separated by LINEs, broken only where the next item does not
+    fit on the line (an argument list fills its lines)."""
+    items: list = field(default_factory=list)
+
+
+class _FillLine:
+    """A LINE of a broken fill: a new line only when what follows it, up to
+    the next line break, does not fit."""
+    __slots__ = ()
+
+
+FILL_LINE = _FillLine()
+
+
+_FLAT, _BREAK = 0, 1
+
+
+def _propagate(doc) -> bool:
+    """Mark every group that holds a hard line as broken; True if `doc` holds one."""
+    if doc is HARD:
+        return True
+    if isinstance(doc, _Group):
+        hard = False
+        for item in doc.items:
+            hard = _propagate(item) or hard
+        doc.broken = doc.broken or hard
+        return hard
+    if isinstance(doc, (_Indent, _Fill)):
+        hard = False
+        for item in doc.items:
+            hard = _propagate(item) or hard
+        return hard
+    return False
+
+
+def _fits(command, rest: list, width: int) -> bool:
+    """Does `command` (laid out flat) and what follows it up to the next line
+    break fit in `width` columns?"""
+    todo = [command]
+    rest_index = len(rest)
+    while width >= 0:
+        if not todo:
+            if rest_index == 0:
+                return True
+            rest_index -= 1
+            todo.append(rest[rest_index])
+            continue
+        indent, mode, doc = todo.pop()
+        if isinstance(doc, str):
+            width -= len(doc)
+        elif isinstance(doc, _Group):
+            group_mode = _BREAK if doc.broken else mode
+            todo.extend((indent, group_mode, item) for item in reversed(doc.items))
+        elif isinstance(doc, (_Indent, _Fill)):
+            todo.extend((indent, mode, item) for item in reversed(doc.items))
+        elif doc is FILL_LINE:
+            return True
+        elif doc is LINE:
+            if mode == _BREAK:
+                return True
+            width -= 1
+        elif doc is HARD:
+            return True
+        elif isinstance(doc, _IfBreak):
+            width -= len(doc.broken if mode == _BREAK else doc.flat)
+    return False
+
+
+def _render(doc, width: int) -> str:
+    _propagate(doc)
+    out: list = []
+    column = 0
+    stack = [(0, _BREAK, doc)]
+    while stack:
+        indent, mode, item = stack.pop()
+        if isinstance(item, str):
+            out.append(item)
+            column += len(item)
+        elif isinstance(item, _Comment):
+            out.append(item.text)
+            column += len(item.text)
+        elif isinstance(item, _Group):
+            if item.broken:
+                group_mode = _BREAK
+            elif mode == _FLAT:
+                group_mode = _FLAT
+            else:
+                group_mode = _FLAT if _fits((indent, _FLAT, item), stack, width - column) else _BREAK
+            stack.extend((indent, group_mode, x) for x in reversed(item.items))
+        elif isinstance(item, _Indent):
+            stack.extend((indent + INDENT, mode, x) for x in reversed(item.items))
+        elif isinstance(item, _Fill):
+            stack.extend((indent, mode, FILL_LINE if x is LINE and mode == _BREAK else x)
+                         for x in reversed(item.items))
+        elif item is FILL_LINE:
+            if _fits((indent, _FLAT, " "), stack, width - column):
+                out.append(" ")
+                column += 1
+            else:
+                while out and out[-1].endswith(" "):
+                    out[-1] = out[-1].rstrip(" ")
+                out.append("\n" + " " * indent)
+                column = indent
+        elif item is HARD or (item is LINE and mode == _BREAK):
+            while out and out[-1].endswith(" "):
+                out[-1] = out[-1].rstrip(" ")
+            out.append("\n" + " " * indent)
+            column = indent
+        elif item is LINE:
+            out.append(" ")
+            column += 1
+        elif isinstance(item, _IfBreak):
+            text = item.broken if mode == _BREAK else item.flat
+            out.append(text)
+            column += len(text)
+    return "".join(out).rstrip(" ")
+
+
+# ---- comments ----------------------------------------------------------------------
+
+_COMMENT_RE = re.compile(r"#[^\n]*")
+_COMMENT_STRIP = " \t\r\f\v"       # the lexer's whitespace, besides the newline
+
+
+@dataclass
+class _Comments:
+    """The comments of a file, by the token they belong to (its offset)."""
+    trailing: dict = field(default_factory=dict)     # token offset -> comment text
+    leading: dict = field(default_factory=dict)      # token offset -> [(blank_before, text)]
+    blank_before: dict = field(default_factory=dict)  # token offset -> a blank line before it
+    at_end: list = field(default_factory=list)       # [(blank_before, text)] after the last token
+    blank_before_end: bool = False
+
+
+def _collect_comments(text: str, tokens: list) -> _Comments:
+    """Everything between two tokens is whitespace and comments (the file
+    has no lexical errors). A comment on the line of the token before it
+    trails that token; any other comment leads the token after it."""
+    found = _Comments()
+    previous_end = 0
+    previous = None
+    for token in tokens + [None]:
+        start = token.start_pos if token is not None else len(text)
+        leading: list = []
+        gap_start = previous_end
+        for m in _COMMENT_RE.finditer(text, previous_end, start):
+            comment = m.group().rstrip(_COMMENT_STRIP)
+            between = text[gap_start:m.start()]
+            if previous is not None and not leading and "\n" not in text[previous_end:m.start()]:
+                found.trailing[previous.start_pos] = comment
+            else:
+                leading.append((between.count("\n") >= 2, comment))
+            gap_start = m.end()
+        blank = text.count("\n", gap_start, start) >= 2
+        if token is None:
+            found.at_end, found.blank_before_end = leading, blank
+        else:
+            if leading:
+                found.leading[token.start_pos] = leading
+            found.blank_before[token.start_pos] = blank
+            previous_end, previous = token.end_pos, token
+    return found
+
+
+# ---- from the syntax tree to the document ---------------------------------------------
+
+class _Builder:
+    """Builds one statement's document, taking its tokens in order."""
+
+    def __init__(self, tokens: list, comments: _Comments):
+        self.tokens = tokens
+        self.index = 0
+        self.comments = comments
+        self.root = _Group()
+        self.stack = [self.root.items]
+        self.separator = None        # (container, position, doc) before the next token
+        self.trailing: Optional[str] = None
+
+    # -- containers --
+
+    def open(self, node):
+        self.stack[-1].append(node)
+        self.stack.append(node.items)
+
+    def close(self):
+        self.stack.pop()
+
+    # -- separators and tokens --
+
+    def sep(self, doc):
+        """What goes between the last token and the next one: "" (nothing),
+        " " or LINE. A comment in between turns it into a line break."""
+        container = self.stack[-1]
+        self.separator = (container, len(container), doc)
+
+    def token(self, type_: str, text: Optional[str] = None, if_break: bool = False):
+        tok = self.tokens[self.index]
+        if tok.type != type_:       # the tree and the tokens disagree: a bug here
+            raise AssertionError(f"formatter expected {type_}, found {tok!r}")
+        # the comments before a statement are laid out with the statements
+        leading = self.comments.leading.get(tok.start_pos, ()) if self.index else ()
+        self.index += 1
+        self._place_separator(leading)
+        value = text if text is not None else tok.value
+        self.stack[-1].append(_IfBreak(value) if if_break else value)
+        self.trailing = self.comments.trailing.get(tok.start_pos)
+
+    def peek(self) -> Optional[str]:
+        return self.tokens[self.index].type if self.index < len(self.tokens) else None
+
+    def _place_separator(self, leading):
+        if self.separator is not None:
+            container, position, doc = self.separator
+        else:
+            container, doc = self.stack[-1], ""
+            position = len(container)
+        self.separator = None
+        if self.trailing is None and not leading:
+            if doc != "":
+                container.insert(position, doc)
+            return
+        docs: list = []
+        if self.trailing is not None:
+            docs.append(_Comment("  " + self.trailing))
+            self.trailing = None
+        docs.append(HARD)
+        for _, comment in leading:
+            docs += [_Comment(comment), HARD]
+        container[position:position] = docs
+
+    def finish(self) -> _Group:
+        if self.index != len(self.tokens):
+            raise AssertionError(f"formatter left tokens out: {self.tokens[self.index:]!r}")
+        if self.trailing is not None:
+            self.root.items.append(_Comment("  " + self.trailing))
+        return self.root
+
+    # -- the grammar --
+
+    def statement(self, node):
+        if isinstance(node, ast.Rule):
+            self.rule(node)
+        elif isinstance(node, ast.ActionDef):
+            self.token("_ACTION")
+            self.sep(" ")
+            self.token("NAME")
+            self.sep(" ")
+            self.token("_EQUAL")
+            self.sep(" ")
+            self.open(_Indent())
+            self.body(node.body)
+            self.close()
+        elif isinstance(node, ast.ConstDef):
+            self.token("_CONST")
+            self.sep(" ")
+            self.token("NAME")
+            self.sep(" ")
+            self.token("_EQUAL")
+            self.sep(" ")
+            self.value(node.value)
+        elif isinstance(node, ast.ExternDef):
+            self.extern(node)
+        elif isinstance(node, ast.RobotBlock):
+            self.robot(node)
+        elif isinstance(node, ast.ModeDef):
+            if node.initial:
+                self.token("_INITIAL")
+                self.sep(" ")
+            self.token("_MODE")
+            self.sep(" ")
+            self.token("NAME")
+            self.sep(" ")
+            self.token("_LBRACE")
+        elif isinstance(node, ast.ModeEnd):
+            self.token("_RBRACE")
+        else:                                       # pragma: no cover
+            raise AssertionError(f"unknown statement {node!r}")
+
+    def rule(self, node: ast.Rule):
+        if node.name is not None:
+            self.token("_RULE")
+            self.sep(" ")
+            self.token("NAME")
+            self.token("_COLON")
+            self.sep(" ")
+        self.token("_ON")
+        self.sep(" ")
+        self.call(node.event)
+        if node.repeat:
+            self.sep(" ")
+            self.token("_REPEAT")
+        if node.priority is not None:
+            self.sep(" ")
+            self.token("_PRIORITY")
+            self.sep(" ")
+            self.token(self.peek())         # a NUMBER or a constant's NAME
+        self.open(_Indent())
+        self.sep(LINE)
+        self.token("_DO")
+        self.sep(" ")
+        self.body(node.body)
+        self.close()
+
+    def body(self, node: ast.ActionBody):
+        self.open(_Group())
+        for k, step in enumerate(node.steps):
+            if k:
+                self.sep(LINE)
+                self.token("_THEN")
+                self.sep(" ")
+            self.step(step)
+        self.close()
+
+    def step(self, node: ast.Step):
+        self.open(_Group())
+        for k, call in enumerate(node.calls):
+            if k == 1:
+                self.open(_Indent())
+            if k:
+                self.token("_COMMA")
+                self.sep(LINE)
+            self.call(call)
+        if len(node.calls) > 1:
+            self.close()
+        self.close()
+
+    def call(self, node):
+        if isinstance(node, (ast.CancelCall, ast.EnterCall)):
+            self.token("_CANCEL" if isinstance(node, ast.CancelCall) else "_ENTER")
+            self.sep(" ")
+            self.token("NAME")
+            return
+        if self.peek() == "_ENTER":         # the event `on enter`
+            self.token("_ENTER")
+            return
+        self.token("NAME")
+        if node.args is not None:
+            self.arguments(node.args, self.arg)
+
+    def arguments(self, items, each):
+        """`(a, b, c)`, breaking after the commas when it does not fit."""
+        self.open(_Group())
+        self.token("_LPAR")
+        self.open(_Indent())
+        self.open(_Fill())
+        for k, item in enumerate(items):
+            if k:
+                self.token("_COMMA")
+                self.sep(LINE)
+            each(item)
+        self.close()
+        self.close()
+        self.token("_RPAR")
+        self.close()
+
+    def arg(self, node):
+        if isinstance(node, ast.NamedArg):
+            self.token("NAME")
+            self.token("_COLON")
+            self.sep(" ")
+            self.value(node.value)
+        elif isinstance(node, ast.ConditionArg):
+            self.token("NAME")
+            self.sep(" ")
+            self.token("CMP")
+            self.sep(" ")
+            self.value(node.value)
+        else:
+            self.value(node.value)
+
+    def value(self, node):
+        if isinstance(node, ast.Number):
+            if node.text.startswith("-"):
+                self.token("MINUS")
+            self.token("NUMBER")
+            if node.unit is not None:
+                self.sep(" ")
+                self.token("NAME")
+                if "/" in node.unit:
+                    self.token("_SLASH")
+                    self.token("NAME")
+        else:
+            if node.negative:
+                self.token("MINUS")
+            self.token("NAME")
+
+    def extern(self, node: ast.ExternDef):
+        self.token("_EXTERN")
+        self.sep(" ")
+        self.token("_ACTION" if node.kind == "action" else "_EVENT")
+        self.sep(" ")
+        self.token("NAME")
+        self.arguments(node.params, self.param)
+        self.sep(" ")
+        self.token("_FROM")
+        self.sep(" ")
+        self.token("STRING")
+
+    def param(self, node: ast.ParamDecl):
+        self.token("NAME")
+        self.token("_COLON")
+        self.sep(" ")
+        self.token("NAME")
+
+    def robot(self, node: ast.RobotBlock):
+        group = _Group()
+        self.open(group)
+        self.token("_ROBOT")
+        self.sep(" ")
+        self.token("_LBRACE")
+        if node.settings:
+            self.open(_Indent())
+            for k, setting in enumerate(node.settings):
+                if k:
+                    self.token("_COMMA")
+                self.sep(LINE)
+                self.token("NAME")
+                self.token("_COLON")
+                self.sep(" ")
+                self.value(setting.value)
+            if self.peek() == "_COMMA":
+                group.broken = True         # a trailing comma keeps one setting per line
+                self.token("_COMMA", if_break=True)
+            else:
+                self.stack[-1].append(_IfBreak(","))
+            self.close()
+            self.sep(LINE)
+        self.token("_RBRACE")
+        self.close()
+
+
+# ---- the whole file ---------------------------------------------------------------------
+
+def _parse(text: str, filename: str):
+    source = SourceFile(filename, text)
+    diags = Collector(source)
+    program = parse(source, diags)
+    if diags.has_errors:
+        raise FormatError(diags.items)
+    tokens = list(iter_tokens(source, Collector(source)))
+    chunks = list(iter_statements(iter(tokens)))
+    if len(chunks) != len(program.statements):     # pragma: no cover - parse() agrees
+        raise AssertionError("statements and token chunks disagree")
+    return tokens, chunks, program.statements
+
+
+def format_text(text: str, filename: str = "<stdin>") -> str:
+    """The canonical layout of a rule file's text. Raises FormatError (with
+    the parser's diagnostics) when the text has syntax errors."""
+    if text.startswith("\ufeff"):
+        text = text[1:]
+    newline = "\r\n" if "\r\n" in text[: text.find("\n") + 1] else "\n"
+    # Lines end as SourceFile reads them (a lone CR too), so that the
+    # tokens' offsets are offsets into this text.
+    text = text.replace("\r\n", "\n").replace("\r", "\n")
+    tokens, chunks, statements = _parse(text, filename)
+    comments = _collect_comments(text, tokens)
+    lines: list = []
+
+    def blank():
+        if lines and lines[-1] != "":
+            lines.append("")
+
+    depth = 0               # the statements of a mode block are indented
+    for chunk, statement in zip(chunks, statements):
+        if isinstance(statement, ast.ModeEnd):
+            depth -= 1
+        margin = " " * (INDENT * depth)
+        first = chunk[0].start_pos
+        for blank_before, comment in comments.leading.get(first, ()):
+            if blank_before:
+                blank()
+            lines.append(margin + comment)
+        if comments.blank_before.get(first) and not isinstance(statement, ast.ModeEnd):
+            blank()
+        builder = _Builder(chunk, comments)
+        builder.statement(statement)
+        text = _render(builder.finish(), WIDTH - len(margin))
+        lines.append(margin + text.replace("\n", "\n" + margin) if depth else text)
+        if isinstance(statement, ast.ModeDef):
+            depth += 1
+    for blank_before, comment in comments.at_end:
+        if blank_before:
+            blank()
+        lines.append(comment)
+    while lines and lines[-1] == "":
+        lines.pop()
+    if not lines:
+        return ""
+    return ("\n".join(lines) + "\n").replace("\n", newline)
+
+
+# ---- the command line ------------------------------------------------------------------
+
+def _targets(names: list) -> list:
+    """The files to format: each name, or the .epk files under a folder."""
+    out = []
+    for name in names:
+        path = Path(name)
+        if name != "-" and path.is_dir():
+            out.extend(str(p) for p in sorted(path.rglob("*.epk")) if p.is_file())
+        else:
+            out.append(name)
+    return out
+
+
+def _read(name: str) -> tuple:
+    """(text, E004 diagnostic or None) of a file or of standard input."""
+    if name == "-":
+        source, problem = SourceFile.from_bytes(sys.stdin.buffer.read(), "<stdin>")
+    else:
+        source, problem = SourceFile.from_path(Path(name), name)
+    if problem is None:
+        return source, None
+    offset, message = problem
+    diags = Collector(source)
+    diags.error("E004", source.span(offset, offset), message,
+                help="save the file as UTF-8 text; rule files are plain text (.epk)")
+    return source, diags.items
+
+
+def run(names: list, check: bool = False, diff: bool = False, colour: bool = False) -> int:
+    """`epuckc fmt`: 0 when done (or, with --check, nothing would change),
+    1 when a file has syntax errors or would change, 2 when one cannot be
+    read or written."""
+    import difflib
+
+    from ..diagnostics import Report
+
+    from ..diagnostics.render import render_report
+    from ..base.output import OutputError
+    status = 0
+    report = Report()
+    for name in _targets(names):
+        shown = "<stdin>" if name == "-" else name
+        try:
+            source, problem = _read(name)
+        except OSError as exc:
+            print(f"epuckc: error: cannot read {name}: {exc.strerror or exc}", file=sys.stderr)
+            status = max(status, 2)
+            continue
+        try:
+            if problem:
+                raise FormatError(problem)
+            formatted = format_text(source.text, shown)
+        except FormatError as exc:
+            report.sources[shown] = source
+            report.extend(exc.diagnostics)
+            status = max(status, 1)
+            continue
+        original = source.text
+        if name == "-" and not check and not diff:
+            sys.stdout.write(formatted)
+            continue
+        if formatted == original:
+            continue
+        if diff:
+            sys.stdout.writelines(difflib.unified_diff(
+                original.splitlines(keepends=True), formatted.splitlines(keepends=True),
+                fromfile=f"{shown} (original)", tofile=f"{shown} (formatted)"))
+        if check:
+            print(f"would reformat {shown}")
+            status = max(status, 1)
+        elif not diff:
+            try:
+                _write_in_place(Path(name), formatted)
+            except OutputError as exc:
+                print(f"epuckc: error: {exc}", file=sys.stderr)
+                status = max(status, 2)
+    if report.diagnostics:
+        sys.stderr.write(render_report(report, "human", colour=colour))
+    return status
+
+
+def _write_in_place(path: Path, text: str):
+    """Replace the file with `text` by output.py's rules: atomically,
+    through a symbolic link to its target, keeping its permissions. The
+    source's BOM is not kept."""
+    from ..base.output import write_file
+    write_file(path, text)

@@ -1,0 +1,643 @@
+"""Checking a file again and again as it is edited, reusing what did not change.
+
+The language server calls `Analyzer.analyse(text)` after every edit. The
+result is exactly what `epuckc check` reports on the same text (the test
+suite compares them on random edit sequences), but after a one-rule edit to
+a 1,000-rule file only the edited statement is lexed, parsed and checked:
+
+1. **Splitting**: after an edit, only the text between the common
+   beginning and the common end of the two versions (found by comparing
+   slices, at C speed) is split into statements again, by the lexer and
+   `lexer.iter_statements` themselves, starting at the last statement
+   start before the edit: statements before it are kept as they were, and
+   the split stops where it meets the old one again, at a statement start
+   after the edit.
+2. **Parsing** one statement at a time, as `epuckc check` does. A statement
+   that the edit touched is parsed again unless its text (with its column
+   and the keyword after it) is one the edit replaced (an undo).
+3. **Positions that do not move.** A parsed statement's AST is built with
+   *virtual* line numbers: statement number `id` has its lines at
+   `id * VLINE + 1, + 2, ...` (columns are real: a statement that starts
+   mid-line is padded with spaces). Inserting a line above a statement
+   therefore changes nothing in its AST, nor in what the checker found
+   about it; virtual lines are turned into real ones only for what is
+   shown (`Analysis.real`). Lines below VLINE are real lines.
+4. **Checking**: the declarations (names, the robot block) and the
+   whole-program checks (rules that can never fire, unused names,
+   capacity) run every time, over all statements: they are cheap loops.
+   Resolving each rule, the expensive part, is replayed (its diagnostics
+   and the facts the whole-program checks need) when the rule is the same
+   object and every name it looked up (`_Watched`) still means the same;
+   named actions are replayed as a whole when no declaration changed.
+
+A file with 20 or more runs of bad characters is checked whole, because
+the lexer stops at the 20th and that cut depends on the whole file.
+"""
+from __future__ import annotations
+
+import bisect
+import gc
+import re
+from dataclasses import dataclass, replace
+from pathlib import Path
+from typing import Optional
+
+from ..syntax import ast
+from ..check.checker import Checker
+from ..check.program import CheckedProgram
+from ..diagnostics import Collector, Diagnostic
+from ..syntax.lexer import KEYWORDS, MAX_LEXICAL_ERRORS, STATEMENT_STARTS, iter_statements, iter_tokens
+from ..syntax.parser import ModePlacer, parse, parse_statement
+from ..base.source import SourceFile, Span
+
+VLINE = 1 << 20          # lines per statement in virtual coordinates
+
+# Where lines end is SourceFile's decision (and the lexer's); positions
+# here are offsets into the text as the editor has it, so the same line
+# ends are found here, as SourceFile counts them.
+_CR_ENDS_LINES = SourceFile("", "\r").line_count == 2
+_BREAK_RE = re.compile(r"\r\n?|\n" if _CR_ENDS_LINES else r"\n")
+
+
+def line_starts(text: str) -> list:
+    """The offsets where lines start, as SourceFile numbers lines."""
+    return [0] + [m.end() for m in _BREAK_RE.finditer(text)]
+
+
+def split_statements(text: str) -> tuple:
+    """The offsets where statements start, as `lexer.iter_statements` cuts
+    them, and the keyword at each; the first is always 0 (the text before
+    the first keyword belongs to the first statement), with keyword None."""
+    starts, keywords = [0], [None]
+    for at, kw in _boundaries(text):
+        starts.append(at)
+        keywords.append(kw)
+    return starts, keywords
+
+
+def _boundaries(text: str, start: int = 0, starts: Optional[list] = None):
+    """(offset, keyword) of each statement start after the one at `start`
+    (0, or the offset of a statement start), found by the lexer itself,
+    lazily: only as much of the text is read as the caller takes. At a
+    statement start the splitter begins afresh, as it does at the file's
+    start, so the cut from there on is the whole file's. `starts`: the
+    text's line_starts, which place the tokens when SourceFile changed the
+    line ends it lexed."""
+    source = SourceFile("", text[start:] if start else text)
+    chunks = iter_statements(iter_tokens(source, Collector(source)))
+    if next(chunks, None) is None:
+        return
+    if source.text == (text[start:] if start else text):
+        for chunk in chunks:
+            yield start + chunk[0].start_pos, chunk[0].value
+        return
+    # the lexer read `\r\n` as `\n`: place tokens by line and column
+    starts = starts if starts is not None else line_starts(text)
+    first = bisect.bisect_right(starts, start) - 1
+    for chunk in chunks:
+        tok = chunk[0]
+        if tok.line == 1:
+            yield start + tok.column - 1, tok.value
+        else:
+            yield starts[first + tok.line - 1] + tok.column - 1, tok.value
+
+
+# A statement start is decided by the tokens before it and its keyword; a
+# token's extent depends on a few characters after it. One this far
+# before an edit cannot change.
+_MARGIN = max(len(k) for k, t in KEYWORDS.items() if t in STATEMENT_STARTS) + 8
+
+
+def _common_prefix(a: str, b: str) -> int:
+    lo, hi = 0, min(len(a), len(b))
+    while lo < hi:          # slices compare at C speed
+        mid = (lo + hi + 1) // 2
+        if a[lo:mid] == b[lo:mid]:
+            lo = mid
+        else:
+            hi = mid - 1
+    return lo
+
+
+def _common_suffix(a: str, b: str, limit: int) -> int:
+    lo, hi = 0, limit
+    la, lb = len(a), len(b)
+    while lo < hi:
+        mid = (lo + hi + 1) // 2
+        if a[la - mid:la - lo] == b[lb - mid:lb - lo]:
+            lo = mid
+        else:
+            hi = mid - 1
+    return lo
+
+
+@dataclass
+class Entry:
+    """One statement's text, parsed: its AST (None when it has a syntax
+    error or holds no token), its lexical and syntax diagnostics, in the
+    virtual lines of `id`."""
+    id: int
+    statements: list
+    diags: list
+    bad_runs: int           # runs of unexpected characters (E002)
+    lines: int
+    once: bool = False      # has diagnostics said once per file (see _ONCE)
+
+
+def _shift_span(span: Span, by: int) -> Span:
+    return Span(span.line + by, span.column, span.end_line + by, span.end_column)
+
+
+def _shift_diag(d: Diagnostic, by: int) -> Diagnostic:
+    return replace(d, span=_shift_span(d.span, by),
+                   notes=tuple(replace(n, span=_shift_span(n.span, by)) if n.span else n
+                               for n in d.notes),
+                   fixes=tuple(replace(f, span=_shift_span(f.span, by)) for f in d.fixes))
+
+
+def _parse_chunk(name: str, padded: str, following: Optional[str], ident: int) -> Entry:
+    base = ident * VLINE
+    source = SourceFile(name, padded)
+    lexical = Collector(source)
+    tokens = list(iter_tokens(source, lexical))
+    for tok in tokens:
+        tok.line += base
+        tok.end_line += base
+    syntax = Collector(source)
+    statements = []
+    groups = list(iter_statements(tokens))
+    for i, group in enumerate(groups):
+        if i + 1 < len(groups):
+            after = groups[i + 1][0]
+        elif following is not None:
+            after = _Following(following)
+        else:
+            after = None
+        statement = parse_statement(group, after, source, syntax)
+        if statement is not None:
+            statements.append(statement)
+    diags = [_shift_diag(d, base) for d in lexical.items] + syntax.items
+    bad_runs = sum(d.code == "E002" for d in lexical.items)
+    once = any(d.code in _ONCE for d in lexical.items)
+    return Entry(ident, statements, diags, bad_runs, source.line_count, once)
+
+
+# What the lexer says once per file however often it occurs: a name that
+# is not ASCII (E008, lexer.iter_tokens). Each statement is lexed on its
+# own here, so the statements after the first drop theirs.
+_ONCE = frozenset({"E008"})
+
+
+class _Following:
+    """The first token of the next statement, as the parser's messages see
+    it: only its text is shown (`found `on`, which starts a new statement`)."""
+    def __init__(self, value):
+        self.value = value
+
+
+# ---- checking, reusing results ----------------------------------------------
+
+class _Memo:
+    """What the incremental checker keeps between two analyses."""
+    def __init__(self):
+        self.env = None
+        self.actions = None     # the result of resolving the named actions
+        self.rules: dict = {}   # id(rule node) -> what the rule came to (see _rule)
+
+
+class _Capture:
+    """Run a step of the checker with fresh diagnostics and fresh sets of
+    facts, and remember both, so that the step can be replayed.
+
+    The checker's memories within one file (a constant's chain followed
+    once, a problem of a definition said once) start empty too, so that
+    the step does all its own lookups (and notes them, see _Watched) and
+    says all its own diagnostics; what is said twice is dropped when the
+    steps are put together (IncrementalChecker._replay), as the whole
+    file's check says it once."""
+    FACTS = ("called", "used_actions", "const_used")
+    FRESH = ("_const_memo", "_const_reported", "_const_diagnostics")
+
+    def __init__(self, checker: Checker):
+        self.checker = checker
+
+    def __enter__(self):
+        c = self.checker
+        fresh = [f for f in self.FRESH if hasattr(c, f)]
+        self.saved = (c.diags, {f: getattr(c, f) for f in self.FACTS},
+                      {f: getattr(c, f) for f in fresh})
+        c.diags = Collector(c.diags.source)
+        for f in self.FACTS:
+            setattr(c, f, set())
+        for f in fresh:
+            setattr(c, f, type(getattr(c, f))())
+        return self
+
+    def __exit__(self, *exc):
+        c = self.checker
+        self.diags = c.diags.items
+        self.facts = tuple((f, v) for f in self.FACTS if (v := getattr(c, f)))
+        c.diags, saved_facts, saved_fresh = self.saved
+        for f in self.FACTS:
+            setattr(c, f, saved_facts[f])
+        for f, value in saved_fresh.items():
+            setattr(c, f, value)
+        return False
+
+
+_MISSING = object()
+_ALL = object()
+_TABLES = ("consts", "actions", "externs", "broken_externs", "rule_names", "modes")
+
+
+class _Watched:
+    """A read-only view of one of the checker's name tables that notes
+    what a rule looked up in it: (table, name, what was found), or
+    (table, _ALL, every entry) when it looked at the whole table (the
+    candidates of a did-you-mean)."""
+    __slots__ = ("_table", "_attr", "_deps")
+
+    def __init__(self, table: dict, attr: str, deps: list):
+        self._table, self._attr, self._deps = table, attr, deps
+
+    def _all(self):
+        self._deps.append((self._attr, _ALL, tuple(self._table.items())))
+        return self._table
+
+    def get(self, name, default=None):
+        found = self._table.get(name, _MISSING)
+        self._deps.append((self._attr, name, found))
+        return default if found is _MISSING else found
+
+    def __contains__(self, name):
+        return self.get(name, _MISSING) is not _MISSING
+
+    def __getitem__(self, name):
+        found = self.get(name, _MISSING)
+        if found is _MISSING:
+            raise KeyError(name)
+        return found
+
+    def __iter__(self):
+        return iter(self._all())
+
+    def __len__(self):
+        return len(self._all())
+
+    def __getattr__(self, attr):        # items(), keys(), values(), ...
+        return getattr(self._all(), attr)
+
+
+class _Watch:
+    """Check one rule with its name tables watched (see _Watched)."""
+
+    def __init__(self, checker: Checker):
+        self.checker = checker
+        self.deps: list = []
+
+    def __enter__(self):
+        c = self.checker
+        self.saved = [getattr(c, t) for t in _TABLES]
+        for t, table in zip(_TABLES, self.saved):
+            setattr(c, t, _Watched(table, t, self.deps))
+        return self
+
+    def __exit__(self, *exc):
+        for t, table in zip(_TABLES, self.saved):
+            setattr(self.checker, t, table)
+        return False
+
+
+class IncrementalChecker(Checker):
+    """The checker, with named actions and rules replayed from `memo` when
+    nothing they can see has changed."""
+
+    def __init__(self, program, diags, memo: _Memo, **options):
+        super().__init__(program, diags, **options)
+        self.memo = memo
+        self._known: Optional[set] = None
+        self._env_now = None
+
+    def _env(self):
+        """Everything a rule or a named action can depend on besides itself:
+        the geometry and every declaration (AST nodes compare by identity
+        first, so this is cheap when nothing changed)."""
+        return (self.geo, tuple(self.consts.items()), tuple(self.actions.items()),
+                tuple((n, e.kind, e.params, e.node) for n, e in self.externs.items()),
+                tuple(self.broken_externs.items()), tuple(self.rule_names),
+                tuple(self.modes.items()))
+
+    def _replay(self, diags, facts):
+        if diags:
+            known = self._known
+            if known is None:
+                known = self._known = set(self.diags.items)
+            for d in diags:
+                # a constant's bad value is reported once, at its first use
+                if d not in known:
+                    known.add(d)
+                    self.diags.items.append(d)
+        for f, values in facts:
+            getattr(self, f).update(values)
+
+    def _resolve_actions(self, out: CheckedProgram):
+        env = self._env()
+        memo = self.memo
+        if memo.env != env:
+            memo.env, memo.actions = env, None
+        self._env_now = memo.env    # the same object as long as nothing changes
+        if memo.actions is None:
+            with _Capture(self) as cap:
+                super()._resolve_actions(out)
+            memo.actions = (dict(out.actions), dict(out.action_nodes),
+                            dict(self._resolved_actions), cap.diags, cap.facts)
+        actions, nodes, resolved, diags, facts = memo.actions
+        out.actions.update(actions)
+        out.action_nodes.update(nodes)
+        self._resolved_actions.update(resolved)
+        self._replay(diags, facts)
+
+    def _still_valid(self, geo, deps) -> bool:
+        """Does everything a rule looked up still say the same?"""
+        if geo is not self.geo and geo != self.geo:
+            return False
+        for attr, name, found in deps:
+            table = getattr(self, attr)
+            if name is _ALL:
+                if tuple(table.items()) != found:
+                    return False
+            else:
+                now = table.get(name, _MISSING)
+                if now is not found and now != found:
+                    return False
+        return True
+
+    def _rule(self, rule: ast.Rule):
+        # hit: [node, geometry, lookups, result, diagnostics, facts, the
+        # declarations (env) it was last found valid with]
+        hit = self.memo.rules.get(id(rule))
+        if hit is None or hit[0] is not rule:
+            hit = None
+        elif hit[6] is not self._env_now:
+            if self._still_valid(hit[1], hit[2]):
+                hit[6] = self._env_now
+            else:
+                hit = None
+        if hit is None:
+            with _Capture(self) as cap, _Watch(self) as watch:
+                resolved = super()._rule(rule)
+            hit = [rule, self.geo, watch.deps, resolved, cap.diags, cap.facts, self._env_now]
+            self.memo.rules[id(rule)] = hit
+        self._replay(hit[4], hit[5])
+        return hit[3]
+
+
+# ---- the analysis of one version of a document ----------------------------------
+
+class _Named:
+    """What a Collector needs of its source: the name shown."""
+    def __init__(self, name):
+        self.name = name
+
+
+@dataclass
+class Analysis:
+    """One version of a document: its statements in order (`starts`: offset
+    where each begins; `lines`: its real first line; `entries`: its parse),
+    the AST (virtual lines), the checker and its diagnostics (real lines)."""
+    name: str
+    text: str
+    starts: list
+    lines: list
+    entries: list
+    program: ast.Program
+    checker: Checker
+    checked: CheckedProgram
+    diagnostics: list = None      # Diagnostic, real positions, sorted
+
+    @property
+    def source(self) -> SourceFile:
+        if self._source is None:
+            self._source = SourceFile(self.name, self.text)
+        return self._source
+
+    # positions
+
+    def real_line(self, line: int) -> int:
+        ident = line // VLINE
+        if ident == 0:
+            return line
+        if self._starts is None:
+            self._starts = {e.id: line for e, line in zip(self.entries, self.lines)}
+        return self._starts[ident] + line % VLINE - 1
+
+    def real(self, span: Span) -> Span:
+        """A span of the AST (virtual lines) in the text's lines."""
+        if span.line < VLINE:
+            return span
+        return Span(self.real_line(span.line), span.column,
+                    self.real_line(span.end_line), span.end_column)
+
+    def index_at(self, offset: int) -> int:
+        """The statement that holds a character offset."""
+        return max(0, bisect.bisect_right(self.starts, offset) - 1)
+
+    def virtual(self, line: int, column: int) -> tuple:
+        """(virtual line, column) of a real position, for comparing with
+        the AST's spans."""
+        i = self.index_at(self.offset(line, column))
+        ident = self.entries[i].id
+        if ident == 0:
+            return line, column
+        return ident * VLINE + line - self.lines[i] + 1, column
+
+    @property
+    def line_starts(self) -> list:
+        if self._line_starts is None:
+            self._line_starts = line_starts(self.text)
+        return self._line_starts
+
+    def offset(self, line: int, column: int) -> int:
+        """Character offset of a real (line, column), both from 1; clamped
+        to the text, and to the end of the line."""
+        starts = self.line_starts
+        line = min(max(line, 1), len(starts))
+        start = starts[line - 1]
+        end = starts[line] if line < len(starts) else len(self.text)
+        while end > start and self.text[end - 1] in "\r\n" and (
+                self.text[end - 1] == "\n" or _CR_ENDS_LINES):
+            end -= 1
+        return min(start + max(column, 1) - 1, end)
+
+    def position(self, offset: int) -> tuple:
+        """(line, column) of a character offset, both from 1."""
+        starts = self.line_starts
+        offset = max(0, min(offset, len(self.text)))
+        line = bisect.bisect_right(starts, offset) - 1
+        return line + 1, offset - starts[line] + 1
+
+    def __post_init__(self):
+        self._source = None
+        self._starts = None
+        self._line_starts = None
+
+
+class Analyzer:
+    """Analyses successive versions of one document (see the module's doc)."""
+
+    def __init__(self, name: str, base_dir: Optional[Path] = None):
+        self.name = name
+        self.options = dict(base_dir=base_dir)
+        # the last version's text and statements (see _chunks)
+        self._prev: Optional[tuple] = None
+        self._next_id = 1
+        self._memo = _Memo()
+
+    def analyse(self, text: str) -> Analysis:
+        collecting = gc.isenabled()
+        gc.disable()            # the ASTs have no cycles (see frontend.py)
+        first_id = self._next_id
+        try:
+            return self._analyse(text)
+        finally:
+            if collecting:
+                gc.enable()
+                if self._next_id - first_id >= 100:
+                    # Many new objects: the collection they will cause is
+                    # done now, with the big parse, not at the next keystroke.
+                    gc.collect()
+
+    def _analyse(self, text: str) -> Analysis:
+        split = self._chunks(text)
+        if split is None:
+            return self._whole(text)
+        starts, lines, entries = split
+        program = ast.Program(self.name)
+        diags = Collector(_Named(self.name))
+        items = diags.items
+        placer = ModePlacer(program, diags)     # mode blocks span statements
+        said = set()
+        for entry in entries:
+            for statement in entry.statements:
+                placer.add(statement)
+            if entry.once:
+                for d in entry.diags:
+                    if d.code in _ONCE:
+                        if (d.code, d.message) in said:
+                            continue
+                        said.add((d.code, d.message))
+                    items.append(d)
+            elif entry.diags:
+                items.extend(entry.diags)
+        placer.finish()
+        checker = IncrementalChecker(program, diags, self._memo, **self.options)
+        checked = checker.check()
+        live = {id(s) for s in program.statements}
+        memo = self._memo.rules
+        if len(memo) > 2 * len(live) + 100:
+            self._memo.rules = {k: v for k, v in memo.items() if k in live}
+        return self._finish(text, starts, lines, entries, program, checker, checked, items)
+
+    def _chunks(self, text: str) -> Optional[tuple]:
+        """The statements of `text`: (starts, lines, entries). Only the
+        part of the text that differs from the previous version is split
+        again; statements before it are kept as they were, statements after
+        it are moved (their entries, in virtual lines, do not change)."""
+        prev = self._prev
+        if prev is None:
+            old, o_starts, o_kws, o_lines, o_entries, o_keys, bad = "", [0], [None], [1], [], [], 0
+            p = s = 0
+        else:
+            old, o_starts, o_kws, o_lines, o_entries, o_keys, bad = prev
+            p = _common_prefix(old, text)
+            s = _common_suffix(old, text, min(len(old), len(text)) - p)
+        # the last statement start that the edit cannot move
+        k = max(0, bisect.bisect_right(o_starts, p - _MARGIN) - 1) if o_entries else 0
+        delta = len(text) - len(old)
+        suffix_from = len(text) - s
+        # split again from there, until a statement start in the unchanged
+        # end of the text that was a statement start before
+        middle = [o_starts[k]] if k > 0 else [0]
+        middle_kws = [o_kws[k]] if k > 0 else [None]
+        j = len(o_entries)      # the first old statement kept after the edit
+        starts_of_lines = line_starts(text)
+        for at, kw in _boundaries(text, o_starts[k], starts_of_lines):
+            line_start = starts_of_lines[bisect.bisect_right(starts_of_lines, at) - 1]
+            if at >= suffix_from and o_entries and line_start > suffix_from:
+                i = bisect.bisect_left(o_starts, at - delta)
+                if i < len(o_starts) and o_starts[i] == at - delta:
+                    j = i
+                    break
+            middle.append(at)
+            middle_kws.append(kw)
+        # the old statements that the middle replaces: their parses may serve again
+        available: dict = {}
+        for i in range(k, j):
+            available.setdefault(o_keys[i], []).append(o_entries[i])
+            bad -= o_entries[i].bad_runs
+        mid_lines, mid_entries, mid_keys = [], [], []
+        ends = middle[1:] + [o_starts[j] + delta if j < len(o_entries) else len(text)]
+        followings = middle_kws[1:] + [o_kws[j] if j < len(o_entries) else None]
+        for start, end, following in zip(middle, ends, followings):
+            line = bisect.bisect_right(starts_of_lines, start)
+            column = start - starts_of_lines[line - 1] + 1
+            key = (text[start:end], column, following)
+            pool = available.get(key)
+            if pool:
+                entry = pool.pop()
+            else:
+                entry = _parse_chunk(self.name, " " * (column - 1) + key[0], following,
+                                     self._next_id)
+                self._next_id += 1
+            bad += entry.bad_runs
+            if entry.lines >= VLINE:
+                bad = MAX_LEXICAL_ERRORS
+            mid_lines.append(line)
+            mid_entries.append(entry)
+            mid_keys.append(key)
+        if j < len(o_entries):
+            # as many lines more (or fewer) as the edit added
+            shift = bisect.bisect_right(starts_of_lines, o_starts[j] + delta) - o_lines[j]
+            tail_starts = [x + delta for x in o_starts[j:]]
+            tail_lines = [x + shift for x in o_lines[j:]]
+        else:
+            tail_starts, tail_lines = [], []
+        starts = o_starts[:k] + middle + tail_starts
+        keywords = o_kws[:k] + middle_kws + o_kws[j:]
+        lines = o_lines[:k] + mid_lines + tail_lines
+        entries = o_entries[:k] + mid_entries + o_entries[j:]
+        keys = o_keys[:k] + mid_keys + o_keys[j:]
+        if bad >= MAX_LEXICAL_ERRORS:
+            self._prev = None
+            return None
+        self._prev = (text, starts, keywords, lines, entries, keys, bad)
+        return starts, lines, entries
+
+    def _whole(self, text: str) -> Analysis:
+        """The whole file at once, in real lines (no reuse)."""
+        source = SourceFile(self.name, text)
+        diags = Collector(source)
+        program = parse(source, diags)
+        checker = Checker(program, diags, **self.options)
+        checked = checker.check()
+        entry = Entry(0, program.statements, [], 0, source.line_count)
+        return self._finish(text, [0], [1], [entry], program, checker, checked, diags.items)
+
+    def _finish(self, text, starts, lines, entries, program, checker, checked,
+                items) -> Analysis:
+        analysis = Analysis(self.name, text, starts, lines, entries, program, checker, checked)
+        real = analysis.real
+        shown = []
+        for d in items:
+            if d.span.line >= VLINE or any(n.span and n.span.line >= VLINE for n in d.notes) \
+                    or any(f.span.line >= VLINE for f in d.fixes):
+                d = replace(d, span=real(d.span),
+                            notes=tuple(replace(n, span=real(n.span)) if n.span else n
+                                        for n in d.notes),
+                            fixes=tuple(replace(f, span=real(f.span)) for f in d.fixes))
+            shown.append(d)
+        shown.sort(key=Diagnostic.sort_key)
+        analysis.diagnostics = shown
+        return analysis
+
+

@@ -1,0 +1,493 @@
+"""Lowering: a CheckedProgram becomes the paper's model (parameter structs,
+generated action functions, sequences, actions and the events that trigger
+them) in the runtime's static registration form that templates/program.c.j2
+lays out: const tables of actions and events registered at once with
+register_program, the rules' sensor conditions compiled into one function
+the runtime calls once per poll, and only the state that changes in RAM.
+
+Every C name and initialiser is decided here; the template only prints.
+A rule file needs no entry of the runtime's dynamic arrays (MAX_ACTIONS,
+MAX_EVENTS): its rules are tables. Only the user's C registers more.
+
+Generated names never collide with each other, C, the runtime or the
+user's C: every name epuckc makes up (tables, state, the conditions
+function and its locals, structs, functions) starts with PREFIX (`epk_`),
+which the checker forbids to extern names (the only user names that reach C
+as they are). Derived names put their kind after it (`epk_p2_a_go` is the
+second parameter struct of action `go`, `epk_p1_r3` the first of rule 3's
+own action list).
+
+Externs: their parameter structs (`param_NAME`) and prototypes go in a
+header of their own, `<program>_externs.h`, which both the generated
+program and the user's C files include; the user's C is compiled as its own
+translation unit and linked.
+"""
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+from pathlib import PurePath
+from typing import Optional
+
+from ..check.program import CheckedProgram, ResolvedCall
+from ..check.splice import splice
+from ..stdlib.table import STANDARD_ACTIONS, STANDARD_EVENTS
+from ..stdlib.units import round_nearest
+
+# Every C name that epuckc makes up starts with this; see the module doc.
+PREFIX = "epk_"
+
+# C types of extern parameters, by declared type.
+EXTERN_C_TYPES = {"int": "int", "distance": "int", "speed": "int", "angle": "int",
+                  "duration": "long"}
+
+
+def rule_action_key(index: int, rule) -> tuple:
+    """Rules whose whole body is one named action share its registration."""
+    body = rule.body
+    if len(body) == 1 and len(body[0]) == 1 and body[0][0].kind == "named":
+        return ("named", body[0][0].name)
+    return ("rule", index)
+
+
+def externs_header_name(program_name: str) -> str:
+    """The header that declares a program's externs, for the user's C:
+    `#include "<program>_externs.h"`."""
+    return f"{program_name}_externs.h"
+
+
+# ---- the C-shaped program ------------------------------------------------------
+
+@dataclass
+class CStruct:
+    """A parameter struct: `static const TYPE NAME = INIT; /* COMMENT */`
+    (const: XC16 keeps it in program memory)."""
+    ctype: str
+    name: str
+    init: str
+    comment: str
+
+
+@dataclass
+class CFunction:
+    """A generated action: runs `statements` in order."""
+    name: str
+    comment: str
+    statements: list
+
+
+@dataclass
+class CSequence:
+    steps_name: str
+    name: str
+    entries: list          # "{function, &param}" initialisers
+    comment: str
+
+
+@dataclass
+class CAction:
+    """An entry of the action table: `{function, param}`; its id is its index."""
+    function: str
+    param: str             # "&name" or "NULL"
+    comment: str
+    action_label: str      # C string: its name in the host's trace
+
+
+@dataclass
+class CEvent:
+    """An entry of the event table; its id is its index."""
+    function: str          # "NULL": a compiled sensor condition
+    param: str
+    action: int            # index in the action table
+    flags: str             # "RT_REPEAT" or "0"
+    memory: str            # index in epk_event_memory, or "RT_NO_MEMORY"
+    comment: str
+    event_label: str
+    priority: int = 0      # the rule's priority
+    mode: int = 0          # its mode's number, 0: none
+
+
+@dataclass
+class CCondition:
+    """`if (condition) epk_c[word] |= bit;`, setting one event's bit."""
+    statement: str
+    comment: str
+
+
+@dataclass
+class CConditionWord:
+    """One word of the conditions function: `epk_c[index]`, its CConditions."""
+    index: int
+    terms: list
+
+
+@dataclass
+class CExternStruct:
+    name: str
+    fields: list           # (ctype, field name)
+
+
+@dataclass
+class CExtern:
+    """A prototype in the externs header."""
+    kind: str              # "action" | "event"
+    name: str
+    comment: str
+    param_doc: str         # what its first argument points to
+
+
+@dataclass
+class CProgram:
+    source_name: str       # for comments: already safe inside /* */
+    version: str
+    externs_header: Optional[str] = None       # its file name, when there are externs
+    header_guard: str = ""
+    extern_structs: list = field(default_factory=list)
+    externs: list = field(default_factory=list)
+    structs: list = field(default_factory=list)
+    functions: list = field(default_factory=list)
+    sequences: list = field(default_factory=list)
+    rule_ids: list = field(default_factory=list)     # (C name, event id) for `cancel RULE`
+    actions: list = field(default_factory=list)      # CAction
+    events: list = field(default_factory=list)       # CEvent
+    conditions: list = field(default_factory=list)   # CConditionWord
+    sensors: str = "0x00"                             # the IRs the conditions read
+    watched: list = field(default_factory=list)       # ... as sensor numbers
+    memory_slots: int = 0                             # longs of epk_event_memory
+    order: list = field(default_factory=list)   # lines of event ids by priority (ranked programs)
+    geometry: Optional[str] = None   # set_robot_geometry arguments, for a robot block
+    modes: list = field(default_factory=list)       # (id, C string of its name)
+    initial_mode: Optional[tuple] = None            # (id, name)
+
+
+# ---- C text helpers ------------------------------------------------------------
+
+def c_string(text: str) -> str:
+    """A C string literal of `text`: printable ASCII only, so the bytes do
+    not depend on the compiler's source character set; `?` is escaped so
+    that no trigraph (`??=`) forms."""
+    if text.isascii() and text.isprintable() and not any(c in text for c in '"\\?'):
+        return f'"{text}"'
+    out = []
+    for ch in text:
+        if ch in '"\\?':
+            out.append("\\" + ch)
+        elif 32 <= ord(ch) < 127:
+            out.append(ch)
+        else:
+            out.extend(f"\\{b:03o}" for b in ch.encode("utf-8"))
+    return '"' + "".join(out) + '"'
+
+
+def c_comment(text: str) -> str:
+    """Text safe inside /* */ on one line: printable ASCII (other
+    characters as `\\uXXXX`), no comment delimiters, no trigraphs; one
+    line, so no backslash-newline can splice it."""
+    text = " ".join(text.split())
+    if not (text.isascii() and text.isprintable()):
+        text = "".join(ch if 32 <= ord(ch) < 127 else
+                       f"\\u{ord(ch):04X}" if ord(ch) <= 0xFFFF else f"\\U{ord(ch):08X}"
+                       for ch in text)
+    while "*/" in text or "/*" in text or "??" in text:
+        text = text.replace("*/", "* /").replace("/*", "/ *").replace("??", "? ?")
+    return text
+
+
+def const_ref(param: str) -> str:
+    """A parameter for a const table entry (rt_action, rt_event)."""
+    return "NULL" if param == "NULL" else f"&{param}"
+
+
+def void_ref(param: str) -> str:
+    """A parameter passed where the paper's API takes `void *` (a call, a
+    sequence step): the const struct's address, cast; actions only read it."""
+    return "NULL" if param == "NULL" else f"(void *)&{param}"
+
+
+def _shorten(text: str, limit: int = 100) -> str:
+    text = " ".join(text.split())
+    return text if len(text) <= limit else text[: limit - 3] + "..."
+
+
+# ---- lowering ------------------------------------------------------------------
+
+@dataclass
+class _Primitive:
+    """One call that the runtime can run as an action: a function and its
+    parameter expression, or a statement (cancel) that needs a wrapper."""
+    function: Optional[str]
+    param: str
+    statement: str
+    text: str
+
+
+class _Lowerer:
+    def __init__(self, program: CheckedProgram, source_text: str, version: str,
+                 program_name: str):
+        self.program = program
+        self.source_lines = source_text.split("\n")
+        self.source_name = PurePath(program.file).name
+        self.out = CProgram(c_comment(self.source_name), version)
+        self.program_name = program_name
+        self.params: dict = {}           # id(ResolvedCall) -> param expression
+        self.owner_counts: dict = {}     # owner -> structs made so far
+        self.flat: dict = {}             # named action -> flattened steps
+        self.rule_ids: dict = {}         # rule name -> C name of its event id
+        self.sensors: set = set()        # the IRs the compiled conditions read
+        self.mode_ids = {name: i for i, name in enumerate(program.modes, 1)}
+        self.rule_modes = {r.name: r.mode for r in program.rules if r.name is not None}
+
+    def text_of(self, node) -> str:
+        """The source text of a node, from its span, on one line and without
+        comments (rule bodies hold no strings, so `#` always starts one)."""
+        span = node.span
+        lines = self.source_lines[span.line - 1: span.end_line]
+        if not lines:
+            return ""
+        if len(lines) == 1:
+            lines = [lines[0][span.column - 1: span.end_column - 1]]
+        else:
+            lines[0] = lines[0][span.column - 1:]
+            lines[-1] = lines[-1][: span.end_column - 1]
+        return " ".join(" ".join(line.split("#", 1)[0].split()) for line in lines).strip()
+
+    def where(self, node) -> str:
+        return f"{self.source_name}:{node.span.line}"
+
+    # -- calls and steps --
+
+    def primitive(self, call: ResolvedCall, owner: str) -> _Primitive:
+        text = self.text_of(call.node)
+        if call.kind == "cancel":
+            name = self.rule_ids[call.name]
+            # a rule of a mode is disarmed until its mode is entered again
+            function = "disarm_event" if self.rule_modes.get(call.name) else "cancel_event"
+            return _Primitive(None, "", f"{function}({name});", text)
+        if call.kind == "enter":         # one param_enter_mode struct per mode entered
+            key = ("enter", call.name)
+            if key not in self.params:
+                name = f"{PREFIX}mode_{call.name}"
+                self.out.structs.append(CStruct("param_enter_mode", name,
+                                                f"{{{self.mode_ids[call.name]}}}",
+                                                c_comment(f"mode {call.name}")))
+                self.params[key] = name
+            param = self.params[key]
+            return _Primitive("action_enter_mode", param,
+                              f"action_enter_mode({void_ref(param)});", text)
+        function = STANDARD_ACTIONS[call.name].runtime if call.kind == "standard" else call.name
+        if not call.values:       # stop_motor, exit_main, an extern without parameters...
+            return _Primitive(function, "NULL", f"{function}(NULL);", text)
+        key = id(call)
+        if key not in self.params:
+            n = self.owner_counts.get(owner, 0) + 1
+            self.owner_counts[owner] = n
+            name = f"{PREFIX}p{n}_{owner}"
+            ctype, init, comment = self.param_struct(call)
+            self.out.structs.append(CStruct(ctype, name, init,
+                                            c_comment(f"{self.where(call.node)}: {text}"
+                                                      + (f" ({comment})" if comment else ""))))
+            self.params[key] = name
+        param = self.params[key]
+        return _Primitive(function, param, f"{function}({void_ref(param)});", text)
+
+    def param_struct(self, call: ResolvedCall) -> tuple[str, str, str]:
+        v = call.values
+        if call.kind == "standard" and call.name == "start_straight":
+            return (STANDARD_ACTIONS[call.name].runtime_param,
+                    f"{{{v['speed']}, {v['distance']}}}",
+                    f"{v['speed']} steps/s for {v['distance']} steps")
+        if call.kind == "standard" and call.name == "start_curve":
+            outer, inner = v["speed"], v["inner_speed"]
+            # a positive angle turns left: the right wheel is the outer one
+            left, right = (inner, outer) if v["degrees"] >= 0 else (outer, inner)
+            return (STANDARD_ACTIONS[call.name].runtime_param,
+                    f"{{{left}, {right}, {v['outer_steps']}}}",
+                    f"left wheel {left} steps/s, right {right} steps/s, "
+                    f"{v['outer_steps']} steps of the outer wheel")
+        if call.kind == "standard":
+            spec = STANDARD_ACTIONS[call.name]
+            return (spec.runtime_param, "{" + ", ".join(f.format(**v) for f in spec.fields) + "}",
+                    "")
+        info = self.program.externs[call.name]
+        return (f"param_{call.name}", self.extern_init(info.params, v), "")
+
+    @staticmethod
+    def extern_init(params, values: dict) -> str:
+        items = [f"{values[p.name]}L" if EXTERN_C_TYPES[p.kind] == "long" else str(values[p.name])
+                 for p in params]
+        return "{" + ", ".join(items) + "}"
+
+    def flatten(self, steps: list, owner: str) -> list:
+        """Steps of primitives, with named actions spliced in (splice.py);
+        a named action's own parameter structs belong to `a_NAME`."""
+        return splice(steps, lambda call, context: self.primitive(call, context or owner),
+                      lambda name: (self.program.actions[name], f"a_{name}"), self.flat)
+
+    def named_steps(self, name: str) -> list:
+        if name not in self.flat:
+            self.flat[name] = self.flatten(self.program.actions[name], f"a_{name}")
+        return self.flat[name]
+
+    def step_action(self, prims: list, fname: str, comment: str) -> tuple[str, str]:
+        """(function, param) running a step's primitives."""
+        if len(prims) == 1 and prims[0].function is not None:
+            return prims[0].function, prims[0].param
+        self.out.functions.append(CFunction(fname, c_comment(comment),
+                                            [p.statement for p in prims] or [";"]))
+        return fname, "NULL"
+
+    def body_action(self, steps: list, owner: str, where: str, comment: str) -> tuple[str, str]:
+        """(function, param) to register for a whole body. `comment` (the
+        whole body) is printed once; a step's function says only its step,
+        so the C stays linear in the size of the rule file."""
+        if len(steps) == 1:
+            return self.step_action(steps[0], f"{PREFIX}do_{owner}", comment)
+        entries = []
+        for k, prims in enumerate(steps, 1):
+            text = ", ".join(p.text for p in prims)
+            fn, param = self.step_action(prims, f"{PREFIX}step{k}_{owner}",
+                                         f"{where}: step {k} of {len(steps)}: {text}")
+            entries.append(f"{{{fn}, {void_ref(param)}}}")
+        self.out.sequences.append(CSequence(f"{PREFIX}steps_{owner}", f"{PREFIX}seq_{owner}",
+                                            entries, c_comment(comment)))
+        return "run_sequence", f"{PREFIX}seq_{owner}"
+
+    # -- events --
+
+    def event(self, rule, index: int) -> tuple:
+        """(function, param name or "NULL", memory?, condition): a sensor
+        event is a compiled condition (function "NULL", its C expression)."""
+        ev = rule.event
+        owner = f"r{index}"
+        when = f"{PREFIX}when_{owner}"
+        comment = c_comment(f"{self.where(rule.node)}: {self.text_of(rule.node.event)}")
+        if ev.kind == "extern":
+            info = self.program.externs[ev.name]
+            if not info.params:
+                return ev.name, "NULL", True, None
+            self.out.structs.append(CStruct(f"param_{ev.name}", when,
+                                            self.extern_init(info.params, ev.values), comment))
+            return ev.name, when, True, None
+        spec = STANDARD_EVENTS[ev.name]
+        if spec.runtime_param is None:      # immediate, stop_motor, enter
+            return spec.runtime, "NULL", spec.memory, None
+        if spec.fields:
+            self.out.structs.append(CStruct(spec.runtime_param, when,
+                                            "{" + ", ".join(f.format(**ev.values)
+                                                            for f in spec.fields) + "}",
+                                            comment))
+            return spec.runtime, when, spec.memory, None
+        if ev.name == "ambient":            # a function event: not the proximity sensors
+            thresholds = ["SENSOR_OFF"] * 8
+            below = 0
+            for sensor, op, value in ev.conditions:
+                thresholds[sensor] = str(value)
+                if op == "<":
+                    below |= 1 << sensor
+            self.out.structs.append(CStruct(spec.runtime_param, when,
+                                            f"{{{{{', '.join(thresholds)}}}, 0x{below:02x}}}",
+                                            comment))
+            return spec.runtime, when, spec.memory, None
+        if ev.name == "timer":
+            self.out.structs.append(CStruct(spec.runtime_param, when,
+                                            f"{{{ev.values['time']}L}}", comment))
+            return spec.runtime, when, spec.memory, None
+        terms = [f"{PREFIX}ir{sensor} {op} {value}" for sensor, op, value in ev.conditions]
+        self.sensors |= {sensor for sensor, _, _ in ev.conditions}
+        return "NULL", "NULL", False, " || ".join(terms)
+
+    # -- the whole program --
+
+    def externs(self):
+        out = self.out
+        if not self.program.externs:
+            return
+        out.externs_header = externs_header_name(self.program_name)
+        out.header_guard = "EPK_" + re.sub(r"[^A-Za-z0-9]", "_", self.program_name).upper() \
+            + "_EXTERNS_H"
+        for info in self.program.externs.values():
+            if info.params:     # ISO C has no empty structs; such externs get NULL
+                out.extern_structs.append(CExternStruct(
+                    f"param_{info.name}", [(EXTERN_C_TYPES[p.kind], p.name) for p in info.params]))
+            params = ", ".join(f"{p.name}: {p.kind}" for p in info.params)
+            out.externs.append(CExtern(info.kind, info.name, c_comment(
+                f"{self.where(info.node)}: extern {info.kind} {info.name}({params})"),
+                f"param_{info.name} *" if info.params else "NULL"))
+
+    def lower(self) -> CProgram:
+        out = self.out
+        self.externs()
+        cancelled = self.cancelled_rules()
+        for index, rule in enumerate(self.program.rules):
+            if rule.name is not None and rule.name in cancelled:
+                self.rule_ids[rule.name] = f"{PREFIX}rule_{rule.name}"
+                out.rule_ids.append((f"{PREFIX}rule_{rule.name}", index))
+        registered: dict = {}          # rule_action_key -> action id
+        conditions: dict = {}          # word -> [CCondition]
+        for index, rule in enumerate(self.program.rules, 1):
+            key = rule_action_key(index, rule)
+            body_text = self.text_of(rule.node.body)
+            if key not in registered:
+                if key[0] == "named":
+                    name = key[1]
+                    steps = self.named_steps(name)
+                    node = self.program.action_nodes[name]
+                    where = f"{self.where(node)}: action {name} = {self.text_of(node.body)}"
+                    function, param = self.body_action(steps, f"a_{name}", self.where(node), where)
+                else:
+                    where = f"{self.where(rule.node)}: {body_text}"
+                    function, param = self.body_action(self.flatten(rule.body, f"r{index}"),
+                                                       f"r{index}", self.where(rule.node), where)
+                registered[key] = len(out.actions)
+                out.actions.append(CAction(function, const_ref(param),
+                                           c_comment(f"{registered[key]}: {_shorten(where)}"),
+                                           c_string(_shorten(body_text))))
+            function, param, memory, condition = self.event(rule, index)
+            event_id = len(out.events)
+            if condition is not None:
+                term = f"if ({condition}) {PREFIX}c[{event_id // 16}] |= 0x{1 << (event_id % 16):04x}u;"
+                conditions.setdefault(event_id // 16, []).append(
+                    CCondition(term, c_comment(f"event {event_id}: {self.where(rule.node)}")))
+            slot = "RT_NO_MEMORY"
+            if memory:
+                slot = str(out.memory_slots)
+                out.memory_slots += 1
+            head = f"rule {rule.name}: " if rule.name else ""
+            out.events.append(CEvent(
+                function, const_ref(param), registered[key], "RT_REPEAT" if rule.repeat else "0",
+                slot, c_comment(f"{event_id}: {self.where(rule.node)}: {self.text_of(rule.node)}"
+                                + (f" (mode {rule.mode})" if rule.mode is not None else "")),
+                c_string(_shorten(f"{self.where(rule.node)} {head}on "
+                                  f"{self.text_of(rule.node.event)}"
+                                  + (" repeat" if rule.repeat else "")
+                                  + (f" priority {rule.priority}" if rule.priority else ""))),
+                priority=rule.priority or 0,
+                mode=self.mode_ids[rule.mode] if rule.mode is not None else 0))
+        out.conditions = [CConditionWord(w, terms) for w, terms in sorted(conditions.items())]
+        if any(e.priority or e.mode for e in out.events):
+            # mainloop polls the table in this order (rt_program.order); with
+            # modes alone it is the ids' order, still one pass instead of three
+            ids = sorted(range(len(out.events)), key=lambda i: (-out.events[i].priority, i))
+            out.order = [", ".join(map(str, ids[i:i + 16])) for i in range(0, len(ids), 16)]
+        out.sensors = f"0x{sum(1 << n for n in self.sensors):02x}"
+        out.watched = sorted(self.sensors)
+        out.modes = [(i, c_string(name)) for name, i in self.mode_ids.items()]
+        if self.program.initial_mode is not None:
+            out.initial_mode = (self.mode_ids[self.program.initial_mode], self.program.initial_mode)
+        if self.program.robot_given:
+            geo = self.program.geometry
+            out.geometry = (f"{round_nearest(geo.wheel_circumference_mm * 1000)}L, "
+                            f"{round_nearest(geo.axle_mm * 1000)}L, {geo.steps_per_rev}L")
+        return out
+
+    def cancelled_rules(self) -> set:
+        """The rules that some `cancel` names, found in one pass."""
+        names = set()
+        for steps in [r.body for r in self.program.rules] + list(self.program.actions.values()):
+            names.update(c.name for step in steps for c in step if c.kind == "cancel")
+        return names
+
+
+def lower(program: CheckedProgram, source_text: str, version: str,
+          program_name: str = "program") -> CProgram:
+    return _Lowerer(program, source_text, version, program_name).lower()

@@ -1,0 +1,210 @@
+"""Runs programs in an Enki world: the second provider of the e-puck library
+on the host.
+
+Each robot is its program + the runtime + the host platform layer + the stub
+e-puck library + runtime_c/enki/robot_glue.c, linked into one shared object
+(`build_robot`); the world runner (runtime_c/enki/world_runner.cpp, built
+once, `build_runner`) loads one copy of that object per robot and steps
+them in lockstep with Enki's physics. docs/world.md explains why.
+
+`run_world` writes the merged trace: a `world` record, then every robot's
+records (with a `robot` key) in time order, then a `contacts` record per
+robot with Enki's collision counts.
+"""
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import re
+import shlex
+import shutil
+import subprocess
+import sys
+import tempfile
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Optional
+
+from ..build.common import BuildError, Program, _run_compiler, c_compiler
+
+from ..build.host import compile_objects, host_build_key, runtime_cache_dir, runtime_flags
+from ..base.resources import cache_dir, runtime_dir
+from .world import World, runner_spec
+
+ROBOT_SOURCES = ["epuckrt.c", "host/platform_host.c", "host/epuck_stub.c", "enki/robot_glue.c"]
+ROBOT_INCLUDES = [".", "epuck_api", "host", "enki"]
+# robot_glue.c's header comment says why each of these is wrapped
+WRAPPED = ["stub_motors_1ms", "stub_pose", "stub_set_geometry", "getenv", "exit"]
+RUNNER_FLAGS = ["-std=c++14", "-O2", "-Wall", "-Wextra"]
+ENKI_HEADER = Path("/usr/include/enki/PhysicalEngine.h")
+ENKI_MISSING = ("running in a world needs Enki, its headers and a C++ compiler "
+                "(Debian/Ubuntu: apt-get install libenki-dev g++)")
+
+
+def cxx_compiler() -> list:
+    return shlex.split(os.environ.get("CXX") or "c++")
+
+
+def enki_available() -> bool:
+    """Enki's headers and library are installed and a C++ compiler found."""
+    return ENKI_HEADER.is_file() and shutil.which(cxx_compiler()[0]) is not None
+
+
+def _atomic_copy_into(cached: Path, produce) -> Path:
+    """Build `cached` with produce(tmp_path) unless it exists; never leaves
+    a half-written file."""
+    if cached.is_file():
+        return cached
+    cached.parent.mkdir(parents=True, exist_ok=True)
+    with tempfile.TemporaryDirectory(dir=cached.parent) as tmp:
+        out = Path(tmp) / cached.name
+        produce(out)
+        os.replace(out, cached)
+    return cached
+
+
+def build_runner() -> Path:
+    """The world runner executable, cached by its sources and the compiler."""
+    if not enki_available():
+        raise BuildError(ENKI_MISSING)
+    rt = runtime_dir()
+    h = hashlib.sha256()
+    for rel in ("enki/world_runner.cpp", "enki/enki_bridge.h"):
+        h.update((rt / rel).read_bytes())
+    h.update(ENKI_HEADER.read_bytes())
+    h.update(" ".join(cxx_compiler() + RUNNER_FLAGS).encode())
+    exe = cache_dir() / "enki" / f"runner-{h.hexdigest()[:24]}" / "epuck-world"
+
+    def produce(out: Path):
+        _run_compiler(cxx_compiler() + RUNNER_FLAGS + [f"-I{rt / 'enki'}",
+                      str(rt / "enki" / "world_runner.cpp"), "-o", str(out), "-lenki", "-ldl"],
+                      "the Enki world runner")
+    return _atomic_copy_into(exe, produce)
+
+
+def build_robot(program: Program) -> Path:
+    """The program as a robot of a world: a shared object, cached."""
+    key = hashlib.sha256(("enki-robot\0" + host_build_key(program)).encode()).hexdigest()[:24]
+    lib = cache_dir() / "enki" / key / f"{program.name}.so"
+
+    def produce(out: Path):
+        # as on the host: the user's C on its own without -Werror, the
+        # generated program and the runtime with it, all at once; the
+        # runtime's objects (position-independent) kept for the next robot
+        objects, runtime = compile_objects(
+            program, out.parent, ROBOT_SOURCES, runtime_flags(program, ROBOT_INCLUDES, ["-fPIC"]),
+            runtime_cache_dir(), ["-fPIC"])
+        command = (c_compiler() + ["-shared"] + [str(o) for o in objects + runtime]
+                   + ["-Wl,--wrap=" + ",--wrap=".join(WRAPPED), "-Wl,-Bsymbolic",
+                      "-o", str(out), "-lm"])
+        _run_compiler(command, f"{program.name} for the Enki world")
+    return _atomic_copy_into(lib, produce)
+
+
+@dataclass
+class RobotResult:
+    name: str
+    status: int
+    wall_contacts: int
+    object_contacts: int
+    robot_contacts: int
+    first_contact_ms: int
+
+
+_T_MS = re.compile(r'\{"t_ms": (-?\d+), ')
+
+
+def merge_traces(world: World, traces: list, results: list, end_ms: int) -> str:
+    """One trace for the run: the world, every robot's records in time order
+    (ties: robots in the world's order, each robot's own order kept), and
+    each robot's collision counts."""
+    lines = [json.dumps(world.to_json())]
+    records = []
+    for index, (placement, text) in enumerate(zip(world.robots, traces)):
+        name = json.dumps(placement.name)
+        for order, line in enumerate(text.splitlines()):
+            m = _T_MS.match(line)
+            if m is None:
+                continue
+            records.append((int(m.group(1)), index, order,
+                            f'{{"t_ms": {m.group(1)}, "robot": {name}, ' + line[m.end():]))
+    records.sort(key=lambda r: r[:3])
+    lines.extend(r[3] for r in records)
+    for r in results:
+        lines.append(json.dumps({"t_ms": end_ms, "robot": r.name, "kind": "contacts",
+                                 "walls": r.wall_contacts, "objects": r.object_contacts,
+                                 "robots": r.robot_contacts, "first_ms": r.first_contact_ms}))
+    return "\n".join(lines) + "\n"
+
+
+def _contact_line(r: RobotResult) -> str:
+    total = r.wall_contacts + r.object_contacts + r.robot_contacts
+    if total == 0:
+        return f"{r.name}: no collision"
+    parts = [f"{n} {what}" for n, what in ((r.wall_contacts, "with walls"),
+                                           (r.object_contacts, "with obstacles"),
+                                           (r.robot_contacts, "with robots")) if n]
+    return (f"{r.name}: collisions in {total} physics steps ({', '.join(parts)}), "
+            f"the first at {r.first_contact_ms} ms")
+
+
+def run_world(world: World, default_program: Program, load_program, time_limit_ms: int,
+              trace: Optional[Path], pose_ms: Optional[int] = None) -> int:
+    """Build and run every robot of the world; print the robots' readable
+    traces and a collision summary; write the merged trace to `trace`.
+    `load_program(path)` gives the Program of a robot's own `program`, or
+    raises BuildError. Returns the highest of the robots' exit statuses."""
+    runner = build_runner()
+    libs = {}
+    robots = []
+    for placement in world.robots:
+        program = default_program if placement.program is None else load_program(placement.program)
+        if id(program) not in libs:
+            libs[id(program)] = (program, build_robot(program))
+        robots.append(libs[id(program)][1])
+    quiet = os.environ.get("EPUCK_QUIET", "")
+    with tempfile.TemporaryDirectory(prefix="epuckc-world-") as tmp:
+        tmpdir = Path(tmp)
+        entries = []
+        for i, (placement, lib) in enumerate(zip(world.robots, robots)):
+            # each robot loads its own copy: its own globals (docs/world.md)
+            copy = tmpdir / f"robot{i}.so"
+            shutil.copyfile(lib, copy)
+            settings = {"EPUCK_TIME_LIMIT_MS": str(time_limit_ms),
+                        "EPUCK_TRACE": str(tmpdir / f"robot{i}.jsonl")}
+            if pose_ms:
+                settings["EPUCK_POSE_MS"] = str(pose_ms)
+            if quiet and quiet != "0":
+                settings["EPUCK_QUIET"] = "1"
+            entries.append((copy, settings))
+        spec = tmpdir / "world.spec"
+        spec.write_text(runner_spec(world, entries), encoding="utf-8")
+        results_file = tmpdir / "results"
+        sys.stdout.flush()
+        try:
+            proc = subprocess.run([str(runner), str(spec), str(results_file)])
+        except OSError as exc:
+            raise BuildError(f"cannot run {runner}: {exc.strerror or exc}") from None
+        if proc.returncode != 0 or not results_file.is_file():
+            raise BuildError(f"the Enki world runner failed (exit status {proc.returncode})")
+        results = []
+        for line in results_file.read_text().splitlines():
+            name, *numbers = line.split()
+            results.append(RobotResult(name, *map(int, numbers)))
+        traces = []
+        end_ms = 0
+        for i in range(len(world.robots)):
+            path = tmpdir / f"robot{i}.jsonl"
+            text = path.read_text(encoding="utf-8") if path.is_file() else ""
+            traces.append(text)
+            for m in _T_MS.finditer(text):
+                end_ms = max(end_ms, int(m.group(1)))
+        if not (quiet and quiet != "0"):
+            for r in results:
+                print(_contact_line(r))
+        if trace is not None:
+            from ..base.output import write_atomic
+            write_atomic(trace, merge_traces(world, traces, results, end_ms))
+    sys.stdout.flush()
+    return max(r.status for r in results)

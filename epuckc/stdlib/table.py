@@ -1,0 +1,295 @@
+"""The one table of the standard actions and events.
+
+Each entry says what the language accepts (its parameters in the paper's
+order, which is the order of positional arguments, with their kinds and
+ranges), what it means (one line of documentation) and what it becomes
+(the runtime call). The checker, lowering, the language reference
+(docs/language.md section 3, kept equal to `reference_markdown()` by a test)
+and the editor's hover and completion all read this table; none keeps a
+list of its own.
+"""
+from __future__ import annotations
+
+from typing import Optional
+
+from ..base.records import record
+from .units import ANGLE, DISTANCE, DURATION, INT, NATURAL_UNIT, SPEED
+
+SENSOR_COUNT = 8
+THRESHOLD_MAX = 4095
+CHOICE = "choice"           # the kind of a parameter that names one of its Choices
+
+
+@record(frozen=True)
+class Choice:
+    """One value of an enumerated parameter: its name in rule files, the C
+    expression it becomes, and what it means."""
+    name: str
+    c: str
+    doc: str
+
+
+@record(frozen=True)
+class Choices:
+    """The values an enumerated parameter takes (an LED, a sound, a key).
+    `numbers`: whole numbers lo..hi accepted as themselves as well (the
+    remote control's digit keys)."""
+    what: str
+    values: tuple
+    numbers: Optional[tuple] = None
+
+    def names(self) -> list:
+        return [c.name for c in self.values]
+
+    def get(self, name: str) -> Optional[Choice]:
+        return next((c for c in self.values if c.name == name), None)
+
+    def describe(self) -> str:
+        names = [c.name for c in self.values]
+        text = ", ".join(f"`{n}`" for n in names)
+        if self.numbers is not None:
+            text = f"{self.numbers[0]}..{self.numbers[1]}, " + text
+        return text
+
+
+@record(frozen=True)
+class Param:
+    """A parameter: its name, its kind (units.py, or CHOICE), and for the
+    standard ones a short description and the range the checker enforces,
+    in words with the codes that enforce it. `choices` lists the values of
+    a CHOICE parameter; `lo`..`hi` bound a whole-number one (`range_code`
+    reports a value outside)."""
+    name: str
+    kind: str
+    doc: str = ""
+    range: str = ""
+    choices: Optional[Choices] = None
+    lo: Optional[int] = None
+    hi: Optional[int] = None
+    range_code: str = "E042"
+
+
+@record(frozen=True)
+class ActionSpec:
+    name: str
+    params: tuple
+    doc: str
+    runtime: str              # the runtime's action function the call becomes
+    motion: bool = False      # starts a motion (ends with a `stop_motor` event)
+    motors: bool = False      # commands the motors (a motion, or stopping one)
+    runtime_param: Optional[str] = None   # its parameter struct, when not the paper's
+    fields: tuple = ()        # the struct's initialisers: C text, `{param}` is a value
+
+    @property
+    def signature(self) -> str:
+        return signature(self.name, self.params)
+
+
+@record(frozen=True)
+class EventSpec:
+    name: str
+    params: Optional[tuple]   # None: takes conditions (`sensor(ir0 > 300)`)
+    doc: str
+    runtime: str              # the runtime's event function
+    runtime_param: Optional[str] = None   # its parameter struct, if any
+    fields: tuple = ()        # as ActionSpec.fields, for the structs not the paper's
+    in_mode: bool = False     # only inside a mode (`enter`)
+    conditions_doc: str = ""  # for params None: its conditions, when not the sensor's
+    # the function keeps status->memory between polls: a compiled program
+    # gives the rule a long of RAM for it (False: the function never reads it)
+    memory: bool = True
+
+    @property
+    def signature(self) -> str:
+        if self.params is None:
+            return f"{self.name}(irN > T, irM < T, ...)"
+        return signature(self.name, self.params)
+
+
+_SPEED_RANGE = "-max_speed..max_speed (1000 steps/s on the e-puck) [E030]"
+_STEPS_RANGE = "a 16-bit int of motor steps [E034]"
+
+LEDS = Choices("LED", tuple(
+    [Choice(f"led{i}", str(i), f"ring LED {i}" + (" (front; numbered clockwise seen from "
+                                                   "above: led2 right, led4 back, led6 left)"
+                                                   if i == 0 else ""))
+     for i in range(8)]
+    + [Choice("all", "SET_LED_ALL", "the eight ring LEDs"),
+       Choice("body", "SET_LED_BODY", "the green body LED"),
+       Choice("front", "SET_LED_FRONT", "the red front LED")]))
+SOUNDS = Choices("sound", (
+    Choice("haa", "SOUND_HAA", "a short \"haa\""),
+    Choice("spaah", "SOUND_SPAAH", "\"spaah\""),
+    Choice("ouah", "SOUND_OUAH", "\"ouah\""),
+    Choice("yaouh", "SOUND_YAOUH", "\"yaouh\""),
+    Choice("wouaaaaaaaah", "SOUND_WOUAAAAAAAAH", "the long \"wouaaaaaaaah\""),
+))
+# RC5 codes of a TV remote control (e_get_data); digits are 0..9 themselves.
+KEYS = Choices("key", (
+    Choice("standby", "12", "the standby (power) key"),
+    Choice("mute", "13", "mute"),
+    Choice("vol_up", "16", "volume up"),
+    Choice("vol_down", "17", "volume down"),
+    Choice("chan_up", "32", "channel up"),
+    Choice("chan_down", "33", "channel down"),
+), numbers=(0, 9))
+CHOICES = (LEDS, SOUNDS, KEYS)
+
+SENSOR_NAMES_DOC = ("ir0", f"ir{SENSOR_COUNT - 1}")
+_LED = Param("led", CHOICE, "which LED", "one of " + LEDS.describe() + " [E041]", choices=LEDS)
+_READING_RANGE = f"a whole number 0..{THRESHOLD_MAX} [E032]"
+
+ACTIONS = (
+    ActionSpec("start_straight",
+               (Param("speed", SPEED, "wheel speed; negative drives backwards", _SPEED_RANGE),
+                Param("distance", DISTANCE, "how far; negative drives backwards", _STEPS_RANGE)),
+               "drives straight; backwards when exactly one of them is negative",
+               # compiled to exact steps: the runtime's extension, so the
+               # paper's param_start_straight stays the paper's
+               "straight_steps", motion=True, motors=True, runtime_param="param_straight_steps"),
+    ActionSpec("start_curve",
+               (Param("radius", DISTANCE, "from the robot's centre to the circle's centre",
+                      ">= 0 [E036], a 16-bit int of mm [E034]"),
+                Param("degrees", ANGLE, "arc angle; positive turns left, negative right",
+                      "the outer wheel's steps fit a 16-bit int [E034]"),
+                Param("speed", SPEED, "the outer wheel's speed; negative drives backwards",
+                      _SPEED_RANGE)),
+               "drives an arc through the robot's centre; positive degrees turn left, negative "
+               "right; `speed` is the outer wheel's; radius 0 turns on the spot",
+               "curve_steps", motion=True, motors=True, runtime_param="param_curve_steps"),
+    ActionSpec("stop_motor", (), "stops the wheels; the current motion ends", "stop_motor",
+               motors=True),
+    ActionSpec("set_timer", (), "(re)starts the one timer at 0", "set_timer"),
+    ActionSpec("reset_timer", (), "stops the timer", "reset_timer"),
+    ActionSpec("start_sensor", (), "starts polling the proximity sensors", "start_sensor"),
+    ActionSpec("stop_sensor", (), "stops it; sensor conditions are then false", "stop_sensor"),
+    ActionSpec("exit_main", (), "ends the main loop", "exit_main"),
+    ActionSpec("led_on", (_LED,), "switches an LED on (`e_set_led`, `e_set_body_led`, "
+               "`e_set_front_led`)", "action_set_led", runtime_param="param_set_led",
+               fields=("{led}", "SET_LED_ON")),
+    ActionSpec("led_off", (_LED,), "switches an LED off", "action_set_led",
+               runtime_param="param_set_led", fields=("{led}", "SET_LED_OFF")),
+    ActionSpec("led_toggle", (_LED,), "switches an LED on if it is off, off if it is on",
+               "action_set_led", runtime_param="param_set_led",
+               fields=("{led}", "SET_LED_TOGGLE")),
+    ActionSpec("play_sound",
+               (Param("sound", CHOICE, "one of the library's five samples",
+                      "one of " + SOUNDS.describe() + " [E041]", choices=SOUNDS),),
+               "plays a built-in sample on the speaker (`e_play_sound`); the program goes on "
+               "at once", "action_play_sound", runtime_param="param_play_sound",
+               fields=("{sound}",)),
+)
+
+EVENTS = (
+    EventSpec("immediate", (), "at the first poll", "immediate", memory=False),
+    EventSpec("stop_motor", (),
+              "when a motion has ended (reached its distance or stopped by `stop_motor`)",
+              "event_stop_motor", memory=False),
+    EventSpec("timer",
+              (Param("time", DURATION, "time since `set_timer`",
+                     "> 0 [E033], at most 2147483647 ms [E034]"),),
+              "when the timer has run `time` since `set_timer`",
+              "timer", "param_event_timer"),
+    EventSpec("sensor", None,
+              "when some listed sensor's reading passes its threshold",
+              "sensor", "param_event_sensor"),
+    EventSpec("enter", (), "at the first poll after its mode was entered; only inside a "
+              "mode [E044]", "event_enter_mode", in_mode=True),
+    EventSpec("selector",
+              (Param("position", INT, "a position of the 16-position selector",
+                     "a whole number 0..15 [E042]", lo=0, hi=15),),
+              "when the selector (`getselector()`) is at `position` at start, or turns to it",
+              "event_selector", "param_event_selector", fields=("{position}",)),
+    EventSpec("clap",
+              (Param("volume", INT, "microphone volume (peak to peak, raw)", _READING_RANGE,
+                     lo=0, hi=THRESHOLD_MAX, range_code="E032"),),
+              "when some microphone's volume (`e_get_micro_volume`) goes over `volume`",
+              "event_clap", "param_event_clap", fields=("{volume}",)),
+    EventSpec("tap",
+              (Param("threshold", INT, "change of a raw accelerometer axis in one poll",
+                     _READING_RANGE, lo=0, hi=THRESHOLD_MAX, range_code="E032"),),
+              "when an accelerometer axis (`e_get_acc`) jumps by more than `threshold` "
+              "between two polls (a knock on the robot)",
+              "event_tap", "param_event_accel", fields=("{threshold}",)),
+    EventSpec("tilt",
+              (Param("threshold", INT, "raw accelerometer units away from rest",
+                     _READING_RANGE, lo=0, hi=THRESHOLD_MAX, range_code="E032"),),
+              "when the x or y acceleration differs from its reading at start by more than "
+              "`threshold` (the robot tilted or lifted)",
+              "event_tilt", "param_event_accel", fields=("{threshold}",)),
+    EventSpec("remote",
+              (Param("key", CHOICE, "a key of an RC5 (TV) remote control",
+                     "a digit 0..9 [E042] or one of " + ", ".join(f"`{n}`" for n in KEYS.names())
+                     + " [E041]", choices=KEYS),),
+              "when that key of the remote control is pressed (`e_get_check`, `e_get_data`)",
+              "event_remote", "param_event_remote", fields=("{key}",)),
+    EventSpec("ambient", None,
+              "when some listed sensor's ambient light reading (`e_get_ambient_light`) passes "
+              "its threshold; needs no `start_sensor`",
+              "event_ambient", "param_event_sensor",
+              conditions_doc=f"`{SENSOR_NAMES_DOC[0]}`..`{SENSOR_NAMES_DOC[1]}` `>` or `<` a "
+              f"whole threshold in 0..{THRESHOLD_MAX} [E032] (raw ambient light readings)"),
+)
+
+STANDARD_ACTIONS = {spec.name: spec for spec in ACTIONS}
+MOTOR_ACTIONS = frozenset(spec.name for spec in ACTIONS if spec.motors)
+STANDARD_EVENTS = {spec.name: spec for spec in EVENTS}
+MOTION_ACTIONS = frozenset(spec.name for spec in ACTIONS if spec.motion)
+
+# The paper's long spellings are accepted too (`action_start_straight`,
+# `event_timer`), so that its tables can be copied as they are.
+ACTION_ALIASES = {f"action_{name}": name for name in STANDARD_ACTIONS}
+# (`enter` is written as its keyword only: it has no long spelling)
+EVENT_ALIASES = {f"event_{spec.name}": spec.name for spec in EVENTS if not spec.in_mode}
+
+SENSOR_NAMES = tuple(f"ir{i}" for i in range(SENSOR_COUNT))
+SENSOR_CONDITION_DOC = (f"`{SENSOR_NAMES[0]}`..`{SENSOR_NAMES[-1]}` `>` or `<` a whole "
+                        f"threshold in 0..{THRESHOLD_MAX} [E032] (0: nothing near, "
+                        f"{THRESHOLD_MAX}: touching)")
+
+EXTERN_TYPES = ("int", "distance", "speed", "angle", "duration")
+
+
+def signature(name: str, params) -> str:
+    if not params:
+        return name
+    return f"{name}({', '.join(f'{p.name}: {kind_name(p)}' for p in params)})"
+
+
+def kind_name(p: Param) -> str:
+    """The kind of a parameter in words: `distance`, `LED`, ..."""
+    return p.choices.what if p.choices is not None else p.kind
+
+
+def describe_param(p: Param) -> str:
+    """`speed` (speed, RANGE): a parameter in the reference's tables."""
+    return f"`{p.name}` ({kind_name(p)}{', ' + p.range if p.range else ''})"
+
+
+def bare_unit(p: Param) -> str:
+    """What a bare number means for this parameter (`steps/s`, `mm`, ...)."""
+    return NATURAL_UNIT.get(p.kind, "a plain number")
+
+
+def reference_markdown() -> str:
+    """The tables of docs/language.md section 3, from this table."""
+    lines = ["### 3.1 Actions", "", "| action | parameters | does |", "|---|---|---|"]
+    for a in ACTIONS:
+        params = ", ".join(describe_param(p) for p in a.params) or "-"
+        lines.append(f"| `{a.name}` | {params} | {a.doc} |")
+    lines += ["", "### 3.2 Events", "", "| event | parameters | occurs |", "|---|---|---|"]
+    for e in EVENTS:
+        params = ("conditions: " + (e.conditions_doc or SENSOR_CONDITION_DOC) if e.params is None
+                  else ", ".join(describe_param(p) for p in e.params) or "-")
+        lines.append(f"| `{e.name}` | {params} | {e.doc} |")
+    for choices in CHOICES:
+        lines += ["", f"The {choices.what} values"
+                  + (f" (besides the numbers {choices.numbers[0]}..{choices.numbers[1]})"
+                     if choices.numbers else "") + ":", "",
+                  f"| {choices.what} | means | C |", "|---|---|---|"]
+        lines += [f"| `{c.name}` | {c.doc} | `{c.c}` |" for c in choices.values]
+    return "\n".join(lines) + "\n"
+
+
+if __name__ == "__main__":      # python3 -m epuckc.stdlib > section 3's tables
+    print(reference_markdown(), end="")

@@ -1,0 +1,171 @@
+"""The shape of the code base (docs/architecture.md): each stage is a
+subpackage of epuckc, imports point one way, there is no import circle, and
+no file grows past the size where it should be split by concern.
+
+Imports are read from the source (module level and inside functions alike:
+a lazy import is still a dependency), so the test needs nothing installed.
+"""
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+import pytest
+
+REPO = Path(__file__).resolve().parents[1]
+PACKAGE = REPO / "epuckc"
+
+# Which stages each stage may import (besides itself). The pipeline runs
+# syntax -> check -> lower -> emit -> build; ide and sim sit on top of it,
+# cli on top of everything. docs/architecture.md shows the same table.
+ALLOWED = {
+    "base": set(),
+    "diagnostics": {"base"},
+    "stdlib": {"base"},
+    "syntax": {"base", "diagnostics"},
+    "check": {"base", "diagnostics", "stdlib", "syntax"},
+    "lower": {"base", "stdlib", "syntax", "check"},
+    "emit": {"base", "check", "lower"},
+    "build": {"base"},
+    "sim": {"base", "build"},
+    "ide": {"base", "diagnostics", "stdlib", "syntax", "check"},
+    "cli": {"base", "diagnostics", "stdlib", "syntax", "check", "lower", "emit", "build",
+            "sim", "ide"},
+}
+TOP_LEVEL = {"__init__", "__main__"}      # the package's own files: version, `python -m epuckc`
+
+MAX_MODULE_LINES = 600
+MAX_CLASS_LINES = 400
+MAX_C_LINES = 900
+
+
+def _modules():
+    for path in sorted(PACKAGE.rglob("*.py")):
+        parts = list(path.relative_to(REPO).with_suffix("").parts)
+        if parts[-1] == "__init__":
+            parts = parts[:-1]
+        yield path, ".".join(parts), path.name == "__init__.py"
+
+
+def _imports(path: Path, module: str, is_package: bool) -> set:
+    """The epuckc modules `module` imports, as dotted names."""
+    here = module.split(".") if is_package else module.split(".")[:-1]
+    found = set()
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        if isinstance(node, ast.Import):
+            found |= {a.name for a in node.names if a.name.split(".")[0] == "epuckc"}
+        elif isinstance(node, ast.ImportFrom):
+            if node.level:
+                base = here[:len(here) - node.level + 1]
+                target = ".".join(base + ([node.module] if node.module else []))
+            else:
+                target = node.module or ""
+            if target.split(".")[0] != "epuckc":
+                continue
+            # `from pkg import mod` imports the module pkg.mod when there is one
+            for alias in node.names:
+                candidate = f"{target}.{alias.name}"
+                found.add(candidate if _exists(candidate) else target)
+    return found
+
+
+def _exists(dotted: str) -> bool:
+    path = REPO.joinpath(*dotted.split("."))
+    return path.with_suffix(".py").is_file() or (path / "__init__.py").is_file()
+
+
+def _stage(dotted: str) -> str:
+    parts = dotted.split(".")
+    return parts[1] if len(parts) > 1 else "__init__"
+
+
+GRAPH = {module: _imports(path, module, is_package) for path, module, is_package in _modules()}
+
+
+def test_every_module_belongs_to_a_stage():
+    strays = [m for m in GRAPH if _stage(m) not in ALLOWED and _stage(m) not in TOP_LEVEL]
+    assert not strays, f"modules outside the stage folders (see docs/architecture.md): {strays}"
+
+
+def test_imports_point_one_way():
+    wrong = []
+    for module, targets in GRAPH.items():
+        stage = _stage(module)
+        if stage in TOP_LEVEL:
+            continue
+        for target in targets:
+            other = _stage(target)
+            if other in TOP_LEVEL or other == stage:
+                continue
+            if other not in ALLOWED[stage]:
+                wrong.append(f"{module} imports {target} ({stage} may import "
+                             f"{', '.join(sorted(ALLOWED[stage])) or 'nothing of epuckc'})")
+    assert not wrong, "\n".join(wrong)
+
+
+def test_no_import_circle():
+    """No module reaches itself through the modules it imports (Tarjan's
+    strongly connected components; a component of two or more is a circle)."""
+    index, low, on_stack, stack, circles = {}, {}, set(), [], []
+
+    def visit(v):
+        index[v] = low[v] = len(index)
+        stack.append(v)
+        on_stack.add(v)
+        for w in GRAPH.get(v, ()):
+            if w not in GRAPH:
+                continue
+            if w not in index:
+                visit(w)
+                low[v] = min(low[v], low[w])
+            elif w in on_stack:
+                low[v] = min(low[v], index[w])
+        if low[v] == index[v]:
+            component = []
+            while True:
+                w = stack.pop()
+                on_stack.discard(w)
+                component.append(w)
+                if w == v:
+                    break
+            if len(component) > 1:
+                circles.append(sorted(component))
+
+    for module in sorted(GRAPH):
+        if module not in index:
+            visit(module)
+    assert not circles, f"import circles: {circles}"
+
+
+def test_the_graph_is_read():
+    """The checks above are not vacuous: the known edges are seen."""
+    assert "epuckc.syntax.parser" in GRAPH["epuckc.check.frontend"]
+    assert "epuckc.check.program" in GRAPH["epuckc.lower.program"]
+    assert any(t.startswith("epuckc.build") for t in GRAPH["epuckc.cli.driver"])
+
+
+def _python_sizes():
+    for path, module, _ in _modules():
+        text = path.read_text(encoding="utf-8")
+        yield path, module, text.count("\n"), ast.parse(text)
+
+
+@pytest.mark.parametrize("path,module,lines,tree", list(_python_sizes()),
+                         ids=lambda v: v if isinstance(v, str) and v.startswith("epuckc") else "")
+def test_module_and_class_sizes(path, module, lines, tree):
+    assert lines <= MAX_MODULE_LINES, \
+        f"{module} has {lines} lines (> {MAX_MODULE_LINES}): split it by concern"
+    for node in ast.walk(tree):
+        if isinstance(node, ast.ClassDef):
+            size = node.end_lineno - node.lineno + 1
+            assert size <= MAX_CLASS_LINES, \
+                f"class {node.name} in {module} has {size} lines (> {MAX_CLASS_LINES})"
+
+
+def test_c_file_sizes():
+    sources = [p for p in list((REPO / "runtime_c").rglob("*.[ch]")) + list(PACKAGE.rglob("*.c"))
+               if "build" not in p.relative_to(REPO).parts]
+    assert sources
+    big = {str(p.relative_to(REPO)): n for p in sources
+           if (n := p.read_text(encoding="utf-8", errors="replace").count("\n")) > MAX_C_LINES}
+    assert not big, f"C files over {MAX_C_LINES} lines: {big}"
