@@ -32,19 +32,15 @@ document of groups that a Wadler-style printer lays out in WIDTH columns.
 from __future__ import annotations
 
 import re
-import sys
 from dataclasses import dataclass, field
-from pathlib import Path
 from typing import Optional
 
-from ..syntax import ast
+from ..base.source import SourceFile
 from ..diagnostics import Collector
+from ..syntax import ast
 from ..syntax.lexer import iter_statements, iter_tokens
 from ..syntax.parser import parse
-from ..base.source import SourceFile
-
-WIDTH = 88          # the longest line the formatter makes, when it can
-INDENT = 4          # the hanging indent of a wrapped statement
+from .layout import HARD, INDENT, LINE, WIDTH, _Comment, _Fill, _Group, _IfBreak, _Indent, _render
 
 
 class FormatError(Exception):
@@ -56,164 +52,6 @@ class FormatError(Exception):
         where = f"{first.file}:{first.span.line}:{first.span.column}: " if first else ""
         super().__init__(f"{where}cannot format a file with syntax errors")
 
-
-# ---- the document ------------------------------------------------------------------
-
-class _Line:
-    """A space when its group is flat, a new line when it is broken."""
-    __slots__ = ()
-
-
-class _Hard:
-    """Always a new line; the groups around it are broken."""
-    __slots__ = ()
-
-
-LINE, HARD = _Line(), _Hard()
-
-
-@dataclass
-class _Comment:
-    """Comment text: printed as it is, but not counted when deciding whether
-    a group fits (a long comment never rearranges the code around it)."""
-    text: str
-
-
-@dataclass
-class _IfBreak:
-    broken: str
-    flat: str = ""
-
-
-@dataclass
-class _Group:
-    items: list = field(default_factory=list)
-    broken: bool = False
-
-
-@dataclass
-class _Indent:
-    items: list = field(default_factory=list)
-
-
-@dataclass
-class _Fill:
-    """Items separated by LINEs, broken only where the next item does not
-    fit on the line (an argument list fills its lines)."""
-    items: list = field(default_factory=list)
-
-
-class _FillLine:
-    """A LINE of a broken fill: a new line only when what follows it, up to
-    the next line break, does not fit."""
-    __slots__ = ()
-
-
-FILL_LINE = _FillLine()
-
-
-_FLAT, _BREAK = 0, 1
-
-
-def _propagate(doc) -> bool:
-    """Mark every group that holds a hard line as broken; True if `doc` holds one."""
-    if doc is HARD:
-        return True
-    if isinstance(doc, _Group):
-        hard = False
-        for item in doc.items:
-            hard = _propagate(item) or hard
-        doc.broken = doc.broken or hard
-        return hard
-    if isinstance(doc, (_Indent, _Fill)):
-        hard = False
-        for item in doc.items:
-            hard = _propagate(item) or hard
-        return hard
-    return False
-
-
-def _fits(command, rest: list, width: int) -> bool:
-    """Does `command` (laid out flat) and what follows it up to the next line
-    break fit in `width` columns?"""
-    todo = [command]
-    rest_index = len(rest)
-    while width >= 0:
-        if not todo:
-            if rest_index == 0:
-                return True
-            rest_index -= 1
-            todo.append(rest[rest_index])
-            continue
-        indent, mode, doc = todo.pop()
-        if isinstance(doc, str):
-            width -= len(doc)
-        elif isinstance(doc, _Group):
-            group_mode = _BREAK if doc.broken else mode
-            todo.extend((indent, group_mode, item) for item in reversed(doc.items))
-        elif isinstance(doc, (_Indent, _Fill)):
-            todo.extend((indent, mode, item) for item in reversed(doc.items))
-        elif doc is FILL_LINE:
-            return True
-        elif doc is LINE:
-            if mode == _BREAK:
-                return True
-            width -= 1
-        elif doc is HARD:
-            return True
-        elif isinstance(doc, _IfBreak):
-            width -= len(doc.broken if mode == _BREAK else doc.flat)
-    return False
-
-
-def _render(doc, width: int) -> str:
-    _propagate(doc)
-    out: list = []
-    column = 0
-    stack = [(0, _BREAK, doc)]
-    while stack:
-        indent, mode, item = stack.pop()
-        if isinstance(item, str):
-            out.append(item)
-            column += len(item)
-        elif isinstance(item, _Comment):
-            out.append(item.text)
-            column += len(item.text)
-        elif isinstance(item, _Group):
-            if item.broken:
-                group_mode = _BREAK
-            elif mode == _FLAT:
-                group_mode = _FLAT
-            else:
-                group_mode = _FLAT if _fits((indent, _FLAT, item), stack, width - column) else _BREAK
-            stack.extend((indent, group_mode, x) for x in reversed(item.items))
-        elif isinstance(item, _Indent):
-            stack.extend((indent + INDENT, mode, x) for x in reversed(item.items))
-        elif isinstance(item, _Fill):
-            stack.extend((indent, mode, FILL_LINE if x is LINE and mode == _BREAK else x)
-                         for x in reversed(item.items))
-        elif item is FILL_LINE:
-            if _fits((indent, _FLAT, " "), stack, width - column):
-                out.append(" ")
-                column += 1
-            else:
-                while out and out[-1].endswith(" "):
-                    out[-1] = out[-1].rstrip(" ")
-                out.append("\n" + " " * indent)
-                column = indent
-        elif item is HARD or (item is LINE and mode == _BREAK):
-            while out and out[-1].endswith(" "):
-                out[-1] = out[-1].rstrip(" ")
-            out.append("\n" + " " * indent)
-            column = indent
-        elif item is LINE:
-            out.append(" ")
-            column += 1
-        elif isinstance(item, _IfBreak):
-            text = item.broken if mode == _BREAK else item.flat
-            out.append(text)
-            column += len(text)
-    return "".join(out).rstrip(" ")
 
 
 # ---- comments ----------------------------------------------------------------------
@@ -592,89 +430,4 @@ def format_text(text: str, filename: str = "<stdin>") -> str:
 
 # ---- the command line ------------------------------------------------------------------
 
-def _targets(names: list) -> list:
-    """The files to format: each name, or the .epk files under a folder."""
-    out = []
-    for name in names:
-        path = Path(name)
-        if name != "-" and path.is_dir():
-            out.extend(str(p) for p in sorted(path.rglob("*.epk")) if p.is_file())
-        else:
-            out.append(name)
-    return out
 
-
-def _read(name: str) -> tuple:
-    """(text, E004 diagnostic or None) of a file or of standard input."""
-    if name == "-":
-        source, problem = SourceFile.from_bytes(sys.stdin.buffer.read(), "<stdin>")
-    else:
-        source, problem = SourceFile.from_path(Path(name), name)
-    if problem is None:
-        return source, None
-    offset, message = problem
-    diags = Collector(source)
-    diags.error("E004", source.span(offset, offset), message,
-                help="save the file as UTF-8 text; rule files are plain text (.epk)")
-    return source, diags.items
-
-
-def run(names: list, check: bool = False, diff: bool = False, colour: bool = False) -> int:
-    """`epuckc fmt`: 0 when done (or, with --check, nothing would change),
-    1 when a file has syntax errors or would change, 2 when one cannot be
-    read or written."""
-    import difflib
-
-    from ..diagnostics import Report
-
-    from ..diagnostics.render import render_report
-    from ..base.output import OutputError
-    status = 0
-    report = Report()
-    for name in _targets(names):
-        shown = "<stdin>" if name == "-" else name
-        try:
-            source, problem = _read(name)
-        except OSError as exc:
-            print(f"epuckc: error: cannot read {name}: {exc.strerror or exc}", file=sys.stderr)
-            status = max(status, 2)
-            continue
-        try:
-            if problem:
-                raise FormatError(problem)
-            formatted = format_text(source.text, shown)
-        except FormatError as exc:
-            report.sources[shown] = source
-            report.extend(exc.diagnostics)
-            status = max(status, 1)
-            continue
-        original = source.text
-        if name == "-" and not check and not diff:
-            sys.stdout.write(formatted)
-            continue
-        if formatted == original:
-            continue
-        if diff:
-            sys.stdout.writelines(difflib.unified_diff(
-                original.splitlines(keepends=True), formatted.splitlines(keepends=True),
-                fromfile=f"{shown} (original)", tofile=f"{shown} (formatted)"))
-        if check:
-            print(f"would reformat {shown}")
-            status = max(status, 1)
-        elif not diff:
-            try:
-                _write_in_place(Path(name), formatted)
-            except OutputError as exc:
-                print(f"epuckc: error: {exc}", file=sys.stderr)
-                status = max(status, 2)
-    if report.diagnostics:
-        sys.stderr.write(render_report(report, "human", colour=colour))
-    return status
-
-
-def _write_in_place(path: Path, text: str):
-    """Replace the file with `text` by output.py's rules: atomically,
-    through a symbolic link to its target, keeping its permissions. The
-    source's BOM is not kept."""
-    from ..base.output import write_file
-    write_file(path, text)

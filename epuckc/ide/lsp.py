@@ -2,7 +2,7 @@
 
 Built on pygls and lsprotocol, which only this module imports (the other
 commands never load them). The server keeps each open document's text
-itself, analyses it with epuckc.incremental (the same front end as
+itself, analyses it with epuckc.ide.incremental (the same front end as
 `epuckc check`, reusing what an edit did not change) and answers from
 epuckc.ide. Every handler is guarded: a failure inside epuckc is logged to
 the client and answered with an error response (requests) or ignored
@@ -34,8 +34,11 @@ from pygls.lsp.server import LanguageServer
 from pygls.protocol import LanguageServerProtocol, lsp_method
 
 from .. import __version__
+from ..syntax import ast
 
-from . import features as ide
+from . import navigate
+from .completion import completions
+from .hover import hover as hover_at
 from ..diagnostics.codes import explanation_path
 from ..diagnostics import ERROR
 from .incremental import Analysis, Analyzer
@@ -395,7 +398,7 @@ def create_server() -> EpuckServer:
     def hover(ls: EpuckServer, params: lsp.HoverParams):
         doc = ls.doc(params.text_document.uri)
         analysis = doc.analyse()
-        found = ide.hover(analysis, *ls.point(doc, analysis, params.position))
+        found = hover_at(analysis, *ls.point(doc, analysis, params.position))
         if found is None:
             return None
         markdown, span = found
@@ -412,7 +415,7 @@ def create_server() -> EpuckServer:
     def completion(ls: EpuckServer, params: lsp.CompletionParams):
         doc = ls.doc(params.text_document.uri)
         analysis = doc.analyse()
-        items = ide.completions(analysis, *ls.point(doc, analysis, params.position))
+        items = completions(analysis, *ls.point(doc, analysis, params.position))
         return lsp.CompletionList(is_incomplete=False, items=[
             lsp.CompletionItem(label=c.label, kind=kinds.get(c.kind), detail=c.detail or None,
                                insert_text=c.insert,
@@ -422,13 +425,13 @@ def create_server() -> EpuckServer:
     def definition(ls: EpuckServer, params: lsp.DefinitionParams):
         doc = ls.doc(params.text_document.uri)
         analysis = doc.analyse()
-        occ = ide.occurrence_at(analysis, *ls.point(doc, analysis, params.position))
-        target = ide.resolve(analysis, occ) if occ is not None else None
+        occ = navigate.occurrence_at(analysis, *ls.point(doc, analysis, params.position))
+        target = navigate.resolve(analysis, occ) if occ is not None else None
         if target is None or target.statement is None:
             return None
         here = lsp.Location(doc.uri, ls.range(doc, analysis, target.ident.span))
-        if isinstance(target.statement, ide.ast.ExternDef):
-            found = ide.extern_location(analysis, target.statement, doc.base_dir())
+        if isinstance(target.statement, ast.ExternDef):
+            found = navigate.extern_location(analysis, target.statement, doc.base_dir())
             if found is not None:
                 path, line, column, end = found
                 position = lsp.Position(line - 1, column - 1)
@@ -440,13 +443,13 @@ def create_server() -> EpuckServer:
     def references(ls: EpuckServer, params: lsp.ReferenceParams):
         doc = ls.doc(params.text_document.uri)
         analysis = doc.analyse()
-        occ = ide.occurrence_at(analysis, *ls.point(doc, analysis, params.position))
-        target = ide.resolve(analysis, occ) if occ is not None else None
+        occ = navigate.occurrence_at(analysis, *ls.point(doc, analysis, params.position))
+        target = navigate.resolve(analysis, occ) if occ is not None else None
         if target is None or target.statement is None:
             return []
         include = params.context.include_declaration if params.context else True
         return [lsp.Location(doc.uri, ls.range(doc, analysis, o.ident.span))
-                for o in ide.references(analysis, target, include)]
+                for o in navigate.references(analysis, target, include)]
 
     symbol_kinds = {"robot": lsp.SymbolKind.Object, "const": lsp.SymbolKind.Constant,
                     "action": lsp.SymbolKind.Function, "extern action": lsp.SymbolKind.Function,
@@ -458,7 +461,7 @@ def create_server() -> EpuckServer:
         doc = ls.doc(params.text_document.uri)
         analysis = doc.analyse()
         out = []
-        for s in ide.symbols(analysis):
+        for s in navigate.symbols(analysis):
             out.append(lsp.DocumentSymbol(
                 name=s.name, detail=s.detail or s.kind, kind=symbol_kinds[s.kind],
                 range=ls.range(doc, analysis, s.span),
@@ -469,10 +472,10 @@ def create_server() -> EpuckServer:
     def prepare_rename(ls: EpuckServer, params: lsp.PrepareRenameParams):
         doc = ls.doc(params.text_document.uri)
         analysis = doc.analyse()
-        occ = ide.occurrence_at(analysis, *ls.point(doc, analysis, params.position))
+        occ = navigate.occurrence_at(analysis, *ls.point(doc, analysis, params.position))
         try:
-            ide.renameable(analysis, occ)
-        except ide.RenameError as exc:
+            navigate.renameable(analysis, occ)
+        except navigate.RenameError as exc:
             raise _RequestFailed(message=str(exc)) from None
         return lsp.PrepareRenamePlaceholder(ls.range(doc, analysis, occ.ident.span),
                                             occ.ident.name)
@@ -481,11 +484,11 @@ def create_server() -> EpuckServer:
     def rename(ls: EpuckServer, params: lsp.RenameParams):
         doc = ls.doc(params.text_document.uri)
         analysis = doc.analyse()
-        occ = ide.occurrence_at(analysis, *ls.point(doc, analysis, params.position))
+        occ = navigate.occurrence_at(analysis, *ls.point(doc, analysis, params.position))
         try:
-            target = ide.renameable(analysis, occ)
-            edits = ide.rename_edits(analysis, target, params.new_name)
-        except ide.RenameError as exc:
+            target = navigate.renameable(analysis, occ)
+            edits = navigate.rename_edits(analysis, target, params.new_name)
+        except navigate.RenameError as exc:
             raise _RequestFailed(message=str(exc)) from None
         return lsp.WorkspaceEdit(changes={doc.uri: [
             lsp.TextEdit(ls.range(doc, analysis, span), text) for span, text in edits]})

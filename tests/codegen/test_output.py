@@ -265,7 +265,7 @@ def test_trace_dash_writes_json_lines_to_standard_output(prog, tmp_path):
 
 
 def test_fmt_on_a_full_disk_names_the_file_and_keeps_it(tmp_path, monkeypatch, capsys):
-    from epuckc.ide import fmt
+    from epuckc.cli import fmt
     path = tmp_path / "messy.epk"
     path.write_text("on immediate do   stop_motor\n")
 

@@ -207,12 +207,12 @@ def test_no_colour_on_a_pipe(work):
 
 
 def test_no_colour_with_no_color_even_on_a_terminal(work, monkeypatch, capsys):
-    from epuckc import cli
+    from epuckc.cli import commands
     monkeypatch.setattr(sys.stderr, "isatty", lambda: True, raising=False)
     monkeypatch.setenv("NO_COLOR", "1")
-    assert not cli._colour_wanted(sys.stderr)
+    assert not commands._colour_wanted(sys.stderr)
     monkeypatch.delenv("NO_COLOR")
-    assert cli._colour_wanted(sys.stderr)
+    assert commands._colour_wanted(sys.stderr)
 
 
 # ---- explain ----------------------------------------------------------------------

@@ -9,7 +9,7 @@ import pytest
 
 from epuckc.diagnostics import Report
 from epuckc.check.frontend import check_file
-from epuckc.ide.incremental import line_starts
+from epuckc.ide.statements import line_starts
 
 CASES = Path(__file__).resolve().parent / "cases"
 

@@ -11,7 +11,8 @@ from hypothesis import strategies as st
 
 from epuckc.diagnostics import Collector, Report
 from epuckc.check.frontend import check_file
-from epuckc.ide.incremental import VLINE, Analyzer, line_starts, split_statements
+from epuckc.ide.incremental import Analyzer
+from epuckc.ide.statements import VLINE, line_starts, split_statements
 from epuckc.syntax.lexer import MAX_LEXICAL_ERRORS, iter_statements, iter_tokens
 from epuckc.base.source import SourceFile
 
@@ -71,7 +72,7 @@ def test_edit_after_edit_equals_a_full_check():
 @settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(st.lists(st.sampled_from(FRAGMENTS), max_size=40), st.integers(0, 100))
 def test_splitting_resumed_at_a_statement_start_cuts_as_the_whole_file(pieces, which):
-    from epuckc.ide.incremental import _boundaries
+    from epuckc.ide.statements import _boundaries
     text = "".join(pieces)
     source = SourceFile("x", text)
     bad = Collector(source)

@@ -12,7 +12,7 @@ from .conftest import REPO
 def test_importing_the_cli_does_not_import_pygls():
     code = ("import sys, epuckc.cli, epuckc.check.frontend, epuckc.cli.driver; "
             "print(sorted(m for m in sys.modules if m.split('.')[0] in "
-            "('pygls', 'lsprotocol', 'cattrs') or m in ('epuckc.ide.lsp', 'epuckc.ide.features')))")
+            "('pygls', 'lsprotocol', 'cattrs') or m in ('epuckc.ide.lsp', 'epuckc.ide.hover', 'epuckc.ide.completion', 'epuckc.ide.navigate')))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          env={"PYTHONPATH": str(REPO), "PATH": "/usr/bin:/bin"}, check=True)
     assert out.stdout.strip() == "[]"

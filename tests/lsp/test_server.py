@@ -38,7 +38,7 @@ def _epuckc_position(text: str, p: lsp.Position) -> tuple:
     count characters."""
     import bisect
     import re
-    from epuckc.ide.incremental import line_starts
+    from epuckc.ide.statements import line_starts
     starts = [0] + [m.end() for m in re.finditer(r"\r\n|\r|\n", text)]
     offset = starts[p.line]
     units = 0
@@ -74,7 +74,7 @@ def from_check(items, text: str = None) -> list:
     if text is not None:
         # LSP has no position between the \r and the \n of a line end: such
         # a position can only be sent as the one before the \r
-        from epuckc.ide.incremental import line_starts
+        from epuckc.ide.statements import line_starts
         starts = line_starts(text)
         for d in items:
             for line, column in (("line", "column"), ("end_line", "end_column")):

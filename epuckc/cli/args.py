@@ -1,0 +1,196 @@
+"""The command line's arguments: one argparse parser per command, built only
+for the command that runs, and the checks of numbers and durations given
+on it."""
+from __future__ import annotations
+
+import argparse
+
+from .. import __version__
+from .commands import cmd_build, cmd_check, cmd_compile, cmd_explain, cmd_fmt, cmd_lsp, cmd_run
+
+
+def _add_check_options(p: argparse.ArgumentParser):
+    p.add_argument("--format", choices=("human", "gcc", "short", "json", "sarif"),
+                   default="human",
+                   help="how diagnostics are printed (default: human); json and sarif (SARIF "
+                        "2.1.0, for code scanning in CI) go to standard output")
+    p.add_argument("--werror", action="store_true", help="treat warnings as errors")
+    _add_capacity_options(p)
+
+
+def _add_capacity_options(p: argparse.ArgumentParser):
+    p.add_argument("--max-actions", type=_capacity, metavar="N",
+                   help="capacity of the runtime's array for register_action calls from C, 1.."
+                        f"{MAX_CAPACITY} (a rule file's own rules are tables and need none)")
+    p.add_argument("--max-events", type=_capacity, metavar="N",
+                   help="capacity of the runtime's array for register_event calls from C, 1.."
+                        f"{MAX_CAPACITY} (a rule file's own rules are tables and need none)")
+
+
+# Bounds of the numbers given on the command line: the runtime's ids are
+# 16-bit ints on the robot, and the harness counts at most MAX_TIME_LIMIT_MS
+# of virtual time (MAX_SCENARIO_MS in runtime_c/host/platform_host.c).
+MAX_CAPACITY = 32767
+
+
+MAX_TIME_LIMIT_MS = 1_000_000_000
+
+
+def _capacity(value: str) -> int:
+    text = value.strip()
+    if not (text.isascii() and text.isdigit()):
+        raise argparse.ArgumentTypeError(f"{value!r} is not a whole number")
+    if len(text) > 6 or not 1 <= int(text) <= MAX_CAPACITY:
+        raise argparse.ArgumentTypeError(
+            f"{_clip(value)} is out of range: give 1 to {MAX_CAPACITY} (the robot's ids are 16-bit ints)")
+    return int(text)
+
+
+def _clip(value: str, limit: int = 24) -> str:
+    return value if len(value) <= limit else value[:limit] + "..."
+
+
+_UNIT_MS = {"ms": 1, "s": 1000, "min": 60000}
+
+
+def _duration_ms(value: str) -> int:
+    """`60s`, `1500ms`, `2min`, `0.5s`. A unit is required: a bare `5` is
+    5 ms in the language, but on the command line it was almost always
+    meant as seconds, so it is refused rather than guessed."""
+    import re
+    from decimal import Decimal
+    m = re.fullmatch(r"\s*([0-9]+(?:\.[0-9]+)?)\s*(ms|s|min)?\s*", value)
+    if not m:
+        raise argparse.ArgumentTypeError(f"{_clip(value)!r} is not a duration such as 60s or 500ms")
+    if m.group(2) is None:
+        raise argparse.ArgumentTypeError(
+            f"{_clip(value)} needs a unit: write {_clip(m.group(1))}s for seconds or "
+            f"{_clip(m.group(1))}ms for milliseconds")
+    if len(m.group(1)) > 40:
+        ms = Decimal(MAX_TIME_LIMIT_MS + 1)
+    else:
+        ms = Decimal(m.group(1)) * _UNIT_MS[m.group(2)]
+    if ms < 1:
+        raise argparse.ArgumentTypeError("the time limit must be at least 1 ms")
+    if ms > MAX_TIME_LIMIT_MS:
+        raise argparse.ArgumentTypeError(
+            f"{_clip(value)} is too long: the harness runs at most {MAX_TIME_LIMIT_MS // 1000} s "
+            "of virtual time")
+    if ms != ms.to_integral_value():
+        raise argparse.ArgumentTypeError(f"{_clip(value)} is not a whole number of milliseconds")
+    return int(ms)
+
+
+def _add_program_options(p: argparse.ArgumentParser):
+    p.add_argument("file", metavar="FILE", help="a rule file (.epk) or a C program using the runtime")
+    _add_capacity_options(p)
+    p.add_argument("--werror", action="store_true", help="treat warnings as errors")
+
+
+def build_parser(only: str | None = None) -> argparse.ArgumentParser:
+    """The command line's parser; with `only`, the parser of that one
+    command's arguments and no other command (building every command's
+    arguments took ~5 ms of each `check`)."""
+    parser = argparse.ArgumentParser(
+        prog="epuckc",
+        description="Compile e-puck rule files (.epk) to C for the paper's event-driven runtime.")
+    parser.add_argument("--version", action="version", version=f"epuckc {__version__}")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND")
+    for name, add in _COMMANDS.items():
+        if only is None or name == only:
+            add(sub)
+    return parser
+
+
+def _check_parser(sub):
+    p = sub.add_parser("check", help="check rule files and report every problem",
+                       description="Check rule files. Exit status: 0 no errors, 1 errors "
+                                   "(or warnings with --werror), 2 usage or I/O error.")
+    p.add_argument("files", nargs="+", metavar="FILE")
+    _add_check_options(p)
+    p.set_defaults(run=cmd_check)
+
+
+def _explain_parser(sub):
+    p = sub.add_parser("explain", help="explain a diagnostic code such as E012",
+                       description="Print the long explanation of a diagnostic code.")
+    p.add_argument("code", metavar="CODE")
+    p.set_defaults(run=cmd_explain)
+
+
+def _fmt_parser(sub):
+    p = sub.add_parser("fmt", help="lay rule files out in the one canonical layout",
+                       description="Rewrite rule files (or the .epk files under a folder) "
+                                   "in place, in the canonical layout (docs/formatting.md); "
+                                   "`-` reads standard input and writes standard output. "
+                                   "Exit status: 0 done, 1 syntax errors (nothing is written) "
+                                   "or, with --check, files that would change, 2 I/O error.")
+    p.add_argument("files", nargs="+", metavar="FILE")
+    p.add_argument("--check", action="store_true",
+                   help="write nothing; name the files that would change and exit 1 if any")
+    p.add_argument("--diff", action="store_true",
+                   help="write nothing; print a unified diff of the changes")
+    p.set_defaults(run=cmd_fmt)
+
+
+def _lsp_parser(sub):
+    p = sub.add_parser("lsp", help="run the language server on standard input/output",
+                       description="The language server for editors (LSP over stdio): "
+                                   "diagnostics as you type, hover, completion, go to "
+                                   "definition, references, outline, rename, quick fixes, "
+                                   "formatting. See docs/language-server.md and "
+                                   "editors/README.md.")
+    p.set_defaults(run=cmd_lsp)
+
+
+def _compile_parser(sub):
+    p = sub.add_parser("compile", help="compile a rule file to C",
+                       description="Compile a rule file to one C file for the runtime. Nothing is "
+                                   "written when the file has errors.")
+    _add_program_options(p)
+    p.add_argument("-o", "--output", metavar="OUT.c",
+                   help="the C file (default: FILE with .c); `-` is standard output")
+    p.add_argument("--target", choices=("host", "dspic"), default="host",
+                   help="the C is the same for both targets; accepted for symmetry with build")
+    p.set_defaults(run=cmd_compile)
+
+
+def _build_parser(sub):
+    p = sub.add_parser("build", help="build for the host harness or the e-puck",
+                       description="host: the harness executable, built with the system C compiler "
+                                   "(CC honoured). dspic: a project directory with a Makefile for "
+                                   "Microchip XC16, built when xc16-gcc is found (PATH or XC16_DIR); "
+                                   "exit status 3 when it is not.")
+    _add_program_options(p)
+    p.add_argument("--target", choices=("host", "dspic"), default="host")
+    p.add_argument("-o", "--output", metavar="DIR",
+                   help="output directory (default: build/NAME-TARGET)")
+    p.set_defaults(run=cmd_build)
+
+
+def _run_parser(sub):
+    p = sub.add_parser("run", help="build for the host and run on the simulated e-puck",
+                       description="Build for the host harness (cached) and run, printing the trace. "
+                                   "Exit status: 0 when the program reached exit_main, 3 on a "
+                                   "time-out, 1 when it does not build.")
+    _add_program_options(p)
+    p.add_argument("--scenario", metavar="FILE.scn", help="proximity readings over time")
+    p.add_argument("--time-limit", type=_duration_ms, default=60000, metavar="DURATION",
+                   help="virtual time limit with its unit, e.g. 60s, 500ms or 2min (default 60s)")
+    p.add_argument("--trace", metavar="OUT.jsonl",
+                   help="also write the trace as JSON lines; `-`: to standard output, "
+                        "instead of the readable trace")
+    from . import world as world_cli
+    world_cli.add_run_options(p, _duration_ms)
+    p.set_defaults(run=cmd_run)
+
+
+def _plot_parser(sub):
+    from . import world as world_cli
+    world_cli.add_plot_parser(sub, world_cli.cmd_plot)
+
+
+# The commands in the order `epuckc --help` lists them.
+_COMMANDS = {"check": _check_parser, "explain": _explain_parser, "fmt": _fmt_parser,
+             "lsp": _lsp_parser, "compile": _compile_parser, "build": _build_parser,
+             "run": _run_parser, "plot": _plot_parser}

@@ -1,0 +1,324 @@
+"""The commands: check, explain, fmt, lsp, compile, build and run, each a
+function of its parsed arguments returning the exit status. Every command
+imports the stages it uses when it runs: `epuckc run` of a file built
+before needs none of them (build/runcache.py), and every command starts
+faster."""
+from __future__ import annotations
+
+
+import gc
+import os
+import sys
+from pathlib import Path
+
+
+EXIT_OK, EXIT_ERRORS, EXIT_USAGE, EXIT_INTERNAL = 0, 1, 2, 4   # 3: build.EXIT_NO_TOOLCHAIN
+
+
+def _colour_wanted(stream) -> bool:
+    return stream.isatty() and not os.environ.get("NO_COLOR")
+
+
+def display_name(name: str) -> str:
+    """A file name as typed, printable: bytes that are not UTF-8 (a name
+    from another system) become U+FFFD instead of breaking the output."""
+    return name.encode("utf-8", "surrogateescape").decode("utf-8", "replace")
+
+
+def c_file_diagnostic(shown: str) -> Diagnostic:
+    from ..diagnostics import ERROR, Diagnostic
+    from ..base.source import Span
+    return Diagnostic(
+        "E006", ERROR, "this is a C file, not a rule file", shown, Span(1, 1, 1, 1),
+        help=f"`epuckc build {shown}` and `epuckc run {shown}` take a C program that uses the "
+             "runtime as it is; `epuckc check` reads rule files (.epk)")
+
+
+def _print_report(report: Report, fmt: str):
+    from ..diagnostics.render import render_report
+    text = render_report(report, fmt, colour=_colour_wanted(sys.stderr) and fmt == "human")
+    _show_report_text(text, fmt)
+
+
+def _show_report_text(text: str, fmt: str):
+    if fmt in ("json", "sarif"):
+        sys.stdout.write(text)
+    elif text:
+        sys.stderr.write(text)
+
+
+def _failed(report: Report, werror: bool) -> bool:
+    return report.error_count > 0 or (werror and report.warning_count > 0)
+
+
+def cmd_check(args) -> int:
+    """Every file is checked; one that cannot be read is reported as a
+    diagnostic (E005, in every format) and the others are still checked."""
+    from ..diagnostics import Report
+    from ..check.frontend import InputError, check_file
+    report = Report()
+    unreadable = False
+    for name in args.files:
+        shown = display_name(name)
+        if Path(name).suffix in (".c", ".h"):
+            report.diagnostics.append(c_file_diagnostic(shown))
+            continue
+        try:
+            check_file(Path(name), report, shown_name=shown)
+        except InputError as exc:
+            unreadable = True
+            report.diagnostics.append(exc.diagnostic(shown))
+    _print_report(report, args.format)
+    if unreadable:
+        return EXIT_USAGE
+    return EXIT_ERRORS if _failed(report, args.werror) else EXIT_OK
+
+
+def cmd_explain(args) -> int:
+    from ..diagnostics.codes import CODES, explanation, normalise
+    code = normalise(args.code)
+    text = explanation(code)
+    if text is None:
+        known = ", ".join(sorted(CODES))
+        print(f"epuckc: error: no diagnostic has the code {args.code!r}; the codes are {known}",
+              file=sys.stderr)
+        return EXIT_USAGE
+    sys.stdout.write(text if text.endswith("\n") else text + "\n")
+    return EXIT_OK
+
+
+def cmd_fmt(args) -> int:
+    from .fmt import run
+    return run(args.files, check=args.check, diff=args.diff,
+               colour=_colour_wanted(sys.stderr))
+
+
+def cmd_lsp(args) -> int:
+    # pygls and lsprotocol are imported here only: the other commands never load them.
+    gc.enable()     # a long-running server: see main()
+    try:
+        from ..ide.lsp import main as serve
+    except ImportError as exc:
+        _error(f"`epuckc lsp` needs pygls 2 and lsprotocol ({exc}); "
+               "install them with: pip install 'pygls>=2' lsprotocol")
+        return EXIT_USAGE
+    return serve()
+
+
+def _error(message: str):
+    print(f"epuckc: error: {message}", file=sys.stderr)
+
+
+def _load(args, report=None):
+    """The C program for FILE (a rule file, compiled, or hand-written C), or
+    an exit status after printing why there is none."""
+    from ..diagnostics import Report
+    from .driver import load_program
+    from ..check.frontend import InputError
+    report = Report() if report is None else report
+    try:
+        program = load_program(Path(args.file), report, args.max_actions, args.max_events,
+                               shown_name=display_name(args.file))
+    except InputError as exc:
+        _error(str(exc))
+        return None, EXIT_USAGE
+    _print_report(report, "human")
+    if program is None or _failed(report, getattr(args, "werror", False)):
+        return None, EXIT_ERRORS
+    return program, EXIT_OK
+
+
+def cmd_compile(args) -> int:
+    from ..build.common import BuildError
+    from .driver import write_compiled
+    from ..base.output import OutputError
+    if Path(args.file).suffix == ".c":
+        _error(f"{display_name(args.file)} is already C; `epuckc build` and `epuckc run` "
+               "take it as it is")
+        return EXIT_USAGE
+    program, status = _load(args)
+    if program is None:
+        return status
+    out = args.output if args.output else Path(args.file).with_suffix(".c")
+    try:
+        write_compiled(program, out)
+    except BuildError as exc:
+        _error(str(exc))
+        return exc.status
+    except OutputError as exc:
+        _error(str(exc))
+        return EXIT_USAGE
+    return EXIT_OK
+
+
+def cmd_build(args) -> int:
+    from ..base.output import is_stdout
+    if args.output is not None and is_stdout(args.output):
+        _error("`build -o -`: build writes a folder (the executable and its C, or the dspic "
+               "project); `-o -` is for `epuckc compile`")
+        return EXIT_USAGE
+    if args.target == "host":
+        _start_runtime_early(Path(args.file), None, args)
+    try:
+        return _load_and_build(args)
+    finally:
+        _stop_runtime_started()
+
+
+def _load_and_build(args) -> int:
+    from ..build.common import BuildError
+    from .driver import build
+    from ..base.output import OutputError, describe_os_error
+    program, status = _load(args)
+    if program is None:
+        return status
+    try:
+        message = build(program, args.target, Path(args.output) if args.output else None)
+    except BuildError as exc:
+        _error(str(exc))
+        return exc.status
+    except OutputError as exc:
+        _error(str(exc))
+        return EXIT_USAGE
+    except OSError as exc:
+        _error(describe_os_error(exc, exc.filename, "use"))
+        return EXIT_USAGE
+    print(message)
+    return EXIT_OK
+
+
+def cmd_run(args) -> int:
+    from . import world as world_cli
+    wants_world = world_cli.wants_extension(args)
+    # A rule file built before goes straight to its executable (runcache.py).
+    path, key, data = Path(args.file), None, None
+    if path.suffix != ".c" and not wants_world:
+        from ..build import runcache
+        try:
+            data = path.read_bytes()
+        except OSError:
+            data = None         # the normal path says why
+        if data is not None:
+            key = runcache.input_key(path, data, args.file, args.max_actions, args.max_events)
+            entry = runcache.lookup(key) if key is not None else None
+            if entry is not None:
+                _show_report_text(entry.shown_colour if _colour_wanted(sys.stderr)
+                                  else entry.shown, "human")
+                if args.werror and entry.warnings:
+                    return EXIT_ERRORS
+                problem = args.scenario and _scenario_problem(args.scenario)
+                if problem:
+                    _error(problem)
+                    return EXIT_USAGE
+                from ..sim.harness import run_executable
+                try:
+                    return run_executable(Path(entry.exe), scenario=args.scenario,
+                                          time_limit_ms=args.time_limit, trace=args.trace)
+                except OSError:
+                    pass        # gone since: build it again below
+    if not wants_world:
+        _start_runtime_early(path, data, args)
+    try:
+        return _load_and_run(args, path, key, data, wants_world)
+    finally:
+        _stop_runtime_started()
+
+
+def _start_runtime_early(path: Path, data, args) -> None:
+    """The host runtime compiles on the other processors while the front
+    end works, when its flags can be told now: for hand-written C, and for
+    a rule file without `extern` (no user C can change the capacities)."""
+    if path.suffix != ".c":
+        try:
+            data = path.read_bytes() if data is None else data
+        except OSError:
+            return              # the front end says why
+        if b"extern" in data:
+            return
+    from ..build.host import start_host_runtime
+    start_host_runtime(path.suffix != ".c", args.max_actions, args.max_events)
+
+
+def _stop_runtime_started() -> None:
+    """What no build took (an error in the file, a build found in the cache)."""
+    from ..build.host import stop_started_runtime
+    stop_started_runtime()
+
+
+def _load_and_run(args, path: Path, key, data, wants_world: bool) -> int:
+    from ..build import runcache
+    from . import world as world_cli
+    from ..build.common import BuildError
+    from ..diagnostics import Report
+    from ..diagnostics.render import render_report
+    from .driver import run_host
+    report = Report()
+    program, status = _load(args, report)
+    if program is None:
+        return status
+    if args.scenario:
+        problem = _scenario_problem(args.scenario)
+        if problem:
+            _error(problem)
+            return EXIT_USAGE
+    if wants_world:
+        return world_cli.run(args, program, _robot_program_loader(args), run_host)
+
+    def remember(exe):
+        if key is None:
+            return
+        try:
+            unchanged = path.read_bytes() == data
+        except OSError:
+            unchanged = False
+        if unchanged:
+            from ..build.common import user_headers
+            runcache.record(key, exe, program.user_files
+                            + [header for _, header, _ in user_headers(program)],
+                            render_report(report, "human"),
+                            render_report(report, "human", colour=True), report.warning_count)
+    try:
+        return run_host(program, scenario=args.scenario, time_limit_ms=args.time_limit,
+                        trace=args.trace, on_built=remember)
+    except BuildError as exc:
+        _error(str(exc))
+        return exc.status
+    except OSError as exc:
+        _error(f"{exc.strerror or exc}: {exc.filename or ''}".rstrip(": "))
+        return EXIT_USAGE
+
+
+def _robot_program_loader(args):
+    """For a world's robots with their own `program`: load it as FILE is."""
+    def load(path: Path):
+        from ..build.common import BuildError
+        from ..diagnostics import Report
+        from .driver import load_program
+        from ..check.frontend import InputError
+        report = Report()
+        try:
+            program = load_program(path, report, args.max_actions, args.max_events)
+        except InputError as exc:
+            raise BuildError(str(exc), status=EXIT_USAGE) from None
+        _print_report(report, "human")
+        if program is None or _failed(report, getattr(args, "werror", False)):
+            raise BuildError(f"{path} has errors (above); the world was not run", status=EXIT_ERRORS)
+        return program
+    return load
+
+
+def _scenario_problem(name: str):
+    """Why `--scenario NAME` cannot be read, or None."""
+    shown = display_name(name)
+    path = Path(name)
+    try:
+        if path.is_dir():
+            return (f"--scenario {shown} is a directory; give a scenario file (.scn) "
+                    "such as examples/obstacle.scn")
+        if not path.exists():
+            return f"--scenario {shown}: the file does not exist"
+        with open(path, "rb"):
+            pass
+    except OSError as exc:
+        return f"--scenario {shown}: {exc.strerror or exc}"
+    return None

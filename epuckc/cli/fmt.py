@@ -1,0 +1,97 @@
+"""`epuckc fmt [--check] [--diff] FILE|DIR|-`: format files in place, or
+standard input to standard output; the layout itself is ide/fmt.py."""
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+from ..base.source import SourceFile
+from ..diagnostics import Collector
+from ..ide.fmt import FormatError, format_text
+
+
+def _targets(names: list) -> list:
+    """The files to format: each name, or the .epk files under a folder."""
+    out = []
+    for name in names:
+        path = Path(name)
+        if name != "-" and path.is_dir():
+            out.extend(str(p) for p in sorted(path.rglob("*.epk")) if p.is_file())
+        else:
+            out.append(name)
+    return out
+
+
+def _read(name: str) -> tuple:
+    """(text, E004 diagnostic or None) of a file or of standard input."""
+    if name == "-":
+        source, problem = SourceFile.from_bytes(sys.stdin.buffer.read(), "<stdin>")
+    else:
+        source, problem = SourceFile.from_path(Path(name), name)
+    if problem is None:
+        return source, None
+    offset, message = problem
+    diags = Collector(source)
+    diags.error("E004", source.span(offset, offset), message,
+                help="save the file as UTF-8 text; rule files are plain text (.epk)")
+    return source, diags.items
+
+
+def run(names: list, check: bool = False, diff: bool = False, colour: bool = False) -> int:
+    """`epuckc fmt`: 0 when done (or, with --check, nothing would change),
+    1 when a file has syntax errors or would change, 2 when one cannot be
+    read or written."""
+    import difflib
+
+    from ..base.output import OutputError
+    from ..diagnostics import Report
+    from ..diagnostics.render import render_report
+    status = 0
+    report = Report()
+    for name in _targets(names):
+        shown = "<stdin>" if name == "-" else name
+        try:
+            source, problem = _read(name)
+        except OSError as exc:
+            print(f"epuckc: error: cannot read {name}: {exc.strerror or exc}", file=sys.stderr)
+            status = max(status, 2)
+            continue
+        try:
+            if problem:
+                raise FormatError(problem)
+            formatted = format_text(source.text, shown)
+        except FormatError as exc:
+            report.sources[shown] = source
+            report.extend(exc.diagnostics)
+            status = max(status, 1)
+            continue
+        original = source.text
+        if name == "-" and not check and not diff:
+            sys.stdout.write(formatted)
+            continue
+        if formatted == original:
+            continue
+        if diff:
+            sys.stdout.writelines(difflib.unified_diff(
+                original.splitlines(keepends=True), formatted.splitlines(keepends=True),
+                fromfile=f"{shown} (original)", tofile=f"{shown} (formatted)"))
+        if check:
+            print(f"would reformat {shown}")
+            status = max(status, 1)
+        elif not diff:
+            try:
+                _write_in_place(Path(name), formatted)
+            except OutputError as exc:
+                print(f"epuckc: error: {exc}", file=sys.stderr)
+                status = max(status, 2)
+    if report.diagnostics:
+        sys.stderr.write(render_report(report, "human", colour=colour))
+    return status
+
+
+def _write_in_place(path: Path, text: str):
+    """Replace the file with `text` by output.py's rules: atomically,
+    through a symbolic link to its target, keeping its permissions. The
+    source's BOM is not kept."""
+    from ..base.output import write_file
+    write_file(path, text)

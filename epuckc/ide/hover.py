@@ -1,0 +1,195 @@
+"""Hover: what a name, an argument or a unit means, from the standard table
+and the program's own definitions, as markdown."""
+from __future__ import annotations
+
+from typing import Iterator, Optional
+
+from ..check.messages import _shown
+from ..diagnostics import Collector
+from ..stdlib.table import (ACTION_ALIASES, CHOICE, EVENT_ALIASES, SENSOR_CONDITION_DOC,
+                            STANDARD_ACTIONS, STANDARD_EVENTS, Param)
+from ..stdlib.units import (ANGLE, ARTICLE, DISTANCE, DURATION, INT, KIND_UNITS, NATURAL_UNIT,
+                            SPEED, UNITS)
+from ..syntax import ast
+from .incremental import Analysis
+from .navigate import ACTION, _inside, _text_of, occurrences, resolve, statement_at
+
+
+def _units_of(kind: str) -> str:
+    if kind == INT:
+        return "a plain number"
+    return f"{', '.join(KIND_UNITS[kind])}; a bare number is {NATURAL_UNIT[kind]}"
+
+
+def _param_line(p) -> str:
+    if getattr(p, "choices", None) is not None:
+        text = f"- `{p.name}`: {p.choices.what}, one of {p.choices.describe()}"
+        return text + (f", {p.doc}" if p.doc else "")
+    text = f"- `{p.name}`: {p.kind} ({_units_of(p.kind)})"
+    if getattr(p, "doc", ""):
+        text += f", {p.doc}"
+    if getattr(p, "range", ""):
+        text += f"; range {p.range}"
+    return text
+
+
+def _spec_markdown(spec, what: str) -> str:
+    out = [f"```epuck\n{spec.signature}\n```", f"Standard {what}: {spec.doc}."]
+    if spec.params is None:
+        out.append(f"Conditions: {getattr(spec, 'conditions_doc', '') or SENSOR_CONDITION_DOC}.")
+    elif spec.params:
+        out.append("\n".join(_param_line(p) for p in spec.params))
+    return "\n\n".join(out)
+
+
+def _statement_text(analysis: Analysis, statement) -> str:
+    return _text_of(analysis, statement.span)
+
+
+def _line_of(analysis: Analysis, statement) -> int:
+    return analysis.real(statement.span).line
+
+
+def _call_params(analysis: Analysis, occ_statement, call) -> Optional[tuple]:
+    """The parameters of the action or event that `call` names."""
+    name = call.name.name
+    if isinstance(occ_statement, ast.Rule) and call is occ_statement.event:
+        spec = STANDARD_EVENTS.get(EVENT_ALIASES.get(name, name))
+        if spec is not None:
+            return spec.params
+        info = analysis.checker.externs.get(name)
+        return info.params if info is not None and info.kind == "event" else None
+    spec = STANDARD_ACTIONS.get(ACTION_ALIASES.get(name, name))
+    if spec is not None:
+        return spec.params
+    info = analysis.checker.externs.get(name)
+    return info.params if info is not None and info.kind == "action" else None
+
+
+def _calls(statement) -> Iterator:
+    if isinstance(statement, ast.Rule):
+        yield statement.event
+    body = getattr(statement, "body", None)
+    if isinstance(body, ast.ActionBody):
+        for step in body.steps:
+            for call in step.calls:
+                if isinstance(call, ast.Call):
+                    yield call
+
+
+def bind(params, args) -> dict:
+    """id(arg) -> the parameter it gives, as the checker binds them
+    (positional in order, then by name)."""
+    out, position = {}, 0
+    by_name = {p.name: p for p in params}
+    for arg in args or ():
+        if isinstance(arg, ast.NamedArg):
+            if arg.name.name in by_name:
+                out[id(arg)] = by_name[arg.name.name]
+        elif isinstance(arg, ast.PositionalArg):
+            if position < len(params):
+                out[id(arg)] = params[position]
+            position += 1
+    return out
+
+
+def on_robot(analysis: Analysis, value, param) -> Optional[str]:
+    """What a value becomes on the robot where `param` wants it, computed
+    by the checker's own conversion ("50 cm = 3,882 steps at this robot's
+    geometry"); None when the value is not valid there."""
+    if param.kind == CHOICE:
+        return None         # a name of the set: nothing to convert
+    checker = analysis.checker
+    saved, saved_used = checker.diags, set(checker.const_used)
+    checker.diags = Collector(checker.diags.source)
+    try:
+        q = checker._value(value, param.kind, param.name)
+        v = checker._to_runtime(q, param, value) if q is not None else None
+    finally:
+        checker.diags, checker.const_used = saved, saved_used
+    if v is None:
+        return None
+    shown = _shown(value)
+    geo = checker.geo
+    if param.kind == DISTANCE:
+        mm = q.mm(geo)
+        extra = f" ({mm:,.1f} mm)" if q.in_steps else ""
+        return f"{shown} = {v:,} steps{extra} at this robot's geometry"
+    if param.kind == SPEED:
+        return f"{shown} = {v:,} steps/s at this robot's geometry ({v * geo.step_mm:,.1f} mm/s)"
+    if param.kind == ANGLE:
+        return f"{shown} = {v:,} deg"
+    if param.kind == DURATION:
+        return f"{shown} = {v:,} ms"
+    return f"{shown} = {v:,}"
+
+
+def _const_markdown(analysis: Analysis, const: ast.ConstDef) -> str:
+    out = [f"```epuck\n{_statement_text(analysis, const)}\n```"]
+    value = const.value
+    if isinstance(value, ast.Number) and value.unit in UNITS:
+        kind = UNITS[value.unit][0]
+        becomes = on_robot(analysis, value, Param(const.name.name, kind))
+        if becomes:
+            out.append(f"{ARTICLE[kind].capitalize()}: {becomes}.")
+    elif isinstance(value, ast.Number):
+        out.append("A bare number: it takes the natural unit of where it is used "
+                   f"({', '.join(NATURAL_UNIT[k] for k in (DISTANCE, SPEED, ANGLE, DURATION))}).")
+    return "\n\n".join(out)
+
+
+def hover(analysis: Analysis, line: int, column: int) -> Optional[tuple]:
+    """(markdown, real span of what it is about), or None."""
+    s, vline, vcol = statement_at(analysis, line, column)
+    if s is None:
+        return None
+    # an argument: its parameter and what its value becomes on the robot
+    for call in _calls(s):
+        for arg in call.args or ():
+            if not _inside(arg.span, vline, vcol) or isinstance(arg, ast.ConditionArg):
+                continue
+            params = _call_params(analysis, s, call)
+            param = bind(params, call.args).get(id(arg)) if params else None
+            if param is None:
+                break
+            out = [_param_line(param).lstrip("- ")]
+            becomes = on_robot(analysis, arg.value, param)
+            if becomes:
+                out.append(becomes)
+            if isinstance(arg.value, ast.ConstRef):
+                const = analysis.checker.consts.get(arg.value.name.name)
+                if const is not None:
+                    out.append(f"```epuck\n{_statement_text(analysis, const)}\n```")
+            return "\n\n".join(out), analysis.real(arg.span)
+    occ = None
+    for o in occurrences(s):
+        if _inside(o.ident.span, vline, vcol):
+            occ = o
+            break
+    if occ is None:
+        return None
+    span = analysis.real(occ.ident.span)
+    if occ.namespace == "sensor":
+        return f"Proximity sensor. {SENSOR_CONDITION_DOC}.", span
+    target = resolve(analysis, occ)
+    if target is None:
+        return None
+    if target.standard is not None:
+        spec = (STANDARD_ACTIONS if target.namespace == ACTION else STANDARD_EVENTS)[target.standard]
+        return _spec_markdown(spec, target.namespace), span
+    d = target.statement
+    if isinstance(d, ast.ConstDef):
+        return _const_markdown(analysis, d), span
+    where = f"line {_line_of(analysis, d)}"
+    if isinstance(d, ast.Rule):
+        return f"```epuck\n{_statement_text(analysis, d)}\n```\n\nRule `{d.name.name}`, {where}.", span
+    if isinstance(d, ast.ActionDef):
+        return f"```epuck\n{_statement_text(analysis, d)}\n```\n\nNamed action, {where}.", span
+    if isinstance(d, ast.ModeDef):
+        initial = " (the initial mode)" if d.name.name == analysis.checker.initial_mode else ""
+        return f"```epuck\n{_statement_text(analysis, d)}\n```\n\nMode `{d.name.name}`{initial}, {where}.", span
+    if isinstance(d, ast.ExternDef):
+        params = "\n".join(_param_line(Param(p.name.name, p.type.name)) for p in d.params)
+        text = f"```epuck\n{_statement_text(analysis, d)}\n```\n\nExtern {d.kind} in C, {where}."
+        return text + ("\n\n" + params if params else ""), span
+    return None
