@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""A long campaign of the property of tests/codegen/test_property.py: random
+"""A long campaign of the property of tests/emit/test_property.py: random
 programs with hostile names; every one the checker accepts must compile with
 gcc and 16-bit avr-gcc under -std=c99 -Wall -Wextra -Werror -pedantic and run
 clean under ASan/UBSan on the host harness.
@@ -26,7 +26,7 @@ sys.path.insert(0, str(REPO))
 
 from hypothesis import HealthCheck, given, seed, settings  # noqa: E402
 
-from tests.codegen.hostile import Outcome, check_one, programs, runtime_objects  # noqa: E402
+from tests.support.hostile import Outcome, check_one, programs, runtime_objects  # noqa: E402
 
 
 def main() -> int:

@@ -4,8 +4,8 @@ Lark can avoid rebuilding its tables at each run: `Lark(..., cache=FILE)`
 and a module from its standalone generator (`python -m lark.tools.standalone`).
 
 All three parse the same statements (tokens from epuckc's lexer) into the
-same AST (tests/frontend/lark_reference.py turns Lark's tree into it with
-the parser's own callbacks; tests/frontend/test_lalr_vs_lark.py holds
+same AST (tests/support/lark_reference.py turns Lark's tree into it with
+the parser's own callbacks; tests/syntax/test_lalr_vs_lark.py holds
 them equal). Two figures each, medians of --runs:
 
   load    a fresh process: import the parser and get its tables ready
@@ -37,7 +37,7 @@ from check_bench import generate  # noqa: E402
 LOAD = {
     "epuckc driver": "from epuckc.syntax.parser import _tables; _tables()",
     "Lark, cache=FILE": ("import sys; sys.path.insert(0, {repo!r}); "
-                         "from tests.frontend.lark_reference import lark_parser; "
+                         "from tests.support.lark_reference import lark_parser; "
                          "lark_parser(cache={cache!r})"),
     "Lark standalone": ("import sys; sys.path.insert(0, {work!r}); import epuck_standalone; "
                         "epuck_standalone.Lark_StandAlone()"),
@@ -84,7 +84,7 @@ def main(argv=None) -> int:
     from epuckc.syntax.lexer import iter_statements, iter_tokens
     from epuckc.syntax.parser import _CALLBACKS, _tables
     from epuckc.base.source import SourceFile, Span
-    from tests.frontend.lark_reference import (TO_AST, lark_parser, lark_tokens,
+    from tests.support.lark_reference import (TO_AST, lark_parser, lark_tokens,
                                                standalone_parser, to_ast_transformer)
 
     sys.path.insert(0, str(work))

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Draws the pictures the README and docs show, from the examples, so that
-they stay true: tests/world/test_enki.py fails when a committed picture
+they stay true: tests/sim/test_enki.py fails when a committed picture
 differs from what this script draws today.
 
     python3 docs/make_pictures.py              # rewrites docs/images/

@@ -29,6 +29,12 @@ def pytest_addoption(parser):
                      help="rewrite golden files from the current output")
 
 
+@pytest.fixture(autouse=True)
+def _private_cache(tmp_path_factory, monkeypatch):
+    """Host builds go to a cache of this test session, not the user's."""
+    monkeypatch.setenv("EPUCKC_CACHE_DIR", str(tmp_path_factory.getbasetemp() / "epuckc-cache"))
+
+
 @pytest.fixture
 def update_goldens(request) -> bool:
     return bool(request.config.getoption("--update-goldens"))

@@ -11,7 +11,7 @@ allowed), equality by type and fields, a `Name(field=...)` repr, and with
 Records also answer to the `dataclasses` module (`dataclasses.replace`,
 `fields`, `asdict`, `is_dataclass`): their `__dataclass_fields__` is made
 the first time something asks for it, so only code that uses dataclasses
-imports it. `tests/frontend/test_records.py` keeps both behaviours, and
+imports it. `tests/syntax/test_records.py` keeps both behaviours, and
 `check` free of `dataclasses`.
 """
 from __future__ import annotations

@@ -30,7 +30,7 @@ class Values:
         general way (`_value`, then `_to_runtime` or the caller's own range
         check), which reports what is wrong; this is that way without the
         Quantity, with the same float operations, so both give the same
-        integer (tests/frontend/test_plain_numbers.py)."""
+        integer (tests/check/test_plain_numbers.py)."""
         negative = False
         if value.__class__ is ast.ConstRef:
             name = value.name.name

@@ -4,7 +4,7 @@
 alone: when it was not built (it is optional: `pip install` builds it when
 a C compiler is there), when the C source beside it changed after it was
 built (in a checkout), or when EPUCKC_PURE_PYTHON is set. Both ways give
-the same results; tests/frontend/test_front_accel.py compares them.
+the same results; tests/syntax/test_front_accel.py compares them.
 """
 from __future__ import annotations
 
@@ -26,7 +26,7 @@ def front():
 def stale(built: str) -> bool:
     """Whether the C source beside a built module (in a checkout, not in a
     wheel) was changed after the build: a stale build is not used, and
-    tests/frontend/test_front_accel.py says to rebuild it."""
+    tests/syntax/test_front_accel.py says to rebuild it."""
     try:
         return os.stat(os.path.join(os.path.dirname(built), "_front.c")).st_mtime > \
             os.stat(built).st_mtime

@@ -220,7 +220,7 @@ def tables_module(grammar: str, start: str) -> str:
     return (f'''"""The LALR tables of grammar/epuck.lark, as Lark computes them: made by
 `python3 -m epuckc.syntax.lalr`, not by hand (see lalr.load_tables), so that
 epuckc neither imports Lark nor builds them when it runs.
-tests/frontend/test_lalr_vs_lark.py checks they are the grammar's."""
+tests/syntax/test_lalr_vs_lark.py checks they are the grammar's."""
 FORMAT = {FORMAT}
 START_SYMBOL = {start!r}
 GRAMMAR = {grammar!r}

@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from tests.frontend.helpers import run_cli
+from tests.support.cli import run_cli
 
 REPO = Path(__file__).resolve().parents[2]
 README = (REPO / "editors" / "README.md").read_text(encoding="utf-8")

@@ -111,7 +111,7 @@ def _lone_cr(path: Path) -> bool:
 
 CORPUS = [p for p in sorted((REPO / "examples").glob("*.epk"))
           + sorted((REPO / "tests" / "golden").glob("*.epk"))
-          + sorted((REPO / "tests" / "frontend" / "cases").glob("*.epk"))
+          + sorted((REPO / "tests" / "check" / "cases").glob("*.epk"))
           if not _lone_cr(p) and _parses(p)]
 
 

@@ -17,7 +17,7 @@ from epuckc.base.source import SourceFile
 from epuckc.stdlib.table import ACTION_ALIASES, EVENT_ALIASES, STANDARD_ACTIONS, STANDARD_EVENTS
 from epuckc.stdlib.units import UNITS
 from tests.conftest import require_tool
-from tests.frontend.helpers import run_cli
+from tests.support.cli import run_cli
 
 from .test_textmate import CORPUS, _parses, _units
 

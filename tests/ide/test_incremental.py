@@ -1,0 +1,158 @@
+"""The language server's incremental checking (epuckc/ide/incremental.py) must
+report exactly what `epuckc check` reports, edit after edit, and splitting
+resumed at a statement start must cut as the whole file's split does."""
+from __future__ import annotations
+
+import random
+from pathlib import Path
+
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from epuckc.diagnostics import Collector, Report
+from epuckc.check.frontend import check_file
+from epuckc.ide.incremental import Analyzer
+from epuckc.ide.statements import VLINE, line_starts, split_statements
+from epuckc.syntax.lexer import MAX_LEXICAL_ERRORS, iter_statements, iter_tokens
+from epuckc.base.source import SourceFile
+
+REPO = Path(__file__).resolve().parents[2]
+PROGRAMS = [p.read_text(encoding="utf-8") for p in sorted((REPO / "examples").glob("*.epk"))] + [
+    p.read_text(encoding="utf-8", errors="replace")
+    for p in sorted((REPO / "tests" / "check" / "cases").glob("*.epk"))]
+
+# pieces that make statements start, merge, break and come back
+FRAGMENTS = ["on ", "rule r", "rule r: ", ": ", "do ", "then ", ", ", "(", ")", "cancel r",
+             "start_straight(300, 2 m)", "stop_motor", "const K = 5 cm\n", "action a = ",
+             "timer(2 s)", "sensor(", "ir0 > 300", "\n", "\r\n", "\r", "#", " # é on\n",
+             '"x.c"', "extern action e() from ", "extern ", "action", "é", "@", "5on", "online",
+             "robot { axle: 53 mm }", "=", "-", "1.5", "steps/s", "repeat ", "K", "a", "\t", '"',
+             "\\", "x", "99999 m", "event_timer(time: 1 s)", "start_sensor", "set_timer"]
+
+
+def full_check(text: str) -> list:
+    report = Report()
+    check_file(Path("/nonexistent/prog.epk"), report, shown_name="prog.epk", text=text)
+    return report.sorted()
+
+
+def lexer_starts(text: str) -> list:
+    """Offsets (in `text`, as an editor has it) of the lexer's statements."""
+    source = SourceFile("x", text)
+    starts = line_starts(text)
+    return [starts[chunk[0].line - 1] + chunk[0].column - 1
+            for chunk in iter_statements(iter_tokens(source, Collector(source)))]
+
+
+def splitter_starts(text: str) -> list:
+    starts, _ = split_statements(text)
+    return starts[1:]
+
+
+def edit(rng: random.Random, text: str) -> str:
+    start = rng.randint(0, len(text))
+    end = min(len(text), start + rng.choice([0, 0, 1, 3, 10, 40]))
+    new = "".join(rng.choice(FRAGMENTS) for _ in range(rng.choice([0, 1, 1, 2, 4])))
+    return text[:start] + new + text[end:]
+
+
+def test_edit_after_edit_equals_a_full_check():
+    rng = random.Random(2026)
+    for program in PROGRAMS:
+        analyzer = Analyzer("prog.epk")
+        text = program
+        for _ in range(25):
+            analysis = analyzer.analyse(text)
+            assert analysis.diagnostics == full_check(text), text
+            if sum(d.code == "E002" for d in analysis.diagnostics) < MAX_LEXICAL_ERRORS:
+                assert splitter_starts(text) == lexer_starts(text)[1:]
+            text = edit(rng, text)
+
+
+@settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.lists(st.sampled_from(FRAGMENTS), max_size=40), st.integers(0, 100))
+def test_splitting_resumed_at_a_statement_start_cuts_as_the_whole_file(pieces, which):
+    from epuckc.ide.statements import _boundaries
+    text = "".join(pieces)
+    source = SourceFile("x", text)
+    bad = Collector(source)
+    list(iter_tokens(source, bad))
+    if len(bad.items) >= MAX_LEXICAL_ERRORS:
+        return      # the lexer stops at the 20th bad run: incremental.py checks such files whole
+    whole = list(_boundaries(text))
+    assert [at for at, _ in whole] == lexer_starts(text)[1:]
+    if whole:
+        at, _ = whole[which % len(whole)]
+        assert list(_boundaries(text, at)) == [b for b in whole if b[0] > at]
+
+
+@settings(max_examples=150, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.sampled_from(PROGRAMS), st.lists(st.tuples(st.integers(0, 10_000), st.integers(0, 40),
+                                                     st.lists(st.sampled_from(FRAGMENTS), max_size=3)),
+                                           min_size=1, max_size=6))
+def test_random_edit_sequences(program, edits):
+    analyzer = Analyzer("prog.epk")
+    text = program
+    analyzer.analyse(text)
+    for at, length, pieces in edits:
+        at %= len(text) + 1
+        text = text[:at] + "".join(pieces) + text[at + length:]
+        assert analyzer.analyse(text).diagnostics == full_check(text)
+
+
+def test_unchanged_statements_are_not_parsed_or_checked_again(monkeypatch):
+    import epuckc.ide.incremental as inc
+    program = "\n".join(f"rule r{i}: on timer({i + 1} s) repeat do set_timer, start_straight(300, {i} cm)"
+                        for i in range(200)) + "\non immediate do set_timer\n"
+    analyzer = Analyzer("prog.epk")
+    analyzer.analyse(program)
+    parsed, checked = [], []
+    real_parse, real_rule = inc._parse_chunk, inc.Checker._rule
+    monkeypatch.setattr(inc, "_parse_chunk", lambda *a: parsed.append(a[1]) or real_parse(*a))
+    monkeypatch.setattr(inc.Checker, "_rule", lambda self, r: checked.append(r) or real_rule(self, r))
+    # a new line in the middle moves every later statement one line down
+    edited = program.replace("rule r100:", "rule r100:\n  ", 1).replace("300, 100 cm", "300, 1 m")
+    analysis = analyzer.analyse(edited)
+    assert len(parsed) == 1 and "rule r100:" in parsed[0]
+    assert len(checked) == 1
+    assert analysis.diagnostics == full_check(edited)
+    # positions of the statements below are real lines again
+    assert analysis.real(analysis.program.statements[150].span).line == 152
+
+
+def test_many_bad_characters_fall_back_to_the_whole_file():
+    text = "on immediate do stop_motor\n" + "@ on x\n" * (MAX_LEXICAL_ERRORS + 5)
+    analysis = Analyzer("prog.epk").analyse(text)
+    assert analysis.diagnostics == full_check(text)
+    assert all(s.span.line < VLINE for s in analysis.program.statements)
+
+
+def test_a_changed_constant_rechecks_only_the_rules_that_use_it(monkeypatch):
+    import epuckc.ide.incremental as inc
+    program = ("const far = 50 cm\n"
+               + "\n".join(f"on timer({i + 1} s) do set_timer, start_straight(300, {i + 1} cm)"
+                           for i in range(100))
+               + "\non immediate do set_timer, start_straight(300, far)\n")
+    analyzer = Analyzer("prog.epk")
+    analyzer.analyse(program)
+    checked = []
+    real_rule = inc.Checker._rule
+    monkeypatch.setattr(inc.Checker, "_rule", lambda self, r: checked.append(r) or real_rule(self, r))
+    edited = program.replace("far = 50 cm", "far = 5000 m")
+    analysis = analyzer.analyse(edited)
+    assert len(checked) == 1 and checked[0].event.name.name == "immediate"
+    assert "E034" in [d.code for d in analysis.diagnostics]
+    assert analysis.diagnostics == full_check(edited)
+
+
+def test_a_long_editing_session_on_a_big_file():
+    import sys
+    sys.path.insert(0, str(REPO / "bench"))
+    from check_bench import generate
+    rng = random.Random(7)
+    text = generate(150)
+    analyzer = Analyzer("prog.epk")
+    for step in range(300):
+        text = edit(rng, text)
+        if step % 3 == 0:       # several edits may come between two analyses
+            assert analyzer.analyse(text).diagnostics == full_check(text)

@@ -1,0 +1,143 @@
+"""Pictures of a run (epuckc/sim/plot.py): the SVG is parsed and what it shows
+is checked against the trace it was drawn from."""
+import json
+import re
+
+import pytest
+
+from epuckc.sim.plot import PlotError, plot_trace
+
+from tests.support.world import EXAMPLES, by_class, epuckc, run, svg
+
+POINT = re.compile(r"(-?[\d.]+),(-?[\d.]+)")
+
+
+def path_points(element):
+    return [(float(x), float(y)) for x, y in POINT.findall(element.get("points"))]
+
+
+def test_pose_records_every_interval_and_nothing_else_changes(tmp_path):
+    plain, out_plain, _ = run(EXAMPLES / "square.epk", tmp_path, name="plain")
+    posed, out_posed, _ = run(EXAMPLES / "square.epk", tmp_path, "--pose-interval", "250ms",
+                              name="posed")
+    poses = [r for r in posed if r["kind"] == "pose"]
+    end = plain[-1]["t_ms"]
+    assert [r["t_ms"] for r in poses] == list(range(0, end + 1, 250))
+    assert [r for r in posed if r["kind"] != "pose"] == plain
+    assert out_posed == out_plain           # pose records are for the JSON trace only
+    # the square's corners are among the poses: it drives 200 mm sides
+    xs = [r["x_mm"] for r in poses]
+    assert max(xs) == pytest.approx(200, abs=1) and min(xs) == pytest.approx(0, abs=1)
+
+
+def test_the_path_goes_through_every_pose_of_the_trace(tmp_path):
+    picture = tmp_path / "square.svg"
+    records, _, _ = run(EXAMPLES / "square.epk", tmp_path, "--svg", picture)
+    root = svg(picture)
+    [path] = by_class(root, "path")
+    pts = path_points(path)
+    poses = [(r["x_mm"], r["y_mm"]) for r in records if "x_mm" in r]
+    assert sum(r["kind"] == "pose" for r in records) > 200     # --svg: every 100 ms
+    # the picture's scale and offset from the square's extent (200 mm sides)
+    xs, ys = [p[0] for p in poses], [p[1] for p in poses]
+    px, py = [p[0] for p in pts], [p[1] for p in pts]
+    sx = (max(px) - min(px)) / (max(xs) - min(xs))
+    sy = (max(py) - min(py)) / (max(ys) - min(ys))
+    assert sx == pytest.approx(sy, rel=0.01)                   # one scale, y flipped
+    expected = []
+    for x, y in poses:
+        p = (round(min(px) + (x - min(xs)) * sx, 1), round(max(py) - (y - min(ys)) * sx, 1))
+        if not expected or expected[-1] != p:
+            expected.append(p)
+    assert len(pts) == len(expected)
+    for (ax, ay), (ex, ey) in zip(pts, expected):
+        assert ax == pytest.approx(ex, abs=0.3) and ay == pytest.approx(ey, abs=0.3)
+
+
+def test_run_svg_draws_firings_final_pose_and_timeline(tmp_path):
+    picture = tmp_path / "patrol.svg"
+    records, _, _ = run(EXAMPLES / "timed_patrol.epk", tmp_path, "--svg", picture)
+    root = svg(picture)
+    # one marker per firing, each with its time and file:line
+    events = [r for r in records if r["kind"] == "event"]
+    markers = by_class(root, "firing")
+    assert [int(m.get("data-t-ms")) for m in markers] == [r["t_ms"] for r in events]
+    assert all(re.fullmatch(r"timed_patrol\.epk:\d+", m.get("data-label")) for m in markers)
+    assert {m.get("data-label") for m in markers} == {r["name"].split()[0] for r in events}
+    # the final pose is the last record's
+    [final] = by_class(root, "final-pose")
+    assert float(final.get("data-x-mm")) == records[-1]["x_mm"]
+    assert float(final.get("data-heading-deg")) == records[-1]["heading_deg"]
+    # a timeline row per rule, a tick per firing in its row
+    rows = by_class(root, "timeline-row")
+    labels = [r.get("data-label") for r in rows]
+    assert len(labels) == len(set(labels)) == len({r["name"].split()[0] for r in events})
+    for row in rows:
+        ticks = [int(t.get("data-t-ms")) for t in by_class(row, "tick")]
+        assert ticks == [r["t_ms"] for r in events if r["name"].split()[0] == row.get("data-label")]
+    turn_back = next(r for r in rows if "turn_back" in "".join(r.itertext()))
+    assert len(by_class(turn_back, "tick")) == 4      # every 3 s until cancelled at 14 s
+    # no world: no walls
+    assert by_class(root, "arena") == [] and by_class(root, "ground")
+
+
+def test_plot_of_a_saved_trace_equals_run_svg(tmp_path):
+    picture = tmp_path / "run.svg"
+    _, _, _ = run(EXAMPLES / "square.epk", tmp_path, "--svg", picture)
+    again = tmp_path / "plot.svg"
+    result = epuckc("plot", tmp_path / "trace.jsonl", "-o", again, "--title", "square.epk")
+    assert result.returncode == 0, result.stderr
+    assert again.read_bytes() == picture.read_bytes()
+
+
+def test_world_record_draws_walls_boxes_and_cylinders():
+    world = {"kind": "world", "arena": {"width_mm": 1000.0, "height_mm": 500.0},
+             "boxes": [{"x_mm": 300.0, "y_mm": 200.0, "length_mm": 100.0, "width_mm": 40.0,
+                        "angle_deg": 30.0}],
+             "cylinders": [{"x_mm": 700.0, "y_mm": 250.0, "radius_mm": 50.0}],
+             "robots": [], "robot_radius_mm": 37.0}
+    rec = {"t_ms": 0, "robot": "a", "kind": "pose", "name": "pose", "id": -1, "left_steps": 0,
+           "right_steps": 0, "x_mm": 100.0, "y_mm": 100.0, "heading_deg": 0.0}
+    text = json.dumps(world) + "\n" + json.dumps(rec) + "\n"
+    import xml.etree.ElementTree as ET
+    root = ET.fromstring(plot_trace(text))
+    [arena] = by_class(root, "arena")
+    w, h = float(arena.get("width")), float(arena.get("height"))
+    assert w / h == pytest.approx(2.0, rel=0.01)          # 1000 x 500 mm
+    [box] = by_class(root, "box")
+    assert float(box.get("width")) / w == pytest.approx(0.1, rel=0.02)
+    assert "rotate(-30" in box.get("transform")
+    [cyl] = by_class(root, "cylinder")
+    assert float(cyl.get("r")) / w == pytest.approx(0.05, rel=0.02)
+    # (700, 250) mm: 70 % across, half-way up (y is flipped)
+    assert (float(cyl.get("cx")) - float(arena.get("x"))) / w == pytest.approx(0.7, abs=0.01)
+    assert (float(cyl.get("cy")) - float(arena.get("y"))) / h == pytest.approx(0.5, abs=0.01)
+    [run_group] = by_class(root, "robot-run")
+    assert run_group.get("data-robot") == "a"
+
+
+@pytest.mark.parametrize("text, words", [
+    ("not json\n", "t.jsonl:1: not a JSON trace record"),
+    ('{"a": 1}\n', "t.jsonl:1: not a trace record"),
+    ('{"kind": "world"}\n', "no record with a pose"),
+])
+def test_bad_traces_are_reported(tmp_path, text, words):
+    with pytest.raises(PlotError, match=re.escape(words)):
+        plot_trace(text, source="t.jsonl")
+    bad = tmp_path / "t.jsonl"
+    bad.write_text(text)
+    result = epuckc("plot", bad, "-o", tmp_path / "out.svg")
+    assert result.returncode == 2 and words.split(":")[-1].strip() in result.stderr
+    assert not (tmp_path / "out.svg").exists()
+
+
+def test_a_bad_pose_interval_setting_is_reported(tmp_path):
+    import subprocess
+    built = epuckc("build", EXAMPLES / "square.epk", "-o", tmp_path / "b")
+    assert built.returncode == 0, built.stderr
+    for value in ("abc", "0", "-5", "10x"):
+        result = subprocess.run([str(tmp_path / "b" / "square")], capture_output=True, text=True,
+                                env={"EPUCK_POSE_MS": value})
+        assert result.returncode == 2
+        assert result.stderr == ("epuck host: EPUCK_POSE_MS: expected a whole number of "
+                                 f"milliseconds from 1 to 1000000000, got '{value}'\n")

@@ -1,0 +1,122 @@
+"""The world file format (epuckc/sim/world.py): what it accepts, what it
+rejects and how it says so."""
+import math
+
+import pytest
+
+from epuckc.sim.world import WorldError, parse_world, runner_spec
+
+from tests.support.world import EXAMPLES, epuckc
+
+
+def parse(tmp_path, text, name="w.world"):
+    path = tmp_path / name
+    path.write_text(text)
+    return parse_world(path, shown=name)
+
+
+def error(tmp_path, text):
+    with pytest.raises(WorldError) as info:
+        parse(tmp_path, text)
+    return str(info.value)
+
+
+def test_every_item_with_units(tmp_path):
+    (tmp_path / "other.epk").write_text("on immediate do exit_main\n")
+    w = parse(tmp_path, """
+        # a comment
+        arena 1.2 m x 800 mm
+        box at 40 cm, 30 cm size 20 cm x 5 cm angle 30 deg height 4 cm
+        cylinder at 900mm 500mm radius 6cm     # no comma, units attached
+        robot at 20 cm, 20 cm heading 45 deg
+        robot bob at 60 cm, 60 cm heading -90 deg program other.epk
+        seed 7
+        noise 2.5 %
+        step 20 ms
+    """)
+    assert (w.width_mm, w.height_mm) == (1200, 800)
+    [b] = w.boxes
+    assert (b.x_mm, b.y_mm, b.length_mm, b.width_mm, b.angle_deg, b.height_mm) == (400, 300, 200, 50, 30, 40)
+    [c] = w.cylinders
+    assert (c.x_mm, c.y_mm, c.radius_mm) == (900, 500, 60)
+    r1, bob = w.robots
+    assert (r1.name, r1.x_mm, r1.y_mm, r1.heading_deg, r1.program) == ("r1", 200, 200, 45, None)
+    assert (bob.name, bob.heading_deg, bob.program) == ("bob", -90, tmp_path / "other.epk")
+    assert (w.seed, w.noise_percent, w.step_ms) == (7, 2.5, 20)
+
+
+def test_defaults_one_robot_in_the_middle_or_at_the_origin(tmp_path):
+    w = parse(tmp_path, "arena 100 cm x 60 cm\n")
+    [r] = w.robots
+    assert (r.name, r.x_mm, r.y_mm, r.heading_deg) == ("r1", 500, 300, 0)
+    assert (w.seed, w.noise_percent, w.step_ms) == (1, 5.0, 10)
+    w = parse(tmp_path, "# open ground\n")
+    assert not w.walled and (w.robots[0].x_mm, w.robots[0].y_mm) == (0, 0)
+
+
+def test_runner_spec_is_in_cm_and_radians(tmp_path):
+    w = parse(tmp_path, "arena 100 cm x 60 cm\nbox at 50 cm, 30 cm size 10 cm x 4 cm angle 90 deg\n"
+                        "robot a at 20 cm, 20 cm heading 180 deg\n")
+    spec = runner_spec(w, [("/x/a.so", {"EPUCK_TRACE": "/x/a.jsonl"})]).splitlines()
+    assert spec[0] == "arena square 100.0 60.0"
+    box = spec[4].split()
+    assert box[:5] == ["box", "50.0", "30.0", "10.0", "4.0"] and math.isclose(float(box[5]), math.pi / 2)
+    robot = spec[5].split()
+    assert robot[:4] == ["robot", "a", "20.0", "20.0"] and math.isclose(float(robot[4]), math.pi)
+    assert spec[6:] == ["lib /x/a.so", "setting EPUCK_TRACE /x/a.jsonl"]
+
+
+@pytest.mark.parametrize("text, where, words", [
+    ("arena 100 x 60 cm\n", "w.world:1:7:", "has no unit"),
+    ("arena 100 cm by 60 cm\n", "w.world:1:14:", "expected `x`"),
+    ("arena 100 kg x 60 cm\n", "w.world:1:7:", "not a unit of length"),
+    ("arena -1 m x 1 m\n", "w.world:1:7:", "must be positive"),
+    ("wall at 1 cm, 2 cm\n", "w.world:1:1:", "unknown item `wall`"),
+    ("robot at 1 cm\n", "w.world:1:14:", "expected a length"),
+    ("robot at 10 cm, 10 cm speed 3\n", "w.world:1:23:", "unexpected `speed`"),
+    ("robot a at 10 cm, 10 cm\nrobot a at 30 cm, 30 cm\n", "w.world:2:7:", "a second robot named `a`"),
+    ("robot at 10 cm, 10 cm program nothere.epk\n", "w.world:1:31:", "does not exist"),
+    ("seed 1\nseed 2\n", "w.world:2:1:", "a second `seed` line"),
+    ("seed -3\n", "w.world:1:6:", "whole number"),
+    ("noise 80 %\n", "w.world:1:7:", "from 0 % to 50 %"),
+    ("step 0.5 ms\n", "w.world:1:6:", "whole number of ms"),
+    ("arena 50 cm x 50 cm\nrobot at 2 cm, 25 cm\n", "w.world:2:1:", "not inside"),
+    ("robot at 0 cm, 0 cm\nrobot at 5 cm, 0 cm\n", "w.world:2:1:", "overlaps robot r1"),
+    ("cylinder at 0 cm, 8 cm radius 5 cm\nrobot at 0 cm, 0 cm\n", "w.world:2:1:", "overlaps the cylinder"),
+    ("box at 0 cm, 4 cm size 10 cm x 2 cm\nrobot at 0 cm, 0 cm\n", "w.world:2:1:", "overlaps the box"),
+])
+def test_errors_point_at_the_problem(tmp_path, text, where, words):
+    message = error(tmp_path, text)
+    assert message.startswith(where) and words in message, message
+
+
+def test_an_error_shows_the_line_a_caret_and_help(tmp_path):
+    message = error(tmp_path, "arena 100 x 60 cm\n")
+    assert message.splitlines() == [
+        "w.world:1:7: error: the length 100 has no unit",
+        " 1 | arena 100 x 60 cm",
+        "   |       ^",
+        "help: add one of mm, cm, m, e.g. 20 cm",
+    ]
+
+
+def test_the_examples_parse():
+    for path in EXAMPLES.glob("*.world"):
+        world = parse_world(path)
+        assert world.robots
+
+
+def test_cli_reports_a_bad_world_with_status_2(tmp_path):
+    bad = tmp_path / "bad.world"
+    bad.write_text("arena 1 m x 1 m\nrobot at 2 m, 0.5 m\n")
+    result = epuckc("run", EXAMPLES / "paper_fig2.epk", "--world", bad)
+    assert result.returncode == 2
+    assert f"{bad}:2:1: error: robot r1" in result.stderr and "Traceback" not in result.stderr
+    missing = epuckc("run", EXAMPLES / "paper_fig2.epk", "--world", tmp_path / "none.world")
+    assert missing.returncode == 2 and "does not exist" in missing.stderr
+
+
+def test_cli_refuses_a_world_with_a_scenario():
+    result = epuckc("run", EXAMPLES / "obstacle_avoidance.epk", "--world", EXAMPLES / "arena.world",
+                    "--scenario", EXAMPLES / "obstacle.scn")
+    assert result.returncode == 2 and "cannot be combined" in result.stderr

@@ -1,0 +1,1 @@
+"""Helpers shared by several test folders: running the CLI (cli.py), building and running programs (programs.py), worlds (world.py), hostile programs (hostile.py), Lark as the reference parser (lark_reference.py)."""
