@@ -53,10 +53,14 @@ BENCH = REPO / "bench"
 sys.path.insert(0, str(BENCH))
 from check_bench import generate as generate_mixed  # noqa: E402
 
+sys.path.insert(0, str(REPO))
+from epuckc.base.resources import RUNTIME_CORE  # noqa: E402
+
 HOST_CFLAGS = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", "-O2"]
 # as epuckc's robot builds: no name labels
 AVR_CFLAGS = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", "-Os", "-DEPUCKRT_NO_NAMES"]
-HOST_SOURCES = [RT / "epuckrt.c", RT / "host" / "platform_host.c", RT / "host" / "epuck_stub.c"]
+CORE = [RT / name for name in RUNTIME_CORE]     # the runtime, one file per concern
+HOST_SOURCES = [*CORE, RT / "host" / "platform_host.c", RT / "host" / "epuck_stub.c"]
 BUDGET_CYCLES = 16000           # 1 ms at 16 MIPS
 SIM_MCU = "atmega1284p"
 # epuckc before static registration counted every rule against the runtime's
@@ -223,7 +227,7 @@ def bench_ram(sizes, work: Path, mcu="atmega128") -> list:
         c, defines = compile_epk(generate_mixed(n), d, f"mixed{n}")
         flags = [*AVR_CFLAGS, f"-mmcu={mcu}", f"-I{RT}", f"-I{RT / 'epuck_api'}"]
         objs = []
-        for src, extra in ((c, []), (RT / "epuckrt.c", defines), (RT / "platform_robot.c", [])):
+        for src, extra in ((c, []), *((core, defines) for core in CORE), (RT / "platform_robot.c", [])):
             obj = d / (Path(src).stem + ".o")
             run(["avr-gcc", *flags, *extra, "-c", src, "-o", obj])
             objs.append(obj)
@@ -273,7 +277,7 @@ def bench_simavr(sizes, work: Path, priorities: bool = False) -> list:
         elf = d / f"sensors{n}.elf"
         res = subprocess.run(["avr-gcc", *AVR_CFLAGS, f"-mmcu={SIM_MCU}", *defines, f"-I{RT}",
                               f"-I{RT / 'epuck_api'}", f"-I{BENCH / 'avr'}", str(c),
-                              str(RT / "epuckrt.c"), str(BENCH / "avr" / "platform_sim.c"),
+                              *map(str, CORE), str(BENCH / "avr" / "platform_sim.c"),
                               str(BENCH / "avr" / "epuck_avr.c"), "-o", str(elf)],
                              capture_output=True, text=True)
         if res.returncode != 0:

@@ -25,6 +25,8 @@ from pathlib import Path
 
 REPO = Path(__file__).resolve().parent.parent
 RUNTIME = REPO / "runtime_c"
+sys.path.insert(0, str(REPO))
+from epuckc.base.resources import RUNTIME_CORE  # noqa: E402
 PROGRAM = REPO / "tests" / "runtime" / "programs" / "straight.c"
 SANITIZE = ["-g", "-O1", "-fsanitize=address,undefined"]
 
@@ -34,7 +36,7 @@ def build(out: Path, platform_host: Path, asan: bool) -> Path:
     exe = out / "harness"
     subprocess.run(cc + ["-std=c99", *(SANITIZE if asan else ["-O2"]),
                          f"-I{RUNTIME}", f"-I{RUNTIME / 'epuck_api'}", f"-I{RUNTIME / 'host'}",
-                         str(PROGRAM), str(RUNTIME / "epuckrt.c"), str(platform_host),
+                         str(PROGRAM), *(str(RUNTIME / name) for name in RUNTIME_CORE), str(platform_host),
                          str(RUNTIME / "host" / "epuck_stub.c"), "-o", str(exe), "-lm"],
                    check=True)
     return exe

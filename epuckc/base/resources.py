@@ -11,6 +11,13 @@ from pathlib import Path
 
 _PACKAGE = Path(__file__).resolve().parent.parent   # epuckc/
 
+# The runtime's own sources, one file per concern (docs/runtime.md), behind
+# epuckrt.h; rt_internal.h is what they share. Every build (host, Enki, the
+# robot's projects), cache key and test takes the list from here;
+# runtime_c/Makefile repeats it (CORE), and a test keeps the two equal.
+RUNTIME_CORE = ("epuckrt.c", "rt_motion.c", "rt_sensors.c", "rt_modes.c")
+RUNTIME_CORE_HEADERS = ("epuckrt.h", "rt_internal.h", "rt_platform.h", "utility.h")
+
 
 def resource_dir(name: str) -> Path:
     for candidate in (_PACKAGE / name, _PACKAGE.parent / name):

@@ -12,6 +12,7 @@ from pathlib import Path
 from typing import Optional
 
 from ..base.output import write_atomic
+from ..base.resources import RUNTIME_CORE, RUNTIME_CORE_HEADERS
 
 # -O1 as on the robot (the dspic Makefile; XC16's free edition stops there)
 # and in the sanitizer builds of the tests: the harness runs no slower than
@@ -35,16 +36,16 @@ BUILD_FLAGS = ["-pipe"]
 
 
 # The runtime's files for each target, relative to runtime_c/.
-HOST_SOURCES = ["epuckrt.c", "host/platform_host.c", "host/epuck_stub.c"]
+HOST_SOURCES = [*RUNTIME_CORE, "host/platform_host.c", "host/epuck_stub.c"]
 
 
 HOST_INCLUDES = [".", "epuck_api", "host"]
 
 
-ROBOT_SOURCES = ["epuckrt.c", "platform_robot.c"]
+ROBOT_SOURCES = [*RUNTIME_CORE, "platform_robot.c"]
 
 
-ROBOT_HEADERS = ["epuckrt.h", "rt_platform.h", "utility.h"]
+ROBOT_HEADERS = list(RUNTIME_CORE_HEADERS)
 
 
 ROBOT_FILES = ROBOT_SOURCES + ROBOT_HEADERS

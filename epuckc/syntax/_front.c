@@ -19,128 +19,7 @@
  * tests/frontend/test_front_accel.py checks that both give the same
  * program on the corpus and on generated programs.
  */
-#define PY_SSIZE_T_CLEAN
-#include <Python.h>
-#include <structmember.h>
-#include <stdint.h>
-#include <string.h>
-
-#define NO_ACTION INT32_MIN
-
-/* ---- tokens -------------------------------------------------------------- */
-
-/* What the callbacks see of a token: lexer.Token's attributes, read-only. */
-typedef struct {
-    PyObject_HEAD
-    PyObject *type;
-    PyObject *value;
-    PyObject *span;             /* source.Span of the token, made with it */
-    Py_ssize_t start_pos, end_pos;
-    Py_ssize_t line, column, end_line, end_column;
-} TokenObject;
-
-static void token_dealloc(TokenObject *self)
-{
-    Py_XDECREF(self->type);
-    Py_XDECREF(self->value);
-    Py_XDECREF(self->span);
-    Py_TYPE(self)->tp_free((PyObject *)self);
-}
-
-static PyObject *token_str(TokenObject *self)
-{
-    Py_INCREF(self->value);
-    return self->value;
-}
-
-static PyObject *token_repr(TokenObject *self)
-{
-    return PyUnicode_FromFormat("Token(%R, %R, %zd:%zd)", self->type, self->value,
-                                self->line, self->column);
-}
-
-static PyObject *token_after_bad(PyObject *self, void *closure)
-{
-    (void)self;
-    (void)closure;
-    Py_RETURN_FALSE;    /* a file with a bad character never gets here */
-}
-
-static PyMemberDef token_members[] = {
-    {"type", T_OBJECT, offsetof(TokenObject, type), READONLY, NULL},
-    {"value", T_OBJECT, offsetof(TokenObject, value), READONLY, NULL},
-    {"span", T_OBJECT, offsetof(TokenObject, span), READONLY, NULL},
-    {"start_pos", T_PYSSIZET, offsetof(TokenObject, start_pos), READONLY, NULL},
-    {"end_pos", T_PYSSIZET, offsetof(TokenObject, end_pos), READONLY, NULL},
-    {"line", T_PYSSIZET, offsetof(TokenObject, line), READONLY, NULL},
-    {"column", T_PYSSIZET, offsetof(TokenObject, column), READONLY, NULL},
-    {"end_line", T_PYSSIZET, offsetof(TokenObject, end_line), READONLY, NULL},
-    {"end_column", T_PYSSIZET, offsetof(TokenObject, end_column), READONLY, NULL},
-    {NULL, 0, 0, 0, NULL},
-};
-
-static PyGetSetDef token_getset[] = {
-    {"after_bad", token_after_bad, NULL, NULL, NULL},
-    {NULL, NULL, NULL, NULL, NULL},
-};
-
-static PyTypeObject TokenType = {
-    PyVarObject_HEAD_INIT(NULL, 0)
-    .tp_name = "epuckc._front.Token",
-    .tp_basicsize = sizeof(TokenObject),
-    .tp_dealloc = (destructor)token_dealloc,
-    .tp_repr = (reprfunc)token_repr,
-    .tp_str = (reprfunc)token_str,
-    .tp_flags = Py_TPFLAGS_DEFAULT,
-    .tp_doc = "A token made by the C front end (see lexer.Token).",
-    .tp_members = token_members,
-    .tp_getset = token_getset,
-};
-
-/* A token while the file is read: its symbol and where it is. */
-typedef struct {
-    int sym;
-    Py_ssize_t start, end;      /* character offsets */
-    Py_ssize_t line, column;    /* from 1; a token never spans lines */
-} Lexeme;
-
-/* ---- the driver: tables and the lexer's configuration ---------------------- */
-
-typedef struct {
-    int index, splice, nones;
-} Include;
-
-typedef struct {
-    int origin;             /* the rule's symbol, for the goto */
-    int size;               /* symbols on its right-hand side */
-    PyObject *func;         /* callback, or NULL: a `_rule` spliced into its parent */
-    int n_include;
-    Include *include;       /* the children kept, as lalr._child_filter says */
-    int after;              /* Nones after the last child kept */
-    int grow;               /* `_rule: _rule SEP item`: the item's offset from the top, else 0 */
-    int plain;              /* no child is spliced: the children can be a tuple */
-} Rule;
-
-#define MAX_KEYWORDS 64
-#define MAX_KEYWORD_LEN 15
-
-typedef struct {
-    PyObject_HEAD
-    int nsyms, nstates, start, end;
-    int32_t *action;        /* nstates x nsyms; >= 0 shift/goto, < 0 reduce, NO_ACTION */
-    int nrules;
-    Rule *rules;
-    PyObject *meta;         /* source.Span */
-    PyObject **names;       /* each symbol's name, for Token.type */
-    unsigned char *kept;    /* whether a token of the symbol reaches a callback */
-    unsigned char *starts;  /* 1: starts a statement; 2: starts a mode too */
-    int n_keywords;
-    char keyword[MAX_KEYWORDS][MAX_KEYWORD_LEN + 1];
-    int keyword_sym[MAX_KEYWORDS];
-    int punct_sym[128];
-    int t_name, t_number, t_string, t_end;
-    int t_lbrace, t_rbrace, t_action, t_extern, t_mode, t_initial, t_on, t_rule;
-} DriverObject;
+#include "_front.h"
 
 static void driver_dealloc(DriverObject *self)
 {
@@ -162,146 +41,6 @@ static void driver_dealloc(DriverObject *self)
     PyMem_Free(self->starts);
     Py_XDECREF(self->meta);
     Py_TYPE(self)->tp_free((PyObject *)self);
-}
-
-/* ---- the lexer ---------------------------------------------------------------- */
-
-typedef struct {
-    Lexeme *items;
-    Py_ssize_t count, capacity;
-} Lexemes;
-
-static int lexemes_push(Lexemes *l, int sym, Py_ssize_t start, Py_ssize_t end,
-                        Py_ssize_t line, Py_ssize_t column)
-{
-    if (l->count == l->capacity) {
-        Py_ssize_t capacity = l->capacity ? 2 * l->capacity : 1024;
-        Lexeme *items = PyMem_Realloc(l->items, (size_t)capacity * sizeof(Lexeme));
-        if (items == NULL) {
-            PyErr_NoMemory();
-            return -1;
-        }
-        l->items = items;
-        l->capacity = capacity;
-    }
-    l->items[l->count].sym = sym;
-    l->items[l->count].start = start;
-    l->items[l->count].end = end;
-    l->items[l->count].line = line;
-    l->items[l->count].column = column;
-    l->count++;
-    return 0;
-}
-
-#define IS_DIGIT(c) ((c) >= '0' && (c) <= '9')
-#define IS_WORD(c) (IS_DIGIT(c) || ((c) >= 'a' && (c) <= 'z') || ((c) >= 'A' && (c) <= 'Z') \
-                    || (c) == '_')
-#define IS_BLANK(c) ((c) == ' ' || (c) == '\t' || (c) == '\r' || (c) == '\f' || (c) == '\v')
-
-/* The tokens of `text`, as lexer.iter_tokens makes them. Returns 1 when
- * done, 0 when the file needs the Python lexer's diagnostics, -1 on a
- * Python error. */
-static int tokenise(DriverObject *d, PyObject *text, Lexemes *out)
-{
-    int kind = PyUnicode_KIND(text);
-    const void *data = PyUnicode_DATA(text);
-    Py_ssize_t n = PyUnicode_GET_LENGTH(text);
-    Py_ssize_t pos = 0, line = 1, line_start = 0;
-#define CH(i) PyUnicode_READ(kind, data, (i))
-
-    while (pos < n) {
-        Py_UCS4 c = CH(pos);
-        Py_ssize_t start = pos;
-        int sym;
-        if (IS_BLANK(c)) {
-            pos++;
-            continue;
-        }
-        if (c == '\n') {
-            line++;
-            line_start = ++pos;
-            continue;
-        }
-        if (c == '#') {
-            while (pos < n && CH(pos) != '\n')
-                pos++;
-            continue;
-        }
-        if (c >= 128)
-            return 0;   /* a name that is not ASCII (E008), or a bad character (E002) */
-        if (IS_WORD(c) && !IS_DIGIT(c)) {
-            int k;
-            Py_ssize_t len;
-            while (pos < n && CH(pos) < 128 && IS_WORD(CH(pos)))
-                pos++;
-            if (pos < n && CH(pos) >= 128)
-                return 0;   /* the name goes on, or a bad character follows */
-            sym = d->t_name;
-            len = pos - start;
-            if (len <= MAX_KEYWORD_LEN) {
-                for (k = 0; k < d->n_keywords; k++) {
-                    const char *word = d->keyword[k];
-                    Py_ssize_t j = 0;
-                    while (j < len && word[j] == (char)CH(start + j))
-                        j++;
-                    if (j == len && word[j] == '\0') {
-                        sym = d->keyword_sym[k];
-                        break;
-                    }
-                }
-            }
-        } else if (IS_DIGIT(c)) {
-            Py_ssize_t mark;
-            while (pos < n && IS_DIGIT(CH(pos)))
-                pos++;
-            if (pos + 1 < n && CH(pos) == '.' && IS_DIGIT(CH(pos + 1))) {
-                pos++;
-                while (pos < n && IS_DIGIT(CH(pos)))
-                    pos++;
-            }
-            /* `2e3` (E007): the same test as the lexer's `exponent` */
-            mark = pos;
-            if (mark < n && (CH(mark) == 'e' || CH(mark) == 'E')) {
-                mark++;
-                if (mark < n && (CH(mark) == '+' || CH(mark) == '-'))
-                    mark++;
-                if (mark < n && IS_DIGIT(CH(mark)))
-                    return 0;
-            }
-            sym = d->t_number;
-        } else if (c == '"') {
-            pos++;
-            for (;;) {
-                Py_UCS4 s;
-                if (pos >= n)
-                    return 0;       /* a string left open (E003) */
-                s = CH(pos);
-                if (s == '"') {
-                    pos++;
-                    break;
-                }
-                if (s == '\n')
-                    return 0;
-                if (s == '\\') {
-                    if (pos + 1 >= n || CH(pos + 1) == '\n')
-                        return 0;
-                    pos += 2;
-                } else {
-                    pos++;
-                }
-            }
-            sym = d->t_string;
-        } else {
-            sym = d->punct_sym[c];
-            if (sym < 0)
-                return 0;   /* a character that starts no token (E002) */
-            pos++;
-        }
-        if (lexemes_push(out, sym, start, pos, line, start - line_start + 1) < 0)
-            return -1;
-    }
-    return 1;
-#undef CH
 }
 
 /* ---- the LALR driver ---------------------------------------------------------- */
@@ -397,7 +136,7 @@ static PyObject *token_span(DriverObject *d, const Lexeme *tokens, PyObject **sp
 static PyObject *make_token(DriverObject *d, PyObject *text, const Lexeme *tokens,
                             PyObject **spans, Py_ssize_t i)
 {
-    TokenObject *tok = PyObject_New(TokenObject, &TokenType);
+    TokenObject *tok = PyObject_New(TokenObject, &front_token_type);
     const Lexeme *lx = &tokens[i];
     const Py_ssize_t end_column = lx->column + (lx->end - lx->start);
     if (tok == NULL)
@@ -609,7 +348,7 @@ static PyObject *driver_parse(DriverObject *d, PyObject *text)
         PyErr_SetString(PyExc_TypeError, "parse() takes a str");
         return NULL;
     }
-    status = tokenise(d, text, &lx);
+    status = front_tokenise(d, text, &lx);
     if (status <= 0) {
         PyMem_Free(lx.items);
         if (status < 0)
@@ -710,128 +449,6 @@ static PyTypeObject DriverType = {
     .tp_doc = "The C front end over one set of tables and callbacks (see make_driver).",
     .tp_methods = driver_methods,
 };
-
-/* ---- makers: nodes built without __init__ ----------------------------------------------- */
-
-/* maker(cls) -> f, where f(*fields) is a new `cls` whose slots, in
- * cls._fields order, hold `fields`: what ast.maker's Python version does
- * with each slot's descriptor, without a call per field. For the syntax
- * tree's node classes (ast.Node): slots of plain objects, no __init__ or
- * __new__ of their own, so nothing is skipped by not calling them. */
-typedef struct {
-    PyObject_HEAD
-    vectorcallfunc vectorcall;
-    PyTypeObject *cls;
-    Py_ssize_t n;
-    Py_ssize_t offset[1];       /* n of them */
-} MakerObject;
-
-static PyObject *maker_vectorcall(PyObject *self, PyObject *const *args, size_t nargsf,
-                                  PyObject *kwnames)
-{
-    MakerObject *m = (MakerObject *)self;
-    Py_ssize_t nargs = PyVectorcall_NARGS(nargsf), i;
-    PyObject *obj;
-    if (kwnames != NULL && PyTuple_GET_SIZE(kwnames) != 0) {
-        PyErr_SetString(PyExc_TypeError, "a maker takes its fields by position");
-        return NULL;
-    }
-    if (nargs != m->n) {
-        PyErr_Format(PyExc_TypeError, "%s has %zd fields, %zd were given", m->cls->tp_name,
-                     m->n, nargs);
-        return NULL;
-    }
-    obj = m->cls->tp_alloc(m->cls, 0);
-    if (obj == NULL)
-        return NULL;
-    for (i = 0; i < nargs; i++) {
-        Py_INCREF(args[i]);
-        *(PyObject **)((char *)obj + m->offset[i]) = args[i];
-    }
-    return obj;
-}
-
-static void maker_dealloc(MakerObject *self)
-{
-    Py_XDECREF(self->cls);
-    PyObject_Free(self);
-}
-
-static PyTypeObject MakerType = {
-    PyVarObject_HEAD_INIT(NULL, 0)
-    .tp_name = "epuckc._front.Maker",
-    .tp_basicsize = offsetof(MakerObject, offset),
-    .tp_itemsize = sizeof(Py_ssize_t),
-    .tp_dealloc = (destructor)maker_dealloc,
-    .tp_vectorcall_offset = offsetof(MakerObject, vectorcall),
-    .tp_call = PyVectorcall_Call,
-    .tp_flags = Py_TPFLAGS_DEFAULT | Py_TPFLAGS_HAVE_VECTORCALL,
-    .tp_doc = "A node class's constructor by slots (see maker).",
-};
-
-static PyObject *make_maker(PyObject *module, PyObject *cls_obj)
-{
-    PyTypeObject *cls;
-    PyObject *fields;
-    MakerObject *m;
-    Py_ssize_t n, i;
-    (void)module;
-    if (!PyType_Check(cls_obj)) {
-        PyErr_SetString(PyExc_TypeError, "maker() takes a class");
-        return NULL;
-    }
-    cls = (PyTypeObject *)cls_obj;
-    if (cls->tp_new != PyBaseObject_Type.tp_new || cls->tp_itemsize != 0) {
-        PyErr_Format(PyExc_TypeError, "%s makes its instances itself", cls->tp_name);
-        return NULL;
-    }
-    fields = PyObject_GetAttrString(cls_obj, "_fields");
-    if (fields == NULL)
-        return NULL;
-    if (!PyTuple_Check(fields)) {
-        Py_DECREF(fields);
-        PyErr_SetString(PyExc_TypeError, "_fields must be a tuple");
-        return NULL;
-    }
-    n = PyTuple_GET_SIZE(fields);
-    m = PyObject_NewVar(MakerObject, &MakerType, n);
-    if (m == NULL) {
-        Py_DECREF(fields);
-        return NULL;
-    }
-    m->vectorcall = maker_vectorcall;
-    m->n = n;
-    Py_INCREF(cls);
-    m->cls = cls;
-    for (i = 0; i < n; i++) {
-        /* a slot's descriptor, as the class itself gives it */
-        PyObject *descr = PyObject_GetAttr(cls_obj, PyTuple_GET_ITEM(fields, i));
-        PyMemberDef *member;
-        if (descr == NULL || !Py_IS_TYPE(descr, &PyMemberDescr_Type)) {
-            if (descr != NULL || PyErr_ExceptionMatches(PyExc_AttributeError)) {
-                PyErr_Clear();
-                PyErr_Format(PyExc_TypeError, "%s.%S is not a slot", cls->tp_name,
-                             PyTuple_GET_ITEM(fields, i));
-            }
-            Py_XDECREF(descr);
-            Py_DECREF(fields);
-            Py_DECREF(m);
-            return NULL;
-        }
-        member = ((PyMemberDescrObject *)descr)->d_member;
-        Py_DECREF(descr);       /* the class keeps it, and its PyMemberDef */
-        if (member->type != T_OBJECT_EX || (member->flags & READONLY)) {
-            PyErr_Format(PyExc_TypeError, "%s.%S is not a plain slot", cls->tp_name,
-                         PyTuple_GET_ITEM(fields, i));
-            Py_DECREF(fields);
-            Py_DECREF(m);
-            return NULL;
-        }
-        m->offset[i] = member->offset;
-    }
-    Py_DECREF(fields);
-    return (PyObject *)m;
-}
 
 /* ---- building a driver ----------------------------------------------------------- */
 
@@ -1102,13 +719,13 @@ fail:
 static PyMethodDef module_methods[] = {
     {"make_driver", make_driver, METH_VARARGS,
      "make_driver(names, packed, start, end, rules, meta, lexer) -> Driver"},
-    {"maker", make_maker, METH_O,
+    {"maker", front_make_maker, METH_O,
      "maker(cls) -> f: f(*fields) is a new cls with its slots (cls._fields) set"},
     {NULL, NULL, 0, NULL},
 };
 
 static struct PyModuleDef front_module = {
-    PyModuleDef_HEAD_INIT, "epuckc._front",
+    PyModuleDef_HEAD_INIT, "epuckc.syntax._front",
     "The front end's inner loops in C (see epuckc/syntax/_front.c).", -1, module_methods,
     NULL, NULL, NULL, NULL,
 };
@@ -1116,15 +733,15 @@ static struct PyModuleDef front_module = {
 PyMODINIT_FUNC PyInit__front(void)
 {
     PyObject *m;
-    if (PyType_Ready(&TokenType) < 0 || PyType_Ready(&DriverType) < 0
-            || PyType_Ready(&MakerType) < 0)
+    if (PyType_Ready(&front_token_type) < 0 || PyType_Ready(&DriverType) < 0
+            || PyType_Ready(&front_maker_type) < 0)
         return NULL;
     m = PyModule_Create(&front_module);
     if (m == NULL)
         return NULL;
-    Py_INCREF(&TokenType);
-    if (PyModule_AddObject(m, "Token", (PyObject *)&TokenType) < 0) {
-        Py_DECREF(&TokenType);
+    Py_INCREF(&front_token_type);
+    if (PyModule_AddObject(m, "Token", (PyObject *)&front_token_type) < 0) {
+        Py_DECREF(&front_token_type);
         Py_DECREF(m);
         return NULL;
     }

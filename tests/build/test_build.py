@@ -10,6 +10,7 @@ from pathlib import Path
 
 import pytest
 
+from epuckc.base.resources import RUNTIME_CORE
 from tests.conftest import require_tool
 
 from tests.support.programs import EXAMPLES, REPO, epuckc
@@ -127,8 +128,8 @@ def test_dspic_build_runs_make_with_xc16_from_xc16_dir(tmp_path):
     assert (out / "extern_spin.hex").is_file()
     calls = log.read_text().splitlines()
     compiles = [c for c in calls if " -c " in c]
-    # program, runtime, robot layer, spin.c + the library's 11 C and 5 assembly files
-    assert len(compiles) == 4 + 11 + 5
+    # program, the runtime's files, robot layer, spin.c + the library's 11 C and 5 assembly files
+    assert len(compiles) == 1 + len(RUNTIME_CORE) + 1 + 1 + 11 + 5
     # generated C is -Werror, the user's not
     [program] = [c for c in compiles if c.endswith("-c extern_spin.c -o extern_spin.o")]
     [user] = [c for c in compiles if "user/1_spin.c" in c]

@@ -13,6 +13,7 @@ import os
 import subprocess
 from pathlib import Path
 
+from epuckc.base.resources import RUNTIME_CORE
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
@@ -114,7 +115,7 @@ def build_and_run(text: str, scn: str, tmp_path: Path) -> list:
     exe = tmp_path / "rules"
     subprocess.run([require_tool("cc"), *STRICT, "-O1", "-DMAX_ACTIONS=1", "-DMAX_EVENTS=1",
                     f"-I{RT}", f"-I{RT / 'epuck_api'}", f"-I{RT / 'host'}", str(c_file),
-                    str(RT / "epuckrt.c"), str(RT / "host" / "platform_host.c"),
+                    *(str(RT / name) for name in RUNTIME_CORE), str(RT / "host" / "platform_host.c"),
                     str(RT / "host" / "epuck_stub.c"), "-o", str(exe)], check=True)
     (tmp_path / "rules.scn").write_text(scn)
     env = {k: v for k, v in os.environ.items() if not k.startswith("EPUCK_")}

@@ -9,10 +9,11 @@ from pathlib import Path
 import pytest
 
 from conftest import REPO, require_tool
+from epuckc.base.resources import RUNTIME_CORE
 
 RUNTIME = REPO / "runtime_c"
 PROGRAMS = Path(__file__).resolve().parent / "programs"
-SOURCES = [RUNTIME / "epuckrt.c", RUNTIME / "host" / "platform_host.c",
+SOURCES = [*(RUNTIME / name for name in RUNTIME_CORE), RUNTIME / "host" / "platform_host.c",
            RUNTIME / "host" / "epuck_stub.c"]
 INCLUDES = [f"-I{RUNTIME}", f"-I{RUNTIME / 'epuck_api'}", f"-I{RUNTIME / 'host'}"]
 STRICT = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic"]

@@ -7,6 +7,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+from epuckc.base.resources import RUNTIME_CORE
 import pytest
 
 from conftest import REPO, require_tool
@@ -111,7 +112,7 @@ def test_makefile_honours_cc_and_cflags(tmp_path):
     build_dir = tmp_path / "build"
     make(f"BUILD={build_dir}", f"CC={wrapper}", "CFLAGS=-std=c99 -O0 -DMAX_ACTIONS=2")
     calls = log.read_text()
-    assert "-DMAX_ACTIONS=2" in calls and "epuckrt.c" in calls
+    assert "-DMAX_ACTIONS=2" in calls and all(name in calls for name in RUNTIME_CORE)
     lib = build_dir / "libepuckrt.a"
     assert lib.exists()
     src = tmp_path / "p.c"
@@ -297,3 +298,16 @@ def test_harness_names_the_options_typed_when_run_by_epuckc(tmp_path):
     r = run(exe, tmp_path, time_limit="x", env={"EPUCK_FRONTEND": "epuckc"})
     assert r.returncode == 2 and "--time-limit:" in r.stderr
     assert "EPUCK_" not in r.stderr
+
+
+def test_the_makefile_builds_the_runtime_the_compiler_builds():
+    """runtime_c/Makefile's CORE lists the runtime's sources as
+    epuckc.base.resources.RUNTIME_CORE does (the one list every build and test
+    takes), and every file of the runtime is in it."""
+    makefile = (RUNTIME / "Makefile").read_text()
+    [core] = [line.split("=", 1)[1].split() for line in makefile.splitlines()
+              if line.startswith("CORE =")]
+    assert core == list(RUNTIME_CORE)
+    platform_files = {"platform_robot.c", "check16.c"}
+    top_level = {p.name for p in RUNTIME.glob("*.c")} - platform_files
+    assert top_level == set(RUNTIME_CORE), "a runtime source missing from RUNTIME_CORE"

@@ -3,6 +3,7 @@ reference prints it, the runtime declares every function it names, and the
 codes it cites exist."""
 import re
 
+from epuckc.base.resources import RUNTIME_CORE
 from epuckc.stdlib import table as stdlib
 from epuckc.diagnostics.codes import CODES
 from tests.conftest import REPO
@@ -76,7 +77,7 @@ def test_every_motor_command_is_arbitrated_by_the_runtime():
     the function each compiles to (start_straight -> straight_steps ->
     action_straight_steps) asks motors_refused, under the name the rule file
     used, and nothing else does."""
-    source = (REPO / "runtime_c" / "epuckrt.c").read_text()
+    source = "".join((REPO / "runtime_c" / name).read_text() for name in RUNTIME_CORE)
 
     def body(function: str) -> str:
         alias = re.search(rf"^void {function}\(void \*param\) \{{ (\w+)\(param\); \}}$",

@@ -1,4 +1,4 @@
-"""The C front end (epuckc/syntax/_front.c) against the Python one (lexer.py,
+"""The C front end (epuckc/syntax/_front*.c) against the Python one (lexer.py,
 lalr.py): for every file, either the C front end gives up (and then the
 Python one has something to report) or both give the same program (same
 nodes, fields and spans) and the same diagnostics. Over the corpus, over
@@ -42,7 +42,7 @@ def _front():
             pytest.fail(reason)
         pytest.skip(reason)
     assert not accel.stale(_front.__file__), \
-        "epuckc/syntax/_front.c changed after it was built: run `pip install -e .` again"
+        "a C source of epuckc/syntax/_front*.c changed after it was built: run `pip install -e .` again"
     return _front
 
 
@@ -278,3 +278,27 @@ def test_the_c_maker_takes_only_classes_of_plain_slots():
     for cls in (WithNew, NoSlot, int):
         with pytest.raises(TypeError):
             front.maker(cls)
+
+
+def test_setup_builds_the_files_accel_checks(tmp_path):
+    """setup.py compiles the C front end from the files accel.stale watches,
+    so an edit to any of them (a header too) retires the built module."""
+    import ast as python_ast
+    setup = python_ast.parse((REPO / "setup.py").read_text())
+    lists = {node.targets[0].id: python_ast.literal_eval(node.value) for node in setup.body
+             if isinstance(node, python_ast.Assign) and isinstance(node.targets[0], python_ast.Name)
+             and node.targets[0].id in ("SOURCES", "HEADERS")}
+    assert tuple(lists["SOURCES"]) == accel.SOURCES and tuple(lists["HEADERS"]) == accel.HEADERS
+    on_disk = {p.name for p in (REPO / "epuckc" / "syntax").glob("_front*.[ch]")}
+    assert on_disk == set(accel.SOURCES + accel.HEADERS)
+    # a header newer than the module makes it stale
+    built = tmp_path / "_front.so"
+    built.write_bytes(b"")
+    for name in accel.SOURCES + accel.HEADERS:
+        (tmp_path / name).write_text("")
+    old = built.stat().st_mtime - 10
+    for name in accel.SOURCES + accel.HEADERS:
+        os.utime(tmp_path / name, (old, old))
+    assert not accel.stale(str(built))
+    os.utime(tmp_path / "_front.h", None)
+    assert accel.stale(str(built))

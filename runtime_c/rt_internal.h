@@ -1,0 +1,101 @@
+/*
+ * rt_internal.h - what the runtime's files share and nothing else sees:
+ * the e-puck library's headers, the bit planes of the static tables, and
+ * the state and helpers one concern keeps and another reads.  Every name
+ * here starts with rt_ (or RT_), so none can clash with the user's C that is
+ * linked with the runtime.  epuckrt.h stays the paper's API.
+ */
+#ifndef RT_INTERNAL_H
+#define RT_INTERNAL_H
+
+#include <stddef.h>
+
+#include "epuckrt.h"
+#include "rt_platform.h"
+
+#include "motor_led/e_init_port.h"
+#include "motor_led/advance_one_timer/e_motors.h"
+#include "motor_led/advance_one_timer/e_agenda.h"
+#include "a_d/advance_ad_scan/e_prox.h"
+#include "a_d/advance_ad_scan/e_ad_conv.h"
+#include "a_d/advance_ad_scan/e_micro.h"
+#include "a_d/advance_ad_scan/e_acc.h"
+#include "motor_led/e_led.h"
+#include "motor_led/advance_one_timer/e_remote_control.h"
+#include "codec/e_sound.h"
+#include "utility/utility.h"
+
+/* Bit planes of the static tables: bit k % 16 of word k / 16 for entry k. */
+#define WORD_MASK 0xFFFFu
+#define BIT_OF(k) (1u << ((unsigned)(k) & 15u))
+#define BIT_GET(plane, k) (((plane)[(k) >> 4] & BIT_OF(k)) != 0)
+#define BIT_SET(plane, k) ((plane)[(k) >> 4] |= BIT_OF(k))
+#define BIT_CLEAR(plane, k) ((plane)[(k) >> 4] &= ~BIT_OF(k))
+
+/* Extension state of each event of the arrays, kept beside the paper's
+ * struct: its priority (set_event_priority) and mode (set_event_mode, 0:
+ * none).  A table event's are in its rt_event. */
+struct rt_event_ext {
+    int priority;
+    int mode;
+};
+
+/* Motion: at most one at a time.  Progress is measured from the 16-bit step
+ * counters at each poll and accumulated in long. */
+enum { WATCH_BOTH, WATCH_LEFT, WATCH_RIGHT };
+struct rt_motion {
+    int active;     /* 1 from its start until its target is reached */
+    int watch;      /* which wheel's progress ends it (BOTH: the larger) */
+    long target;    /* steps, >= 0 */
+    long left;      /* signed steps turned since the start */
+    long right;
+    int owner;      /* event whose action started it (-1: none); the
+                       motors are its until the motion ends */
+};
+
+/* ---- shared state and helpers, by the file that defines them ---- */
+
+/* epuckrt.c: registry, static tables, clock, main loop */
+extern int rt_s_events;   /* the static table's events: ids 0..rt_s_events-1 */
+extern struct rt_event_ext rt_event_ext[MAX_EVENTS];
+extern event rt_events[MAX_EVENTS];
+extern int rt_n_events;
+extern const rt_program *rt_prog;   /* NULL: none registered */
+extern unsigned *rt_ev_armed;   /* the event is armed (valid_flag) */
+extern unsigned *rt_ev_latch;   /* compiled condition at its last poll */
+extern unsigned *rt_ev_dead;   /* cancel_event: not re-armed by enter_mode */
+int rt_event_priority(int id);
+int rt_event_mode(int id);
+extern int rt_initialised;
+extern int rt_remote_started;   /* e_init_remote_control() has run */
+extern int rt_exit_requested;   /* set by exit_main, checked by mainloop */
+extern int rt_current_action_id;   /* the action being run by mainloop */
+extern int rt_current_event_id;   /* the event whose action runs (-1: none) */
+
+/* rt_motion.c: motion and the sequencer */
+extern struct rt_motion rt_motion;
+extern int rt_last_left;   /* raw counters at the previous poll */
+extern int rt_last_right;
+extern int rt_seen_moving;
+extern int rt_stop_sample;   /* the stop_motor condition of this poll */
+extern const param_sequence *rt_seq;   /* NULL: none */
+extern int rt_seq_event_id;   /* the event whose action started it */
+extern int rt_seq_waiting;   /* a step's motion is under way */
+extern unsigned rt_seq_generation;   /* changes when a sequence replaces one */
+void rt_wheels(int left, int right);
+void rt_motion_update(void);
+void rt_sequence_advance(void);
+
+/* rt_sensors.c: standard events, sensors and devices */
+extern int rt_sensors_on;
+extern int rt_prox[8];
+extern unsigned rt_prox_valid;
+void rt_read_prox(unsigned mask);
+void rt_accel_sample(void);
+
+/* rt_modes.c: modes */
+extern int rt_current_mode;
+extern int rt_mode_entered_in_poll;
+extern int rt_mode_trace_pending;   /* enter_mode before mainloop */
+
+#endif

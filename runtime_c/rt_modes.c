@@ -1,0 +1,82 @@
+/*
+ * rt_modes.c - modes (extension): entering a mode, what it re-arms and
+ * disarms, and the `on enter` event.  Part of the runtime behind epuckrt.h;
+ * see epuckrt.c.
+ */
+#include "rt_internal.h"
+
+/* Modes: the current one (0: none), entries so far, and whether a mode was
+ * entered during this poll's walk (then no mode's event fires until the
+ * next poll). */
+int rt_current_mode;
+int rt_mode_entered_in_poll;
+int rt_mode_trace_pending;      /* enter_mode before mainloop */
+
+/* ---- extension: modes ---------------------------------------------------------- */
+
+void enter_mode(int mode)
+{
+    int i, left = rt_current_mode;
+
+    if (mode <= 0)
+        return;
+    rt_current_mode = mode;
+    /* re-armed as at registration; cancel_event's are gone for good */
+    for (i = 0; i < rt_s_events; i++) {
+        const rt_event *e = &rt_prog->events[i];
+        if (e->mode == mode && !BIT_GET(rt_ev_dead, i)) {
+            BIT_SET(rt_ev_armed, i);
+            BIT_CLEAR(rt_ev_latch, i);
+            if (e->memory != RT_NO_MEMORY)
+                rt_prog->memory[e->memory] = 0;
+        }
+    }
+    for (i = 0; i < rt_n_events; i++) {
+        if (rt_event_ext[i].mode == mode && rt_events[i].event_function != NULL) {
+            rt_events[i].valid_flag = 1;
+            rt_events[i].status.occurred = 0;
+            rt_events[i].status.memory = 0;
+        }
+    }
+    if (!rt_initialised) {
+        rt_mode_trace_pending = 1;     /* traced when mainloop starts */
+        return;
+    }
+    rt_mode_entered_in_poll = 1;
+    rt_trace_mode(mode);
+    if (left == 0)
+        return;
+    /* what the rules of the mode left were doing with the motors ends */
+    if (rt_seq != NULL && rt_seq_event_id >= 0 && rt_event_mode(rt_seq_event_id) == left) {
+        rt_seq_generation++;
+        rt_seq = NULL;
+        rt_seq_waiting = 0;
+    }
+    if (rt_motion.active && rt_motion.owner >= 0 && rt_event_mode(rt_motion.owner) == left) {
+        /* stopped without a stop_motor event: the motion did not end, its
+         * mode did (the new mode's stop_motor rules must not take it for
+         * the end of a motion of theirs) */
+        rt_motion.active = 0;
+        rt_seen_moving = 0;
+        rt_wheels(0, 0);
+    }
+}
+
+void action_enter_mode(void *param)
+{
+    const param_enter_mode *p = (const param_enter_mode *)param;
+
+    if (p != NULL)
+        enter_mode(p->mode);
+}
+
+/* Occurs at its first poll after it was (re-)armed: mode entries reset
+ * status->memory to 0. */
+void event_enter_mode(void *param, void *status)
+{
+    event_status *st = (event_status *)status;
+
+    (void)param;
+    st->occurred = st->memory == 0;
+    st->memory = 1;
+}

@@ -1,0 +1,373 @@
+/*
+ * rt_motion.c - motion control (start_straight, start_curve, their exact-step
+ * forms, stop_motor, the robot's geometry, motor arbitration under
+ * priorities) and the sequencer (`then`).  Part of the runtime behind
+ * epuckrt.h; see epuckrt.c.
+ */
+#include "rt_internal.h"
+
+/* The motion in progress (rt_internal.h). */
+struct rt_motion rt_motion = { 0, 0, 0, 0, 0, -1 };
+int rt_last_left;           /* raw counters at the previous poll */
+int rt_last_right;
+static unsigned motion_starts;  /* incremented at every motion start */
+
+/* stop_motor event latch: see event_stop_motor. */
+int rt_seen_moving;
+int rt_stop_sample;         /* the stop_motor condition of this poll */
+
+/* Sequencer: the sequence in progress, if any. */
+const param_sequence *rt_seq;   /* NULL: none */
+static int seq_next;                /* index of the next step to run */
+static int seq_action_id;           /* id used in the trace of its steps */
+int rt_seq_event_id;            /* the event whose action started it */
+int rt_seq_waiting;             /* a step's motion is under way */
+unsigned rt_seq_generation;     /* changes when a sequence replaces one */
+static int in_step;                 /* > 0 while a step's function runs */
+
+/* ---- small arithmetic helpers ------------------------------------------- */
+
+static long abs_l(long v)
+{
+    return v < 0 ? -v : v;
+}
+
+static int clamp_speed(long s)
+{
+    if (s > EPUCK_MAX_SPEED)
+        return EPUCK_MAX_SPEED;
+    if (s < -EPUCK_MAX_SPEED)
+        return -EPUCK_MAX_SPEED;
+    return (int)s;
+}
+
+/* n / d rounded half away from zero; d > 0. */
+static long long div_round(long long n, long long d)
+{
+    if (n >= 0)
+        return (n + d / 2) / d;
+    return -((-n + d / 2) / d);
+}
+
+/* Signed progress of a 16-bit wrapping counter between two reads, portable
+ * to any int width >= 16 (no signed overflow). */
+static long wheel_delta(int now, int last)
+{
+    unsigned d = ((unsigned)now - (unsigned)last) & 0xFFFFu;
+    return d >= 0x8000u ? (long)d - 0x10000L : (long)d;
+}
+
+/* ---- motion control -------------------------------------------------------- */
+
+static void sequence_outside_command(void);
+
+/* Motor arbitration: 1 when the running action may not command the motors
+ * because the motion in progress belongs to an event of higher priority
+ * (the command is then traced as suppressed and not carried out).  Commands
+ * from outside any event's action (main, before mainloop) always pass. */
+static int motors_refused(const char *command)
+{
+    int owner = rt_motion.owner, me = rt_current_event_id;
+
+    if (!rt_motion.active || owner < 0 || me < 0 || owner == me)
+        return 0;
+    if (rt_event_priority(me) >= rt_event_priority(owner))
+        return 0;
+    rt_trace_suppressed(me, rt_event_priority(me), owner, rt_event_priority(owner),
+                        command);
+    return 1;
+}
+
+void rt_wheels(int left, int right)
+{
+    e_set_speed_left(left);
+    e_set_speed_right(right);
+}
+
+/* Start a motion (replacing the current one): wheel speeds, and the number
+ * of steps of the watched wheel after which it ends. */
+static void motion_begin(int left, int right, long target, int watch)
+{
+    int watched_speed;
+
+    sequence_outside_command();
+    if (watch == WATCH_LEFT)
+        watched_speed = left;
+    else if (watch == WATCH_RIGHT)
+        watched_speed = right;
+    else
+        watched_speed = left != 0 ? left : right;
+    if (watched_speed == 0 || target <= 0) {
+        /* nothing to drive: the motion ends at the next poll */
+        target = 0;
+        left = 0;
+        right = 0;
+    }
+    rt_motion.active = 1;
+    rt_motion.owner = rt_current_event_id;
+    rt_motion.watch = watch;
+    rt_motion.target = target;
+    rt_motion.left = 0;
+    rt_motion.right = 0;
+    rt_wheels(left, right);
+    /* steps made since this poll's measurement belong to the replaced motion */
+    rt_last_left = e_get_steps_left();
+    rt_last_right = e_get_steps_right();
+    rt_seen_moving = 1;
+    motion_starts++;
+}
+
+/* Phase (2) of a poll: measure the wheels, end the motion at its target. */
+void rt_motion_update(void)
+{
+    int l = e_get_steps_left();
+    int r = e_get_steps_right();
+    long dl = wheel_delta(l, rt_last_left);
+    long dr = wheel_delta(r, rt_last_right);
+    long progress;
+
+    rt_last_left = l;
+    rt_last_right = r;
+    if (!rt_motion.active)
+        return;
+    rt_motion.left += dl;
+    rt_motion.right += dr;
+    if (rt_motion.watch == WATCH_LEFT) {
+        progress = abs_l(rt_motion.left);
+    } else if (rt_motion.watch == WATCH_RIGHT) {
+        progress = abs_l(rt_motion.right);
+    } else {
+        long al = abs_l(rt_motion.left), ar = abs_l(rt_motion.right);
+        progress = al > ar ? al : ar;
+    }
+    if (progress >= rt_motion.target) {
+        rt_motion.active = 0;
+        rt_wheels(0, 0);
+    }
+}
+
+/* The geometry that converts millimetres and degrees (set_robot_geometry). */
+static long geo_circumference_um = EPUCK_WHEEL_CIRCUMFERENCE_UM;
+static long geo_axle_um = EPUCK_AXLE_UM;
+static long geo_steps_per_rev = EPUCK_STEPS_PER_REV;
+
+void set_robot_geometry(long wheel_circumference_um, long axle_um, long steps_per_rev)
+{
+    if (wheel_circumference_um <= 0 || wheel_circumference_um > EPUCK_MAX_GEOMETRY_UM
+        || axle_um <= 0 || axle_um > EPUCK_MAX_GEOMETRY_UM
+        || steps_per_rev <= 0 || steps_per_rev > EPUCK_MAX_STEPS_PER_REV)
+        return;
+    geo_circumference_um = wheel_circumference_um;
+    geo_axle_um = axle_um;
+    geo_steps_per_rev = steps_per_rev;
+    rt_geometry(wheel_circumference_um, axle_um, steps_per_rev);
+}
+
+#define LONG_MAX_STEPS 0x7FFFFFFFL
+
+/* a * b / d rounded half up, for a >= 0, b >= 0, d > 0, saturated to a
+ * long.  Computed as (a / d) * b + (a % d) * b / d so that no product passes
+ * 2^63 when b and d are within the geometry limits (b, d <= ~4 * 10^12 and
+ * (d - 1) * b < 2^63). */
+static long muldiv_round(long long a, long long b, long long d)
+{
+    long long q = a / d, r = a % d;
+    long long whole, rest;
+
+    if (q != 0 && b > LONG_MAX_STEPS / q)
+        return LONG_MAX_STEPS;
+    whole = q * b;
+    rest = (r * b + d / 2) / d;
+    if (whole > LONG_MAX_STEPS - rest)
+        return LONG_MAX_STEPS;
+    return (long)(whole + rest);
+}
+
+/* |distance| mm -> steps with the robot's geometry. */
+static long mm_to_steps(int mm)
+{
+    long long um = 1000LL * (mm < 0 ? -(long long)mm : (long long)mm);
+    return muldiv_round(um, geo_steps_per_rev, geo_circumference_um);
+}
+
+/* Drive both wheels at |speed| for `steps` (>= 0), backwards when asked. */
+static void straight(int speed, long steps, int backwards)
+{
+    int s = clamp_speed(abs_l(speed));
+    motion_begin(backwards ? -s : s, backwards ? -s : s, steps, WATCH_BOTH);
+}
+
+void action_start_straight(void *param)
+{
+    const param_start_straight *p = (const param_start_straight *)param;
+
+    if (p == NULL || motors_refused("start_straight"))
+        return;
+    straight(p->speed, mm_to_steps(p->distance), (p->speed < 0) != (p->distance < 0));
+}
+
+void action_straight_steps(void *param)
+{
+    const param_straight_steps *p = (const param_straight_steps *)param;
+
+    /* traced under the rule file's name of the motion it compiles */
+    if (p == NULL || motors_refused("start_straight"))
+        return;
+    straight(p->speed, abs_l(p->steps), (p->speed < 0) != (p->steps < 0));
+}
+
+void action_start_curve(void *param)
+{
+    const param_start_curve *p = (const param_start_curve *)param;
+    int outer, inner;
+    long radius, degrees;
+    long long two_r, arc;       /* um; um * degrees * 355 */
+    long outer_steps;
+
+    if (p == NULL || motors_refused("start_curve"))
+        return;
+    outer = clamp_speed(p->speed);
+    /* within the robot's 16-bit int, so that a host with a wider int
+     * computes what the robot would, without overflow */
+    radius = abs_l(p->radius) > 32767L ? 32767L : abs_l(p->radius);
+    degrees = abs_l(p->degrees) > 32767L ? 32767L : abs_l(p->degrees);
+    two_r = 2LL * 1000LL * radius;
+    /* outer arc = (r + axle/2) * |degrees| * pi / 180, pi = 355/113;
+     * arc <= (6.6e7 + 1e8) * 32767 * 355 < 2^61 */
+    arc = (two_r + geo_axle_um) * degrees * 355LL;
+    outer_steps = muldiv_round(arc, geo_steps_per_rev, 360LL * 113LL * geo_circumference_um);
+    inner = clamp_speed((long)div_round((long long)outer * (two_r - geo_axle_um),
+                                        two_r + geo_axle_um));
+    if (p->degrees >= 0)        /* left: the right wheel is outer */
+        motion_begin(inner, outer, outer_steps, WATCH_RIGHT);
+    else
+        motion_begin(outer, inner, outer_steps, WATCH_LEFT);
+}
+
+void action_curve_steps(void *param)
+{
+    const param_curve_steps *p = (const param_curve_steps *)param;
+    int left, right;
+    long al, ar;
+
+    /* traced under the rule file's name of the motion it compiles */
+    if (p == NULL || motors_refused("start_curve"))
+        return;
+    left = clamp_speed(p->left_speed);
+    right = clamp_speed(p->right_speed);
+    al = abs_l(left);
+    ar = abs_l(right);
+    motion_begin(left, right, abs_l(p->steps),
+                 al > ar ? WATCH_LEFT : ar > al ? WATCH_RIGHT : WATCH_BOTH);
+}
+
+void action_stop_motor(void *param)
+{
+    (void)param;
+    if (motors_refused("stop_motor"))
+        return;
+    sequence_outside_command();
+    rt_motion.active = 0;
+    rt_wheels(0, 0);
+}
+
+/* ---- sequencer -------------------------------------------------------------- */
+
+/* A motion start or stop_motor from outside a step takes the wheels from a
+ * waiting sequence: the sequence is abandoned. */
+static void sequence_outside_command(void)
+{
+    if (rt_seq != NULL && in_step == 0) {
+        rt_seq = NULL;
+        rt_seq_waiting = 0;
+    }
+}
+
+/* Motor arbitration of run_sequence: a sequence in progress belongs to the
+ * event that started it; one of lower priority may not replace it (1: the
+ * new sequence is suppressed and traced).  Otherwise the new sequence runs,
+ * and each of its steps' motor commands is arbitrated on its own. */
+static int sequence_refused(void)
+{
+    int owner = rt_seq_event_id, me = rt_current_event_id;
+
+    if (rt_seq == NULL || owner < 0 || me < 0 || owner == me)
+        return 0;
+    if (rt_event_priority(me) >= rt_event_priority(owner))
+        return 0;
+    rt_trace_suppressed(me, rt_event_priority(me), owner, rt_event_priority(owner),
+                        "run_sequence");
+    return 1;
+}
+
+/* Run steps from seq_next on, until one starts a motion (then wait for it
+ * to end) or the sequence is over. */
+static void sequence_run_steps(void)
+{
+    unsigned generation = rt_seq_generation;
+
+    while (rt_seq != NULL && seq_next < rt_seq->count) {
+        const action *step = &rt_seq->steps[seq_next];
+        unsigned starts_before = motion_starts;
+        int index = seq_next++;
+
+        rt_trace_action(seq_action_id, index, rt_seq->count);
+        if (step->action_function != NULL) {
+            int previous = rt_current_action_id, previous_event = rt_current_event_id;
+            /* a step that runs a sequence names it after this one; its
+             * motor commands are those of the event that started it */
+            rt_current_action_id = seq_action_id;
+            rt_current_event_id = rt_seq_event_id;
+            in_step++;
+            step->action_function(step->action_param);
+            in_step--;
+            rt_current_action_id = previous;
+            rt_current_event_id = previous_event;
+        }
+        if (generation != rt_seq_generation || rt_seq == NULL)
+            return;     /* the step ran a sequence that replaced this one */
+        if (rt_exit_requested) {
+            rt_seq = NULL;
+            return;
+        }
+        if (motion_starts != starts_before && rt_motion.active) {
+            rt_seq_waiting = 1;
+            return;
+        }
+    }
+    rt_seq = NULL;
+}
+
+void action_run_sequence(void *param)
+{
+    const param_sequence *p = (const param_sequence *)param;
+
+    if (sequence_refused())
+        return;
+    rt_seq_generation++;
+    rt_seq = NULL;
+    rt_seq_waiting = 0;
+    if (p == NULL || p->steps == NULL || p->count <= 0)
+        return;
+    rt_seq = p;
+    seq_next = 0;
+    seq_action_id = rt_current_action_id;
+    rt_seq_event_id = rt_current_event_id;
+    if (in_step > 0) {
+        /* run by a step of a sequence: it starts at the next poll (once the
+         * step's motion, if any, has ended), so a sequence that runs itself
+         * loops once per poll instead of recursing */
+        rt_seq_waiting = 1;
+        return;
+    }
+    sequence_run_steps();
+}
+
+/* Phase (3) of a poll: continue a sequence whose step's motion has ended. */
+void rt_sequence_advance(void)
+{
+    if (rt_seq != NULL && rt_seq_waiting && !rt_motion.active) {
+        rt_seq_waiting = 0;
+        sequence_run_steps();
+    }
+}
