@@ -119,6 +119,7 @@ static void rt_init(void)
 int rt_exit_requested;      /* set by exit_main, checked by mainloop */
 int rt_current_action_id = -1;  /* the action being run by mainloop */
 int rt_current_event_id = -1;   /* the event whose action runs (-1: none) */
+int rt_current_rearmed;         /* its action entered its mode again: it stays armed */
 
 /* ---- paper table 1 -------------------------------------------------------- */
 
@@ -389,13 +390,17 @@ static void run_action(int action_id)
 
 /* A table event occurred: trace it, run its action, disarm it unless it
  * repeats. */
+/* A one-shot event is disarmed after its action, unless the action entered
+ * the event's mode again: entering a mode re-arms all of its events, the
+ * one whose action entered it too (rt_current_rearmed, set by enter_mode). */
 static void fire_static(int id)
 {
     rt_trace_event(id);
     rt_current_event_id = id;
+    rt_current_rearmed = 0;
     run_action(rt_prog->events[id].action_id);
     rt_current_event_id = -1;
-    if (!BIT_GET(ev_repeat, id))
+    if (!BIT_GET(ev_repeat, id) && !rt_current_rearmed)
         BIT_CLEAR(rt_ev_armed, id);
 }
 
@@ -482,9 +487,10 @@ static void fire_dynamic(int i)
 
     rt_trace_event(rt_s_events + i);
     rt_current_event_id = rt_s_events + i;
+    rt_current_rearmed = 0;
     run_action(e->action_id);
     rt_current_event_id = -1;
-    if (!e->repeat_flag)
+    if (!e->repeat_flag && !rt_current_rearmed)
         e->valid_flag = 0;
 }
 
@@ -606,6 +612,37 @@ static int poll_ordered(void)
     }
 }
 
+/* The poll after a mode was entered starts with the mode's `on enter`
+ * events, whatever their priority: the mode's other rules then see what
+ * its entry set up (a timer set, a LED lit).  In id order (the table's,
+ * then the arrays'); an `on enter` that enters a mode again ends the walk
+ * of this poll.  Returns 1 when exit_main ran. */
+static int poll_enter_events(void)
+{
+    int i, mode = rt_current_mode;
+
+    rt_mode_entry_pending = 0;
+    for (i = 0; i < rt_s_events && !rt_mode_entered_in_poll; i++) {
+        if (rt_prog->events[i].event_function == event_enter_mode && static_armed(i)) {
+            poll_static_one(i);
+            if (rt_exit_requested)
+                return 1;
+        }
+    }
+    for (i = 0; i < rt_n_events && !rt_mode_entered_in_poll; i++) {
+        if (rt_events[i].event_function == event_enter_mode && dynamic_armed(i)
+                && rt_event_ext[i].mode == mode) {
+            rt_events[i].status.occurred = 0;
+            rt_events[i].event_function(rt_events[i].event_param, &rt_events[i].status);
+            if (rt_events[i].status.occurred)
+                fire_dynamic(i);
+            if (rt_exit_requested)
+                return 1;
+        }
+    }
+    return 0;
+}
+
 /* Phase (5) with priorities or modes: the armed events (in no mode or in
  * the current one), highest priority first, in id order within a priority
  * (the table's, then the arrays'); the levels are re-read after each, since
@@ -616,6 +653,8 @@ static int poll_ranked(void)
     int i, level = 0, more;
 
     rt_mode_entered_in_poll = 0;
+    if (rt_mode_entry_pending && poll_enter_events())
+        return 1;
     if (rt_prog != NULL && rt_prog->order != NULL)
         return poll_ordered();
     more = next_level(0, 0, &level);

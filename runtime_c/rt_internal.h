@@ -71,6 +71,7 @@ extern int rt_remote_started;   /* e_init_remote_control() has run */
 extern int rt_exit_requested;   /* set by exit_main, checked by mainloop */
 extern int rt_current_action_id;   /* the action being run by mainloop */
 extern int rt_current_event_id;   /* the event whose action runs (-1: none) */
+extern int rt_current_rearmed;   /* its action entered its mode again: it stays armed */
 
 /* rt_motion.c: motion and the sequencer */
 extern struct rt_motion rt_motion;
@@ -96,6 +97,7 @@ void rt_accel_sample(void);
 /* rt_modes.c: modes */
 extern int rt_current_mode;
 extern int rt_mode_entered_in_poll;
+extern int rt_mode_entry_pending;   /* a mode was entered: its `on enter` events go first */
 extern int rt_mode_trace_pending;   /* enter_mode before mainloop */
 
 #endif

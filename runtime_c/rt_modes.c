@@ -10,6 +10,7 @@
  * next poll). */
 int rt_current_mode;
 int rt_mode_entered_in_poll;
+int rt_mode_entry_pending;           /* its `on enter` events go first */
 int rt_mode_trace_pending;      /* enter_mode before mainloop */
 
 /* ---- extension: modes ---------------------------------------------------------- */
@@ -38,6 +39,9 @@ void enter_mode(int mode)
             rt_events[i].status.memory = 0;
         }
     }
+    if (rt_current_event_id >= 0 && rt_event_mode(rt_current_event_id) == mode)
+        rt_current_rearmed = 1;     /* the rule entering its own mode again */
+    rt_mode_entry_pending = 1;
     if (!rt_initialised) {
         rt_mode_trace_pending = 1;     /* traced when mainloop starts */
         return;

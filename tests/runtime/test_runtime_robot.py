@@ -113,19 +113,34 @@ def test_static_tables_with_priorities_and_modes(tmp_path, defines):
     assert r.stdout.splitlines() == ["bad order -1 -1", "negative mode -1", "register 0",
                                      "dynamic 11"]
     assert [(x["id"], x["t_ms"]) for x in r.records("event")] == [
-        # the dynamic event of priority 5 first; the mode-1 entry event
-        # enters mode 2: no mode's event fires in the rest of the poll
-        (11, 1), (0, 1), (3, 1),
-        # mode 2: priority 2 (7, 8) before 4, whose action cancels 7 and disarms 8
-        (7, 2), (8, 2), (4, 2),
+        # the poll after mode 1's entry starts with its entry event, which
+        # enters mode 2: no mode's event fires in the rest of the poll; then
+        # the dynamic event of priority 5, then priority 0
+        (3, 1), (11, 1), (0, 1),
+        # mode 2: its entry event 4 first, whatever the priorities: its action
+        # cancels 7 and disarms 8 before the walk reaches them (priority 2)
+        (4, 2),
         # ir0 rises: priorities 3, 2, 1 (6 enters mode 1), then 0; 1 stays at
         # priority 0 (set_event_priority ignored the table id)
         (5, 5), (2, 5), (6, 5), (1, 5),
         (3, 6),                 # mode 1 again: its entry event re-armed
-        # mode 2 again: 5 and 6 fire though ir0 stayed high (latches reset),
-        # 8 re-armed, 7 cancelled for good; 4 not polled after 6 entered mode 1
-        (5, 7), (8, 7), (6, 7),
+        # mode 2 again: 4 re-armed and first; 5 and 6 fire though ir0 stayed
+        # high (latches reset), 8 re-armed, 7 cancelled for good
+        (4, 7), (5, 7), (8, 7), (6, 7),
         (3, 8),                 # to_2 enters no more
         (10, 21)]               # event 9 (mode 3) never
     assert [(x["t_ms"], x["name"]) for x in r.records("mode")] == [
         (0, "one"), (1, "two"), (5, "one"), (6, "two"), (7, "one")]
+
+
+def test_a_mode_entered_again_rearms_its_rules_and_on_enter_goes_first(tmp_path):
+    r = build_and_run(tmp_path, "mode_reentry.c")
+    assert r.returncode == 0, r.stderr
+    # `A again` is one-shot, and its own `enter A` re-arms it each time
+    assert r.times("event", "A again") == [51, 102, 153]
+    assert r.times("event", "A enter") == [1, 52, 103]
+    # at B's entry the timer A set at 103 has run 50 ms: B's priority-1
+    # rule (20 ms) would fire at once if it were polled before `on enter`
+    assert r.times("event", "B enter") == [154]
+    assert r.times("event", "B early") == [174]
+    assert r.trace[-1]["kind"] == "exit" and r.trace[-1]["t_ms"] == 174
