@@ -122,14 +122,19 @@ def _fmt_parser(sub):
     p = sub.add_parser("fmt", help="lay rule files out in the one canonical layout",
                        description="Rewrite rule files (or the .epk files under a folder) "
                                    "in place, in the canonical layout (docs/formatting.md); "
-                                   "`-` reads standard input and writes standard output. "
-                                   "Exit status: 0 done, 1 syntax errors (nothing is written) "
+                                   "`-` reads standard input and writes standard output, the "
+                                   "text unchanged when it has syntax errors (an editor's filter "
+                                   "keeps it). Exit status: 0 done, 1 syntax errors (nothing is "
+                                   "written) "
                                    "or, with --check, files that would change, 2 I/O error.")
     p.add_argument("files", nargs="+", metavar="FILE")
     p.add_argument("--check", action="store_true",
                    help="write nothing; name the files that would change and exit 1 if any")
     p.add_argument("--diff", action="store_true",
                    help="write nothing; print a unified diff of the changes")
+    p.add_argument("--errors", action="store_true",
+                   help="with `-`: also print the diagnostics of a text that cannot be "
+                        "formatted on stderr (it is always given back unchanged on stdout)")
     p.set_defaults(run=cmd_fmt)
 
 

@@ -90,7 +90,7 @@ def cmd_explain(args) -> int:
 def cmd_fmt(args) -> int:
     from .fmt import run
     return run(args.files, check=args.check, diff=args.diff,
-               colour=_colour_wanted(sys.stderr))
+               colour=_colour_wanted(sys.stderr), errors=args.errors)
 
 
 def cmd_lsp(args) -> int:

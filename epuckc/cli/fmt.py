@@ -1,5 +1,13 @@
-"""`epuckc fmt [--check] [--diff] FILE|DIR|-`: format files in place, or
-standard input to standard output; the layout itself is ide/fmt.py."""
+"""`epuckc fmt [--check] [--diff] [--errors] FILE|DIR|-`: format files in
+place, or standard input to standard output; the layout itself is
+ide/fmt.py.
+
+Standard input is an editor's filter (Vim's `gq` with `formatprg=epuckc fmt
+-` replaces the lines with everything the command prints, stderr included):
+a text that cannot be formatted comes back unchanged on stdout, with exit
+status 1, and its diagnostics go to stderr only with `--errors`. Files
+named on the command line are never written when they have errors, and
+their diagnostics are always shown."""
 from __future__ import annotations
 
 import sys
@@ -23,24 +31,28 @@ def _targets(names: list) -> list:
 
 
 def _read(name: str) -> tuple:
-    """(text, E004 diagnostic or None) of a file or of standard input."""
+    """(text, E004 diagnostic or None, the bytes read from standard input or
+    None) of a file or of standard input."""
+    raw = None
     if name == "-":
-        source, problem = SourceFile.from_bytes(sys.stdin.buffer.read(), "<stdin>")
+        raw = sys.stdin.buffer.read()
+        source, problem = SourceFile.from_bytes(raw, "<stdin>")
     else:
         source, problem = SourceFile.from_path(Path(name), name)
     if problem is None:
-        return source, None
+        return source, None, raw
     offset, message = problem
     diags = Collector(source)
     diags.error("E004", source.span(offset, offset), message,
                 help="save the file as UTF-8 text; rule files are plain text (.epk)")
-    return source, diags.items
+    return source, diags.items, raw
 
 
-def run(names: list, check: bool = False, diff: bool = False, colour: bool = False) -> int:
+def run(names: list, check: bool = False, diff: bool = False, colour: bool = False,
+        errors: bool = False) -> int:
     """`epuckc fmt`: 0 when done (or, with --check, nothing would change),
     1 when a file has syntax errors or would change, 2 when one cannot be
-    read or written."""
+    read or written. `errors`: show standard input's diagnostics too."""
     import difflib
 
     from ..base.output import OutputError
@@ -51,7 +63,7 @@ def run(names: list, check: bool = False, diff: bool = False, colour: bool = Fal
     for name in _targets(names):
         shown = "<stdin>" if name == "-" else name
         try:
-            source, problem = _read(name)
+            source, problem, raw = _read(name)
         except OSError as exc:
             print(f"epuckc: error: cannot read {name}: {exc.strerror or exc}", file=sys.stderr)
             status = max(status, 2)
@@ -61,9 +73,14 @@ def run(names: list, check: bool = False, diff: bool = False, colour: bool = Fal
                 raise FormatError(problem)
             formatted = format_text(source.text, shown)
         except FormatError as exc:
+            status = max(status, 1)
+            if name == "-" and not check and not diff:
+                sys.stdout.flush()
+                sys.stdout.buffer.write(raw)        # the filter gives the text back
+                if not errors:
+                    continue
             report.sources[shown] = source
             report.extend(exc.diagnostics)
-            status = max(status, 1)
             continue
         original = source.text
         if name == "-" and not check and not diff:

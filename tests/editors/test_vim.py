@@ -173,3 +173,33 @@ def test_gq_formats_with_epuckc_fmt(tmp_path):
     vim("-c", "normal gggqG", "-c", "wq", "prog.epk", cwd=tmp_path)
     assert (tmp_path / "prog.epk").read_text() == (
         "const X = 300 steps/s\non immediate do start_straight(X, 1 cm)\n")
+
+
+def nvim(*args, cwd=None, timeout=120):
+    exe = require_tool("nvim")
+    return subprocess.run([exe, "--headless", "-u", "NONE", "-N", "--cmd", f"set rtp^={VIM_DIR}",
+                           "--cmd", "filetype plugin on", *args],
+                          cwd=cwd, capture_output=True, text=True, timeout=timeout,
+                          stdin=subprocess.DEVNULL)
+
+
+BROKEN = ("# a rule file with a mistake in it\n"
+          "const  X=300steps/s\n"
+          "on immediate do start_straight(X,1cm\n"
+          "on stop_motor do exit_main\n")
+
+
+@pytest.mark.parametrize("editor", [vim, nvim], ids=["vim", "neovim"])
+def test_gq_keeps_a_buffer_that_cannot_be_formatted(tmp_path, editor):
+    """`gq` pipes the lines through `epuckc fmt -`, and the editor replaces
+    them with what it prints, stderr included: a text with a syntax error
+    must come back as it was, not as the error message."""
+    require_tool("epuckc")
+    (tmp_path / "prog.epk").write_text(BROKEN)
+    editor("-c", "normal gggqG", "-c", "wq", "prog.epk", cwd=tmp_path)
+    assert (tmp_path / "prog.epk").read_text() == BROKEN
+    # and a good file is formatted by the same editor
+    (tmp_path / "good.epk").write_text("const  X=300steps/s\non immediate do start_straight(X,1cm)\n")
+    editor("-c", "normal gggqG", "-c", "wq", "good.epk", cwd=tmp_path)
+    assert (tmp_path / "good.epk").read_text() == (
+        "const X = 300 steps/s\non immediate do start_straight(X, 1 cm)\n")

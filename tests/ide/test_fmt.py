@@ -484,8 +484,13 @@ def _stdin(args, data: bytes, cwd):
 def test_standard_input_to_standard_output(work):
     result = _stdin(["-"], MESSY.encode(), work)
     assert (result.returncode, result.stdout, result.stderr) == (0, TIDY.encode(), b"")
-    result = _stdin(["-"], b"on immediate do\n", work)
-    assert result.returncode == 1 and result.stdout == b""
+    # a text with errors comes back unchanged (an editor's filter keeps
+    # it), byte for byte; its diagnostics only when asked
+    broken = b"on immediate do\r\n\xef\xbb\xbf  # caf\xc3\xa9\n\x00\n"
+    result = _stdin(["-"], broken, work)
+    assert (result.returncode, result.stdout, result.stderr) == (1, broken, b"")
+    result = _stdin(["--errors", "-"], b"on immediate do\n", work)
+    assert result.returncode == 1 and result.stdout == b"on immediate do\n"
     assert result.stderr.startswith(b"<stdin>:1:14: error[E001]")
     result = _stdin(["--check", "-"], MESSY.encode(), work)
     assert (result.returncode, result.stdout) == (1, b"would reformat <stdin>\n")
