@@ -59,13 +59,19 @@ class SourceFile:
         try:
             text = data.decode("utf-8")
         except UnicodeDecodeError as exc:
-            good = data[: exc.start].decode("utf-8")
-            return cls(name, good), (len(good), "this file is not UTF-8 text: "
+            good = cls(name, data[: exc.start].decode("utf-8"))
+            at = len(good.text)
+            return good, (at, at, "this file is not UTF-8 text: "
                                      f"byte 0x{data[exc.start]:02x} cannot be decoded")
         if nul >= 0:
-            offset = len(data[:nul].decode("utf-8"))
-            return cls(name, text[:offset]), (offset, "this file contains a NUL byte: "
-                                              "it looks like a binary file, not a rule file")
+            # The file is kept to the end of the NUL's line, the NUL in it, so
+            # that the diagnostic shows the line and points at the byte.
+            kept = cls(name, text)         # line ends made `\n` (offsets move)
+            offset = len(cls(name, data[:nul].decode("utf-8")).text)
+            line_end = kept.text.find("\n", offset)
+            kept = kept if line_end < 0 else cls(name, kept.text[:line_end])
+            return kept, (offset, offset + 1, "this file contains a NUL byte (shown "
+                                     "`\\0`): it looks like a binary file, not a rule file")
         return cls(name, text), None
 
     def position(self, offset: int) -> tuple[int, int]:

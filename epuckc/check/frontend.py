@@ -59,9 +59,10 @@ def check_file(path: Path, report: Report, shown_name: Optional[str] = None,
     report.sources[source.name] = source
     diags = Collector(source)
     if problem is not None:
-        offset, message = problem
-        # The bad byte is not part of the decoded text: point where it starts.
-        diags.error("E004", source.span(offset, offset), message,
+        start, end, message = problem
+        # A byte that cannot be decoded is not in the text: the span is empty
+        # where it starts; a NUL is (one character).
+        diags.error("E004", source.span(start, end), message,
                     help="save the file as UTF-8 text; rule files are plain text (.epk)")
         report.extend(diags.items)
         return FrontEndResult(source, None)

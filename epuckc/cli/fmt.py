@@ -41,9 +41,9 @@ def _read(name: str) -> tuple:
         source, problem = SourceFile.from_path(Path(name), name)
     if problem is None:
         return source, None, raw
-    offset, message = problem
+    start, end, message = problem
     diags = Collector(source)
-    diags.error("E004", source.span(offset, offset), message,
+    diags.error("E004", source.span(start, end), message,
                 help="save the file as UTF-8 text; rule files are plain text (.epk)")
     return source, diags.items, raw
 

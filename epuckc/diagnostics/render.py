@@ -22,11 +22,27 @@ class _Paint:
         return f"{_COLOURS[style]}{text}{_RESET}" if self.enabled else text
 
 
+def _visible(line: str, start: int, end: int) -> tuple[str, int, int]:
+    """The line with tabs as one space and other control characters written
+    out (a NUL as `\\0`, the others as `\\xNN`), and [start, end) moved to
+    where the same characters are in it."""
+    line = line.replace("\t", " ")
+    if all(c >= " " for c in line):
+        return line, start, end
+    out, where = [], []
+    for c in line:
+        where.append(sum(map(len, out)))
+        out.append(c if c >= " " else "\\0" if c == "\0" else f"\\x{ord(c):02x}")
+    where.append(sum(map(len, out)))
+    return "".join(out), where[min(start, len(line))], where[min(end, len(line))]
+
+
 def _excerpt(line: str, start: int, end: int) -> tuple[str, int, int]:
     """A window of a (possibly huge) line around columns [start, end), with
-    tabs expanded; returns the text and the new start/end columns (0-based)."""
-    line = line.replace("\t", " ")
+    tabs expanded and control characters written out; returns the text and
+    the new start/end columns (0-based)."""
     end = max(end, start + 1)
+    line, start, end = _visible(line, start, end)
     if len(line) <= _MAX_SHOWN_LINE:
         return line, start, end
     left = max(0, min(start - 20, len(line) - _MAX_SHOWN_LINE))
