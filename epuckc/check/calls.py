@@ -50,12 +50,16 @@ class Calls:
         positional = 0
         by_name = {p.name: p for p in params}
         extra = []                  # positional arguments beyond the parameters
+        spec = STANDARD_ACTIONS.get(call_name.name) if what == "action" else None
+        misuse = spec.misuse if spec is not None and not params else ""
+        help_text = (f"write `{call_name.name}` alone: {misuse}" if misuse
+                     else _signature_help(call_name.name, params))
         for arg in args:
             if isinstance(arg, ast.ConditionArg):
                 self.diags.error("E024", arg.span,
                                  f"a condition such as `{arg.sensor.name} {arg.op} ...` "
                                  f"can only be given to `sensor` or `ambient`",
-                                 help=_signature_help(call_name.name, params))
+                                 help=help_text)
                 ok = False
                 continue
             if isinstance(arg, ast.NamedArg):
@@ -92,8 +96,8 @@ class Calls:
             given = sum(not isinstance(a, ast.NamedArg) for a in args)
             self.diags.error("E016", Span.of(extra[0], extra[-1]),
                              f"{what} {_code(call_name.name)} takes {_count(len(params))}, "
-                             f"but {given} are given",
-                             help=_signature_help(call_name.name, params))
+                             f"but {given} {'is' if given == 1 else 'are'} given",
+                             help=help_text)
             ok = False
         missing = [p.name for p in params if p.name not in bound]
         if missing and ok:

@@ -7,10 +7,12 @@ starts from that and never re-derives a value.
 """
 from __future__ import annotations
 
+import bisect
+
 from pathlib import Path
 from typing import Optional
 
-from ..diagnostics import Collector
+from ..diagnostics import ERROR, Collector
 from ..stdlib.units import Geometry
 from ..syntax import ast
 from . import arbitration, modes
@@ -77,7 +79,39 @@ class Checker(Names, Externs, RobotSettings, Values, Calls, Rules):
             self._unused()
         modes.check_program(self, out, complete)
         arbitration.check_program(self, out)
+        self._no_warnings_beside_errors()
         return out
+
+    def _no_warnings_beside_errors(self):
+        """One root mistake gives one error: a warning about a statement
+        that has an error (its own place or a note's is in it) is dropped,
+        as W009 about a rule whose call is wrong would be; the error is
+        what to fix, and the warning may be gone once it is fixed."""
+        items = self.diags.items
+        errors = [d.span for d in items if d.severity == ERROR]
+        if not errors or len(errors) == len(items):
+            return
+        # (sorted: the language server numbers statements' lines by their ids)
+        statements = sorted((s.span for s in self.program.statements
+                             if getattr(s, "span", None)), key=lambda s: (s.line, s.column))
+        starts = [(s.line, s.column) for s in statements]
+
+        def holder(span):
+            i = bisect.bisect_right(starts, (span.line, span.column)) - 1
+            if i >= 0 and (span.end_line, span.end_column) <= (statements[i].end_line,
+                                                                statements[i].end_column):
+                return i
+            return None
+
+        broken = {holder(span) for span in errors} - {None}
+        if not broken:
+            return
+
+        def beside(d):
+            return holder(d.span) in broken or any(
+                n.span is not None and holder(n.span) in broken for n in d.notes)
+
+        items[:] = [d for d in items if d.severity == ERROR or not beside(d)]   # in place: callers hold the list
 
     # Resolving the named actions and each rule are the steps that the
     # language server's incremental checker (epuckc/ide/incremental.py) reuses

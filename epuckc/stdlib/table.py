@@ -79,6 +79,9 @@ class ActionSpec:
     motors: bool = False      # commands the motors (a motion, or stopping one)
     runtime_param: Optional[str] = None   # its parameter struct, when not the paper's
     fields: tuple = ()        # the struct's initialisers: C text, `{param}` is a value
+    # for an action without parameters given arguments [E016]: where what the
+    # user meant goes instead (`set_timer(2 s)`: the time goes on `timer`)
+    misuse: str = ""
 
     @property
     def signature(self) -> str:
@@ -172,12 +175,22 @@ ACTIONS = (
                "right; `speed` is the outer wheel's; radius 0 turns on the spot",
                "curve_steps", motion=True, motors=True, runtime_param="param_curve_steps"),
     ActionSpec("stop_motor", (), "stops the wheels; the current motion ends", "stop_motor",
+               misuse="it stops the wheels at once; to stop after a distance or an angle, give "
+                      "it to the motion (`start_straight(300, 10 cm)`) and use `on stop_motor`",
                motors=True),
-    ActionSpec("set_timer", (), "(re)starts the one timer at 0", "set_timer"),
-    ActionSpec("reset_timer", (), "stops the timer", "reset_timer"),
-    ActionSpec("start_sensor", (), "starts polling the proximity sensors", "start_sensor"),
-    ActionSpec("stop_sensor", (), "stops it; sensor conditions are then false", "stop_sensor"),
-    ActionSpec("exit_main", (), "ends the main loop", "exit_main"),
+    ActionSpec("set_timer", (), "(re)starts the one timer at 0", "set_timer",
+               misuse="it starts the timer at 0; the time goes on the rule that waits for it: "
+                      "`on immediate do set_timer` and `on timer(2 s) do ...`"),
+    ActionSpec("reset_timer", (), "stops the timer", "reset_timer",
+               misuse="it stops the timer; a time goes on a `timer(...)` event"),
+    ActionSpec("start_sensor", (), "starts polling the proximity sensors", "start_sensor",
+               misuse="it starts all eight sensors; the sensor and its threshold go on the rule "
+                      "that waits for them: `on sensor(ir0 > 300) do ...`"),
+    ActionSpec("stop_sensor", (), "stops it; sensor conditions are then false", "stop_sensor",
+               misuse="it stops all eight sensors"),
+    ActionSpec("exit_main", (), "ends the main loop", "exit_main",
+               misuse="it ends the program at once; to end it later: "
+                      "`on timer(10 s) do exit_main` (after `set_timer`)"),
     ActionSpec("led_on", (_LED,), "switches an LED on (`e_set_led`, `e_set_body_led`, "
                "`e_set_front_led`)", "action_set_led", runtime_param="param_set_led",
                fields=("{led}", "SET_LED_ON")),

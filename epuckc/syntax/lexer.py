@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import re
 
-from ..diagnostics import Collector
+from ..diagnostics import Collector, Fix
 from ..base.source import SourceFile, Span
 
 KEYWORDS = {
@@ -81,6 +81,24 @@ _BLANKS_RE = re.compile(r"[ \t\r\f\v]*")
 _BAD_RE = re.compile(r"""[^\w \t\r\n\f\v#"(){},:=/\-><]+""")
 
 
+# Symbols that stand for a unit, and the unit's name in rule files.
+_UNIT_SYMBOLS = {"\u00b0": "deg", "\u00ba": "deg"}      # 90° (and the ordinal sign that looks like it)
+
+
+def _bad_help(source: SourceFile, text: str, start: int, end: int):
+    """The help of E002: the fix for a unit written as a symbol (`90°`),
+    else what rule files are made of."""
+    unit = _UNIT_SYMBOLS.get(text[start])
+    if unit is not None and end == start + 1:
+        before = text[start - 1] if start > 0 else ""
+        spaced = f" {unit}" if before.isdigit() else unit
+        number = re.search(r"[0-9.]*$", text[:start].rstrip(" \t")).group(0) or "90"
+        return Fix(source.span(start, end), spaced,
+                   f"units are written as words: `{number} {unit}`")
+    return ("rule files use names, numbers, units and `( ) { } , : = / - > <`; "
+            "comments start with `#`")
+
+
 def iter_tokens(source: SourceFile, diags: Collector):
     """The tokens of a file, one at a time (a 10 MB file has millions)."""
     text = source.text
@@ -105,8 +123,7 @@ def iter_tokens(source: SourceFile, diags: Collector):
             shown = bad if len(bad) <= 10 else bad[:10] + "..."
             diags.error("E002", source.span(start, pos),
                         f"unexpected character{'s' if len(bad) > 1 else ''} {shown!r}",
-                        help="rule files use names, numbers, units and `( ) { } , : = / - > <`; "
-                             "comments start with `#`")
+                        help=_bad_help(source, text, start, pos))
             if errors >= MAX_LEXICAL_ERRORS:
                 diags.error("E002", source.span(pos, pos),
                             "too many unexpected characters: the rest of the file is not checked",

@@ -113,6 +113,31 @@ def _syntax_error(exc: lalr.ParseError, chunk: list, following, source: SourceFi
                     help=_fix(tok, prev, expected,
                               f"arguments are named with `:`: write `{prev.value}: ...`"))
         return
+    joint = _joining_word(chunk, tok, prev, expected)
+    if joint is not None:
+        # `sensor(ir0 > 300 and ir7 > 300)`: `and` (read as a unit after a
+        # number, or found after a constant) joins two conditions
+        word, before = joint.value, chunk[chunk.index(joint) - 1]
+        where = Span(joint.line, joint.column, joint.end_line, joint.end_column)
+        if word == "or":
+            help = Fix(Span(before.end_line, before.end_column, joint.end_line, joint.end_column),
+                       ",", "conditions are separated by `,`, which means or: "
+                            "write `,` for `or`")
+        else:
+            help = ("conditions are separated by `,`, which means *or*: the rule occurs when "
+                    "any of them becomes true; a sensor rule cannot wait for two at once "
+                    "(a rule per sensor, or `,` if either will do)")
+        diags.error("E001", where, f"`{word}` cannot join the conditions of an event", help=help)
+        return
+    if tok.type == "_REPEAT" and "_DO" in expected and index >= 2 \
+            and chunk[index - 2].type == "_PRIORITY":
+        # `on ... priority 1 repeat do`: the words go the other way round
+        first = chunk[index - 2]
+        order = f"repeat priority {prev.value}"
+        diags.error("E001", span, f"expected {wanted}{after}, found `repeat`",
+                    help=Fix(Span(first.line, first.column, tok.end_line, tok.end_column), order,
+                             f"`repeat` comes before `priority`: write `{order}`"))
+        return
     keyword = KEYWORDS.get(tok.value.lower()) if tok.type == "NAME" else None
     if keyword is not None and (keyword in expected
                                 or (prev is None and keyword in STATEMENT_STARTS)):
@@ -123,6 +148,18 @@ def _syntax_error(exc: lalr.ParseError, chunk: list, following, source: SourceFi
         return
     diags.error("E001", span, f"expected {wanted}{after}, found {found}",
                 help=_fix(tok, prev, expected, hint))
+
+
+def _joining_word(chunk: list, tok, prev, expected: set):
+    """The `and` or `or` token that joins two conditions of an event's
+    arguments, or None."""
+    if tok.type == "$END":
+        return None
+    for word in (prev, tok):
+        if word is not None and word.type == "NAME" and word.value in ("and", "or") \
+                and ("_RPAR" in expected or "_COMMA" in expected) and chunk.index(word) > 0:
+            return word
+    return None
 
 
 _CLOSERS = {"is a `)` missing?": ")", "is a `}` missing?": "}"}

@@ -67,3 +67,31 @@ def test_applying_a_fix_removes_its_diagnostic(path):
             left = [e for e in diagnostics(after)
                     if e.code == d.code and e.span.line == line and e.message == d.message]
             assert not left, (d, fix)
+
+
+@pytest.mark.parametrize("name", ["E001_repeat_after_priority", "E002_degree_sign",
+                                  "E001_equals_in_call", "E001_missing_do"])
+def test_applying_every_fix_leaves_no_error(name):
+    """Fixes of syntax mistakes make the file check clean: a fix that trades
+    one error for another (as a `)` inserted after `and` did) is worse than
+    none."""
+    text = (CASES / f"{name}.epk").read_text(encoding="utf-8")
+    while True:
+        fixable = [d for d in diagnostics(text) if d.fixes]
+        if not fixable:
+            break
+        text = apply(text, fixable[-1].fixes[0])      # from the end: spans stay true
+    assert not [d for d in diagnostics(text) if d.severity == "error"], text
+
+
+def test_or_between_conditions_is_fixed_and_and_is_explained():
+    text = (CASES / "E001_and_in_sensor.epk").read_text(encoding="utf-8")
+    found = diagnostics(text)
+    ands = [d for d in found if "`and`" in d.message]
+    ors = [d for d in found if "`or`" in d.message]
+    assert len(ands) == 2 and len(ors) == 2
+    assert not any(d.fixes for d in ands)       # `,` would mean something else
+    for d in ors:
+        fixed = apply(text, d.fixes[0])
+        assert not [e for e in diagnostics(fixed)
+                    if e.severity == "error" and e.span.line == d.span.line], fixed
