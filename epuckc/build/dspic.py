@@ -105,7 +105,9 @@ def run_make(out_dir: Path, xc16: Path) -> None:
     if make is None:
         raise BuildError(f"`make` was not found; the project is in {out_dir}",
                          status=EXIT_NO_TOOLCHAIN)
-    result = subprocess.run([make, "-C", str(out_dir), f"XC16_BIN={xc16.parent}"],
+    # the folder of the xc16-gcc found (XC16_DIR, or PATH's), as the Makefile reads it
+    install = xc16.parent.parent if xc16.parent.name == "bin" else None
+    result = subprocess.run([make, "-C", str(out_dir), f"XC16_DIR={install or ''}"],
                             capture_output=True, text=True, env=env)
     if result.returncode != 0:
         raise BuildError(f"make failed in {out_dir}:\n{(result.stdout + result.stderr).rstrip()}")

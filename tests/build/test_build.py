@@ -239,3 +239,14 @@ def test_wheel_in_a_fresh_virtual_environment_runs_an_example(tmp_path):
     used = subprocess.run([str(venv / "bin" / "python"), "-c", probe], cwd=work, env=env,
                           capture_output=True, text=True)
     assert used.stdout.strip() == "True", used.stderr
+
+
+def test_one_name_for_the_xc16_folder():
+    """epuckc, the generated Makefile and the docs name XC16's install
+    folder the same way: XC16_DIR (a user who exports it for epuckc can run
+    `make` in the project with nothing else)."""
+    texts = {p: p.read_text(encoding="utf-8") for p in
+             [REPO / "templates" / "dspic.mk.j2", REPO / "README.md", REPO / "epuckc" / "build" / "dspic.py",
+              *sorted((REPO / "docs").glob("*.md"))]}
+    assert all("XC16_BIN" not in text for text in texts.values())
+    assert "XC16_DIR ?=" in texts[REPO / "templates" / "dspic.mk.j2"]

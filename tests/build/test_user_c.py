@@ -228,8 +228,7 @@ def test_dspic_make_rebuilds_only_what_changed(tmp_path, fake_toolchain):
     rules, c_file, _ = make_program(tmp_path / "app", "prog", "spin.c")
     out = tmp_path / "proj"
     epuckc("build", rules, "--target", "dspic", "-o", out, env=env, check=True)
-    bin_dir = str(Path(env["XC16_DIR"]) / "bin")
-    args = [make, "-C", str(out), f"EPUCK_LIB={env['EPUCK_LIB']}", f"XC16_BIN={bin_dir}"]
+    args = [make, "-C", str(out), f"EPUCK_LIB={env['EPUCK_LIB']}", f"XC16_DIR={env['XC16_DIR']}"]
     # up to date: `make -q` says so, and a second make compiles nothing
     assert subprocess.run(args + ["-q", "prog.hex"]).returncode == 0
     log.write_text("")
