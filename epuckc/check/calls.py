@@ -226,4 +226,18 @@ class Calls:
                 return None
             values["outer_steps"] = outer_steps
             values["inner_speed"] = inner_speed
+        elif name == "start_straight" and values["speed"] < 0 and values["distance"] < 0:
+            self._backward_twice(bound["distance"].value, shown)
         return ResolvedCall("standard", name, values, shown, call)
+
+    def _backward_twice(self, distance, shown: dict):
+        """W012: `start_straight(-300, -10 cm)` drives forward."""
+        written = shown["distance"]
+        help_text = "one minus is enough to back up"
+        fix = (Fix(distance.span, written[1:].lstrip(), f"{help_text}: write "
+                                                         f"`{written[1:].lstrip()}`")
+               if written.startswith("-") else None)
+        self.diags.warning("W012", distance.span,
+                           f"a negative speed (`{shown['speed']}`) and a negative distance "
+                           f"(`{written}`) drive forward: the two signs cancel",
+                           help=fix or f"{help_text}: make the distance positive")

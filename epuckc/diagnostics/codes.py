@@ -65,6 +65,7 @@ CODES = {
     "W009": "same-priority rules race for the motors",
     "W010": "mode never entered",
     "W011": "steps after `enter` never run",
+    "W012": "a negative speed and a negative distance drive forward",
 }
 
 _EXPLANATIONS = Path(__file__).resolve().parent / "explanations"

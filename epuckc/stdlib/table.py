@@ -160,7 +160,7 @@ ACTIONS = (
     ActionSpec("start_straight",
                (Param("speed", SPEED, "wheel speed; negative drives backwards", _SPEED_RANGE),
                 Param("distance", DISTANCE, "how far; negative drives backwards", _STEPS_RANGE)),
-               "drives straight; backwards when exactly one of them is negative",
+               "drives straight; backwards when exactly one of them is negative (both: forward [W012])",
                # compiled to exact steps: the runtime's extension, so the
                # paper's param_start_straight stays the paper's
                "straight_steps", motion=True, motors=True, runtime_param="param_straight_steps"),
