@@ -78,3 +78,35 @@ def test_every_setup_starts_the_same_server():
         if "lsp" in block and ("cmd" in block or "eglot-server-programs" in block):
             assert re.search(r'"epuckc",?\s*"lsp"', block), block
     assert PACKAGE["contributes"]["configuration"]["properties"]["epuckc.args"]["default"] == ["lsp"]
+
+
+def test_the_neovim_07_recipe_runs_in_neovim(tmp_path):
+    """The README's recipe for Neovim 0.7 to 0.9, run as it is in the Neovim
+    this machine has (Debian 12: 0.7.2): a rule file opens, the client
+    starts `epuckc lsp`, attaches, and the server's diagnostics arrive."""
+    import os
+    import subprocess
+
+    from tests.conftest import require_tool
+    nvim = require_tool("nvim")
+    require_tool("epuckc")
+    [recipe] = [block for block in code_blocks("lua") if "vim.lsp.start_client" in block]
+    (tmp_path / "prog.epk").write_text(PROGRAM)
+    (tmp_path / "test.lua").write_text(
+        f'vim.opt.runtimepath:append("{REPO / "editors" / "vim"}")\n'
+        "vim.cmd('filetype plugin on')\n" + recipe +
+        "vim.cmd('edit prog.epk')\n"
+        "vim.wait(20000, function() return #vim.diagnostic.get(0) >= 2 end, 50)\n"
+        "local out = {}\n"
+        "for _, d in ipairs(vim.diagnostic.get(0)) do\n"
+        "  table.insert(out, (d.lnum + 1) .. ':' .. (d.col + 1) .. ':' .. d.message)\n"
+        "end\n"
+        "table.sort(out)\n"
+        "vim.fn.writefile(out, 'diagnostics.txt')\n"
+        "vim.cmd('qa!')\n")
+    env = dict(os.environ, PYTHONPATH=str(REPO) + os.pathsep + os.environ.get("PYTHONPATH", ""))
+    subprocess.run([nvim, "--headless", "-u", "NONE", "-c", "luafile test.lua"], cwd=tmp_path,
+                   env=env, capture_output=True, timeout=60, stdin=subprocess.DEVNULL)
+    shown = (tmp_path / "diagnostics.txt").read_text().splitlines()
+    assert [line.split(":", 2)[:2] for line in shown] == [["1", "10"], ["2", "17"]], shown
+    assert "unknown action `strat_straight`" in shown[1]
