@@ -58,20 +58,45 @@ def cmd_check(args) -> int:
     from ..check.frontend import InputError, check_file
     report = Report()
     unreadable = False
+    others = 0          # world files with errors, checked as world files
     for name in args.files:
         shown = display_name(name)
         if Path(name).suffix in (".c", ".h"):
             report.diagnostics.append(c_file_diagnostic(shown))
+            continue
+        if Path(name).suffix in (".world", ".scn"):
+            others += _check_other_file(Path(name), shown)
             continue
         try:
             check_file(Path(name), report, shown_name=shown)
         except InputError as exc:
             unreadable = True
             report.diagnostics.append(exc.diagnostic(shown))
-    _print_report(report, args.format)
+    if report.diagnostics or not others:
+        _print_report(report, args.format)
     if unreadable:
         return EXIT_USAGE
-    return EXIT_ERRORS if _failed(report, args.werror) else EXIT_OK
+    return EXIT_ERRORS if others or _failed(report, args.werror) else EXIT_OK
+
+
+def _check_other_file(path: Path, shown: str) -> int:
+    """`epuckc check` of a world or scenario file: a world is checked as
+    one (all its errors on stderr), a scenario is said to be one; both say
+    how they are used. 1 when the file has errors or cannot be read."""
+    if path.suffix == ".scn":
+        print(f"{shown}: a scenario file (sensor inputs over time), not a rule file: run a "
+              f"program with it: `epuckc run PROG.epk --scenario {shown}`", file=sys.stderr)
+        return 0
+    from ..sim.world import WorldError, parse_world
+    try:
+        world = parse_world(path, shown=shown)
+    except WorldError as exc:
+        print(str(exc), file=sys.stderr)
+        return 1
+    robots = len(world.robots)
+    print(f"{shown}: a world file, without errors ({robots} robot{'s' if robots > 1 else ''}); "
+          f"run a program in it: `epuckc run PROG.epk --world {shown}`", file=sys.stderr)
+    return 0
 
 
 def cmd_explain(args) -> int:

@@ -240,114 +240,134 @@ def parse_world(path: Path, text: Optional[str] = None, shown: Optional[str] = N
     world = World(Path(path))
     seen = {}
     names = set()
+    errors = []         # every line's first error: all of a file's at once
     for lineno, raw in enumerate(text.splitlines(), 1):
-        body = raw.split("#", 1)[0]
-        ln = _Line(shown, lineno, raw)
-        ln.toks = _tokens(body)
-        if ln.at_end():
-            continue
-        head = ln.next("an item")
-        kind = head.text.lower() if head.number is None else ""
-        if kind in ("arena", "seed", "noise", "step"):
-            if kind in seen:
-                raise ln.error(f"a second `{kind}` line (the first is line {seen[kind]})", head,
-                               "a world has one of each; delete one")
-            seen[kind] = lineno
-        if kind == "arena":
-            if ln.keyword("none"):
-                pass
-            else:
-                world.width_mm = ln.length("arena's width", positive=True)
-                ln.expect("x", "arena 120 cm x 80 cm")
-                world.height_mm = ln.length("arena's height", positive=True)
-        elif kind == "box":
-            ln.expect("at", "box at 40 cm, 30 cm size 20 cm x 5 cm")
-            x, y = ln.point()
-            ln.expect("size", "box at 40 cm, 30 cm size 20 cm x 5 cm")
-            length = ln.length("box's length", positive=True)
-            ln.expect("x", "box at 40 cm, 30 cm size 20 cm x 5 cm")
-            width = ln.length("box's width", positive=True)
-            box = Box(x, y, length, width, line=lineno)
-            while not ln.at_end():
-                if ln.keyword("angle"):
-                    box.angle_deg = ln.angle()
-                elif ln.keyword("height"):
-                    box.height_mm = ln.length("box's height", positive=True)
-                else:
-                    ln.end()
-            world.boxes.append(box)
-        elif kind == "cylinder":
-            ln.expect("at", "cylinder at 90 cm, 50 cm radius 6 cm")
-            x, y = ln.point()
-            ln.expect("radius", "cylinder at 90 cm, 50 cm radius 6 cm")
-            cyl = Cylinder(x, y, ln.length("radius", positive=True), line=lineno)
-            if ln.keyword("height"):
-                cyl.height_mm = ln.length("cylinder's height", positive=True)
-            ln.end()
-            world.cylinders.append(cyl)
-        elif kind == "robot":
-            name = f"r{len(world.robots) + 1}"
-            tok = ln.peek()
-            if tok is not None and tok.number is None and tok.text.lower() != "at":
-                ln.i += 1
-                if not NAME_RE.match(tok.text) or tok.text.lower() in KEYWORDS:
-                    raise ln.error(f"`{tok.text}` cannot name a robot", tok,
-                                   "a name is a letter or _ followed by letters, digits, _ or -")
-                name = tok.text
-            if name in names:
-                raise ln.error(f"a second robot named `{name}`", tok or head,
-                               "give each robot its own name")
-            names.add(name)
-            ln.expect("at", "robot at 20 cm, 20 cm heading 45 deg")
-            x, y = ln.point()
-            robot = RobotPlacement(name, x, y, line=lineno)
-            while not ln.at_end():
-                if ln.keyword("heading"):
-                    robot.heading_deg = ln.angle()
-                elif ln.keyword("program"):
-                    ptok = ln.next("a program file (.epk or .c)")
-                    program = Path(ptok.text)
-                    if not program.is_absolute():
-                        program = Path(path).parent / program
-                    if not program.is_file():
-                        raise ln.error(f"the program {ptok.text} does not exist", ptok,
-                                       "the path is relative to the world file's folder")
-                    robot.program = program
-                else:
-                    ln.end()
-            if len(world.robots) == MAX_ROBOTS:
-                raise ln.error(f"more than {MAX_ROBOTS} robots", head)
-            world.robots.append(robot)
-        elif kind == "seed":
-            tok = ln.next("a whole number")
-            if tok.number is None or tok.unit or not tok.text.isdigit() or int(tok.text) >= 2**32:
-                raise ln.error("the seed is a whole number from 0 to 4294967295", tok)
-            world.seed = int(tok.text)
-        elif kind == "noise":
-            tok = ln.peek()
-            value = ln._quantity({"%": 1.0}, "noise", "5 %")
-            if not 0 <= value <= 50:
-                raise ln.error("the noise is from 0 % to 50 %", tok)
-            world.noise_percent = value
-        elif kind == "step":
-            tok = ln.peek()
-            value = ln._quantity({"ms": 1.0, "s": 1000.0}, "duration", "10 ms")
-            if value != int(value) or not 1 <= value <= 100:
-                raise ln.error("the physics step is a whole number of ms from 1 to 100", tok)
-            world.step_ms = int(value)
-        else:
-            raise ln.error(f"unknown item `{head.text}`", head,
-                           "a line starts with arena, box, cylinder, robot, seed, noise or step")
-        ln.end()
-    _check_placement(world, text.splitlines(), shown)
+        try:
+            _parse_line(world, path, shown, lineno, raw, seen, names)
+        except WorldError as exc:
+            errors.append(str(exc))
+    if not errors:
+        errors = _check_placement(world, text.splitlines(), shown)
+    if errors:
+        count = f"{len(errors)} error{'s' if len(errors) > 1 else ''}"
+        raise WorldError("\n\n".join(errors) + f"\n\n{count} in {shown}")
     return world
 
 
-def _check_placement(world: World, lines: list, shown: str):
-    """Everything inside the arena, and no robot inside something else."""
+def _parse_line(world: World, path: Path, shown: str, lineno: int, raw: str, seen: dict,
+                names: set):
+    """One item of a world file into `world`, or a WorldError."""
+    body = raw.split("#", 1)[0]
+    ln = _Line(shown, lineno, raw)
+    ln.toks = _tokens(body)
+    if ln.at_end():
+        return
+    head = ln.next("an item")
+    kind = head.text.lower() if head.number is None else ""
+    if kind in ("arena", "seed", "noise", "step"):
+        if kind in seen:
+            raise ln.error(f"a second `{kind}` line (the first is line {seen[kind]})", head,
+                           "a world has one of each; delete one")
+        seen[kind] = lineno
+    if kind == "arena":
+        if ln.keyword("none"):
+            pass
+        else:
+            world.width_mm = ln.length("arena's width", positive=True)
+            ln.expect("x", "arena 120 cm x 80 cm")
+            world.height_mm = ln.length("arena's height", positive=True)
+    elif kind == "box":
+        ln.expect("at", "box at 40 cm, 30 cm size 20 cm x 5 cm")
+        x, y = ln.point()
+        ln.expect("size", "box at 40 cm, 30 cm size 20 cm x 5 cm")
+        length = ln.length("box's length", positive=True)
+        ln.expect("x", "box at 40 cm, 30 cm size 20 cm x 5 cm")
+        width = ln.length("box's width", positive=True)
+        box = Box(x, y, length, width, line=lineno)
+        while not ln.at_end():
+            if ln.keyword("angle"):
+                box.angle_deg = ln.angle()
+            elif ln.keyword("height"):
+                box.height_mm = ln.length("box's height", positive=True)
+            else:
+                ln.end()
+        world.boxes.append(box)
+    elif kind == "cylinder":
+        ln.expect("at", "cylinder at 90 cm, 50 cm radius 6 cm")
+        x, y = ln.point()
+        ln.expect("radius", "cylinder at 90 cm, 50 cm radius 6 cm")
+        cyl = Cylinder(x, y, ln.length("radius", positive=True), line=lineno)
+        if ln.keyword("height"):
+            cyl.height_mm = ln.length("cylinder's height", positive=True)
+        ln.end()
+        world.cylinders.append(cyl)
+    elif kind == "robot":
+        name = f"r{len(world.robots) + 1}"
+        tok = ln.peek()
+        if tok is not None and tok.number is None and tok.text.lower() != "at":
+            ln.i += 1
+            if not NAME_RE.match(tok.text) or tok.text.lower() in KEYWORDS:
+                raise ln.error(f"`{tok.text}` cannot name a robot", tok,
+                               "a name is a letter or _ followed by letters, digits, _ or -")
+            name = tok.text
+        if name in names:
+            raise ln.error(f"a second robot named `{name}`", tok or head,
+                           "give each robot its own name")
+        names.add(name)
+        ln.expect("at", "robot at 20 cm, 20 cm heading 45 deg")
+        x, y = ln.point()
+        robot = RobotPlacement(name, x, y, line=lineno)
+        while not ln.at_end():
+            if ln.keyword("heading"):
+                robot.heading_deg = ln.angle()
+            elif ln.keyword("program"):
+                ptok = ln.next("a program file (.epk or .c)")
+                program = Path(ptok.text)
+                if not program.is_absolute():
+                    program = Path(path).parent / program
+                if not program.is_file():
+                    raise ln.error(f"the program {ptok.text} does not exist", ptok,
+                                   "the path is relative to the world file's folder")
+                robot.program = program
+            else:
+                ln.end()
+        if len(world.robots) == MAX_ROBOTS:
+            raise ln.error(f"more than {MAX_ROBOTS} robots", head)
+        world.robots.append(robot)
+    elif kind == "seed":
+        tok = ln.next("a whole number")
+        if tok.number is None or tok.unit or not tok.text.isdigit() or int(tok.text) >= 2**32:
+            raise ln.error("the seed is a whole number from 0 to 4294967295", tok)
+        world.seed = int(tok.text)
+    elif kind == "noise":
+        tok = ln.peek()
+        value = ln._quantity({"%": 1.0}, "noise", "5 %")
+        if not 0 <= value <= 50:
+            raise ln.error("the noise is from 0 % to 50 %", tok)
+        world.noise_percent = value
+    elif kind == "step":
+        tok = ln.peek()
+        value = ln._quantity({"ms": 1.0, "s": 1000.0}, "duration", "10 ms")
+        if value != int(value) or not 1 <= value <= 100:
+            raise ln.error("the physics step is a whole number of ms from 1 to 100", tok)
+        world.step_ms = int(value)
+    else:
+        raise ln.error(f"unknown item `{head.text}`", head,
+                       "a line starts with arena, box, cylinder, robot, seed, noise or step")
+    ln.end()
+
+
+def _check_placement(world: World, lines: list, shown: str) -> list:
+    """Everything inside the arena, and no robot inside something else: the
+    problems found, each a diagnostic's text."""
+    problems = []
+
     def fail(line: int, message: str, help: str):
-        raise WorldError(f"{shown}:{line}:1: error: {message}\n {line} | {lines[line - 1].rstrip()}"
-                         f"\nhelp: {help}")
+        text = lines[line - 1].rstrip()
+        col = len(text) - len(text.lstrip()) + 1        # the item's first word
+        problems.append(f"{shown}:{line}:{col}: error: {message}\n {line} | {text}\n"
+                        + " " * (len(str(line)) + 1) + " | " + " " * (col - 1) + "^"
+                        + f"\nhelp: {help}")
 
     if not world.robots:
         # one robot: the arena's centre, or the origin of open ground, facing +x
@@ -382,6 +402,7 @@ def _check_placement(world: World, lines: list, shown: str):
             if not (0 <= obj.x_mm <= world.width_mm and 0 <= obj.y_mm <= world.height_mm):
                 fail(obj.line, "this obstacle's centre is outside the arena",
                      f"the arena spans 0..{world.width_mm:g} mm x 0..{world.height_mm:g} mm")
+    return problems
 
 
 def _box_distance(b: Box, x: float, y: float) -> float:

@@ -97,7 +97,42 @@ def test_an_error_shows_the_line_a_caret_and_help(tmp_path):
         " 1 | arena 100 x 60 cm",
         "   |       ^",
         "help: add one of mm, cm, m, e.g. 20 cm",
+        "",
+        "1 error in w.world",
     ]
+
+
+def test_every_error_of_a_file_at_once(tmp_path):
+    """Each line's first error, then (when the items read) every placement
+    problem: all of a file's errors in one run, each with its place."""
+    message = error(tmp_path, "arena 100 cm x 70 cm\n"
+                              "box at 40 cm, 30 cm size 20 cm\n"
+                              "robot r1 at 15 cm, 12 cm heading 20 dg\n"
+                              "wall at 3 cm\n"
+                              "seed -4\n")
+    heads = [line.split(" error: ")[0] for line in message.splitlines() if " error: " in line]
+    assert heads == ["w.world:2:31:", "w.world:3:34:", "w.world:4:1:", "w.world:5:6:"]
+    assert message.splitlines()[-1] == "4 errors in w.world"
+    placed = error(tmp_path, "arena 50 cm x 50 cm\nrobot at 2 cm, 25 cm\n"
+                             "robot at 30 cm, 30 cm\nrobot at 31 cm, 30 cm\n")
+    heads = [line.split(" error: ")[0] for line in placed.splitlines() if " error: " in line]
+    assert heads == ["w.world:2:1:", "w.world:4:1:"]
+    assert "   | ^" in placed.splitlines()
+
+
+def test_check_reads_a_world_file_as_one(tmp_path):
+    from tests.support.world import epuckc
+    (tmp_path / "good.world").write_text("arena 50 cm x 50 cm\nrobot at 25 cm, 25 cm\n")
+    (tmp_path / "bad.world").write_text("arena 50 cm x 50 cm\nbox at 1 cm\nseed x\n")
+    (tmp_path / "in.scn").write_text("0 ms ir0=0\n")
+    good = epuckc("check", "good.world", cwd=tmp_path)
+    assert good.returncode == 0 and "E001" not in good.stderr
+    assert "epuckc run PROG.epk --world good.world" in good.stderr
+    bad = epuckc("check", "bad.world", cwd=tmp_path)
+    assert bad.returncode == 1 and "E001" not in bad.stderr
+    assert "bad.world:2:" in bad.stderr and "bad.world:3:" in bad.stderr
+    scn = epuckc("check", "in.scn", cwd=tmp_path)
+    assert scn.returncode == 0 and "epuckc run PROG.epk --scenario in.scn" in scn.stderr
 
 
 def test_the_examples_parse():
