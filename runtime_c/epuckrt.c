@@ -264,6 +264,12 @@ void (name_action)(int action_id, const char *name)
         rt_name_action(action_id, name);
 }
 
+void (name_steps)(int action_id, const char *const *names, int count)
+{
+    if (action_id >= 0 && action_id < s_actions + n_actions && names != NULL && count > 0)
+        rt_name_steps(action_id, names, count);
+}
+
 void (name_event)(int event_id, const char *name)
 {
     if (event_id >= 0 && event_id < rt_s_events + rt_n_events)

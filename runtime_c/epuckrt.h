@@ -98,9 +98,16 @@ void set_robot_geometry(long wheel_circumference_um, long axle_um, long steps_pe
  * they are macros that drop the name, so the labels are not even stored. */
 void name_action(int action_id, const char *name);
 void name_event(int event_id, const char *name);
+/* The texts of the `count` steps of the sequence that action `action_id`
+ * runs, for the trace ("step 2 of 3: start_curve(...)"); `names` is kept,
+ * not copied.  Generated programs guard their arrays of step names with
+ * EPUCKRT_NAMES_DROPPED. */
+void name_steps(int action_id, const char *const *names, int count);
 #if defined(EPUCKRT_NO_NAMES) || (defined(__XC16__) && !defined(EPUCKRT_NAMES))
+#define EPUCKRT_NAMES_DROPPED 1
 #define name_action(action_id, name) ((void)(action_id))
 #define name_event(event_id, name) ((void)(event_id))
+#define name_steps(action_id, names, count) ((void)(action_id))
 #endif
 
 /* ---- Extension: static registration ------------------------------------

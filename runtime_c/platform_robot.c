@@ -91,3 +91,10 @@ void rt_name_event(int event_id, const char *name)
     (void)event_id;
     (void)name;
 }
+
+void rt_name_steps(int action_id, const char *const *names, int count)
+{
+    (void)action_id;
+    (void)names;
+    (void)count;
+}

@@ -46,6 +46,7 @@ void rt_new_action(int action_id, action_func f);
 void rt_new_event(int event_id, event_func f);
 void rt_geometry(long wheel_circumference_um, long axle_um, long steps_per_rev);
 void rt_name_action(int action_id, const char *name);
+void rt_name_steps(int action_id, const char *const *names, int count);
 void rt_name_event(int event_id, const char *name);
 void rt_name_mode(int mode, const char *name);
 

@@ -43,6 +43,12 @@ void rt_geometry(long wheel_circumference_um, long axle_um, long steps_per_rev)
 }
 void rt_name_action(int action_id, const char *name) { (void)action_id; (void)name; }
 void rt_name_event(int event_id, const char *name) { (void)event_id; (void)name; }
+void rt_name_steps(int action_id, const char *const *names, int count)
+{
+    (void)action_id;
+    (void)names;
+    (void)count;
+}
 void rt_trace_suppressed(int event_id, int priority, int owner_event_id,
                          int owner_priority, const char *command)
 {

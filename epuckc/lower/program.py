@@ -82,6 +82,9 @@ class CSequence:
     name: str
     entries: list          # "{function, &param}" initialisers
     comment: str
+    names_name: str = ""   # its steps' texts for the host's trace (name_steps)
+    labels: list = field(default_factory=list)     # C strings, one a step
+    action_id: int = -1    # the action that runs it
 
 
 @dataclass
@@ -342,14 +345,16 @@ class _Lowerer:
         so the C stays linear in the size of the rule file."""
         if len(steps) == 1:
             return self.step_action(steps[0], f"{PREFIX}do_{owner}", comment)
-        entries = []
+        entries, labels = [], []
         for k, prims in enumerate(steps, 1):
             text = ", ".join(p.text for p in prims)
             fn, param = self.step_action(prims, f"{PREFIX}step{k}_{owner}",
                                          f"{where}: step {k} of {len(steps)}: {text}")
             entries.append(f"{{{fn}, {void_ref(param)}}}")
+            labels.append(c_string(_shorten(text)))
         self.out.sequences.append(CSequence(f"{PREFIX}steps_{owner}", f"{PREFIX}seq_{owner}",
-                                            entries, c_comment(comment)))
+                                            entries, c_comment(comment),
+                                            f"{PREFIX}step_names_{owner}", labels))
         return "run_sequence", f"{PREFIX}seq_{owner}"
 
     # -- events --
@@ -439,6 +444,8 @@ class _Lowerer:
                     function, param = self.body_action(self.flatten(rule.body, f"r{index}"),
                                                        f"r{index}", self.where(rule.node), where)
                 registered[key] = len(out.actions)
+                if function == "run_sequence":      # the trace names its steps
+                    out.sequences[-1].action_id = registered[key]
                 out.actions.append(CAction(function, const_ref(param),
                                            c_comment(f"{registered[key]}: {_shorten(where)}"),
                                            c_string(_shorten(body_text))))

@@ -172,6 +172,36 @@ void rt_name_event(int event_id, const char *name)
     set_name(&event_names, event_id, name);
 }
 
+/* The texts of a sequence's steps, by the id of the action that runs it
+ * (name_steps; the arrays are the program's, kept as they are). */
+static struct step_names {
+    const char *const *names;
+    int count;
+} *step_names;
+static int n_step_names;
+
+void rt_name_steps(int action_id, const char *const *names, int count)
+{
+    if (action_id >= n_step_names) {
+        int n = action_id + 1;
+        struct step_names *grown = realloc(step_names, (size_t)n * sizeof *grown);
+        if (grown == NULL)
+            return;
+        memset(grown + n_step_names, 0, (size_t)(n - n_step_names) * sizeof *grown);
+        step_names = grown;
+        n_step_names = n;
+    }
+    step_names[action_id].names = names;
+    step_names[action_id].count = count;
+}
+
+static const char *step_name(int action_id, int step)
+{
+    if (action_id < 0 || action_id >= n_step_names || step >= step_names[action_id].count)
+        return NULL;
+    return step_names[action_id].names[step];
+}
+
 void rt_name_mode(int mode, const char *name)
 {
     set_name(&mode_names, mode, name);
@@ -661,8 +691,12 @@ void rt_trace_action(int action_id, int step, int steps)
     record("action", name, action_id, step, steps);
     if (!is_quiet()) {
         printf("[%6ld ms] action #%d %s", now_ms, action_id, name);
-        if (step >= 0)
+        if (step >= 0) {
+            const char *call = step_name(action_id, step);
             printf(" step %d of %d", step + 1, steps);
+            if (call != NULL)
+                printf(": %s", call);
+        }
         putchar('\n');
     }
 }

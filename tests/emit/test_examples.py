@@ -125,3 +125,14 @@ def test_selector_menu_switches_behaviours(tmp_path):
     assert end["t_ms"] == 14000
     last_led = [r for r in records if r["kind"] == "led"][-1]
     assert last_led["ring"] == "00000000" and last_led["body"] == 0
+
+
+def test_the_readable_trace_names_the_call_of_each_step(tmp_path):
+    """A step of a sequence is shown with its call, as the rule file writes
+    it (named actions spliced in), not only its number."""
+    _, shown = run_program(EXAMPLES / "square.epk", tmp_path, "--time-limit", "30s")
+    steps = [line.split(" step ", 1)[1] for line in shown.splitlines() if " step " in line]
+    assert steps[:3] == ["1 of 9: start_straight(speed: SPEED, distance: 20 cm)",
+                         "2 of 9: start_curve(radius: 0 mm, degrees: 90 deg, speed: SPEED)",
+                         "3 of 9: start_straight(speed: SPEED, distance: 20 cm)"]
+    assert steps[-1] == "9 of 9: exit_main"

@@ -31,6 +31,12 @@ static const action epk_steps_a_register_action[] = {
     {exit_main, NULL},
 };
 static const param_sequence epk_seq_a_register_action = {epk_steps_a_register_action, 2};
+#ifndef EPUCKRT_NAMES_DROPPED
+static const char *const epk_step_names_a_register_action[] = {
+    "start_straight(100, 1 cm)",
+    "exit_main",
+};
+#endif
 
 /* The actions, {function, parameter}: an action's id is its index. */
 static const rt_action epk_action_table[] = {
@@ -68,6 +74,7 @@ int main(void)
     name_action(1, "seq_a_x, cancel main");
     name_event(0, "names.epk:5 rule main: on immediate");
     name_event(1, "names.epk:6 rule while: on stop_motor repeat");
+    name_steps(0, epk_step_names_a_register_action, 2);
 
     mainloop();
     return 0;

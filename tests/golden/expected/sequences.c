@@ -33,6 +33,17 @@ static const action epk_steps_r1[] = {
     {exit_main, NULL},
 };
 static const param_sequence epk_seq_r1 = {epk_steps_r1, 7};
+#ifndef EPUCKRT_NAMES_DROPPED
+static const char *const epk_step_names_r1[] = {
+    "start_straight(500, 5 cm)",
+    "start_curve(0 mm, 90 deg, 500)",
+    "start_straight(500, 5 cm)",
+    "start_curve(0 mm, 90 deg, 500)",
+    "set_timer, start_straight(500, 5 cm)",
+    "start_curve(0 mm, 90 deg, 500)",
+    "exit_main",
+};
+#endif
 
 /* The actions, {function, parameter}: an action's id is its index. */
 static const rt_action epk_action_table[] = {
@@ -65,6 +76,7 @@ int main(void)
     /* Names in the host harness's trace; without them on the robot (EPUCKRT_NO_NAMES). */
     name_action(0, "l_shape then set_timer, leg then exit_main");
     name_event(0, "sequences.epk:6 on immediate");
+    name_steps(0, epk_step_names_r1, 7);
 
     mainloop();
     return 0;

@@ -34,6 +34,16 @@ static const action epk_steps_r1[] = {
     {set_timer, NULL},
 };
 static const param_sequence epk_seq_r1 = {epk_steps_r1, 6};
+#ifndef EPUCKRT_NAMES_DROPPED
+static const char *const epk_step_names_r1[] = {
+    "start_straight(250, 100)",
+    "start_straight(100 mm/s, 5 cm)",
+    "start_straight(speed: 2 cm/s, distance: 0.01 m)",
+    "start_straight(distance: 40 steps, speed: -200 steps/s)",
+    "start_curve(radius: 10 cm, degrees: -45 deg, speed: 300)",
+    "set_timer",
+};
+#endif
 
 /* The actions, {function, parameter}: an action's id is its index. */
 static const rt_action epk_action_table[] = {
@@ -79,6 +89,7 @@ int main(void)
     name_event(0, "units.epk:4 on immediate");
     name_event(1, "units.epk:10 on timer(1500 ms)");
     name_event(2, "units.epk:11 on timer(2 s)");
+    name_steps(0, epk_step_names_r1, 6);
 
     mainloop();
     return 0;
