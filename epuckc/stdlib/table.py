@@ -89,20 +89,6 @@ class ActionSpec:
 
 
 @record(frozen=True)
-class ReadingSpec:
-    """A reading usable in any expression (`ir0`, `acc_x`, `heading`): its
-    kind (a plain count, or a quantity in its natural unit), the interval
-    it lies in, a one-line doc, and the C expression it becomes (an int;
-    the runtime reads each device once per poll)."""
-    name: str
-    kind: str
-    lo: int
-    hi: int
-    doc: str
-    c: str
-
-
-@record(frozen=True)
 class EventSpec:
     name: str
     params: Optional[tuple]   # None: takes conditions (`sensor(ir0 > 300)`)
@@ -257,29 +243,6 @@ EVENTS = (
               conditions_doc=f"`{SENSOR_NAMES_DOC[0]}`..`{SENSOR_NAMES_DOC[1]}` `>` or `<` a "
               f"whole threshold in 0..{THRESHOLD_MAX} [E032] (raw ambient light readings)"),
 )
-
-READINGS_LIST = (
-    tuple(ReadingSpec(f"ir{i}", INT, 0, THRESHOLD_MAX,
-                      f"proximity sensor {i}: reflected infrared, 0 (nothing) .. 4095 (touching)",
-                      f"rt_ir({i})") for i in range(SENSOR_COUNT))
-    + tuple(ReadingSpec(f"ambient{i}", INT, 0, THRESHOLD_MAX,
-                        f"ambient light at sensor {i}, raw (lower is brighter)",
-                        f"rt_ambient({i})") for i in range(SENSOR_COUNT))
-    + tuple(ReadingSpec(f"mic{i}", INT, 0, THRESHOLD_MAX,
-                        f"microphone {i}: loudness (peak to peak of the last samples)",
-                        f"rt_mic({i})") for i in range(3))
-    + tuple(ReadingSpec(f"acc_{axis}", INT, 0, THRESHOLD_MAX,
-                        f"accelerometer, {axis} axis, raw (about 2048 at rest on a level floor)",
-                        f"rt_acc({i})") for i, axis in enumerate("xyz"))
-    + (ReadingSpec("selector", INT, 0, 15, "the selector's position, 0..15", "rt_selector()"),
-       ReadingSpec("x", DISTANCE, -32768, 32767,
-                   "odometry: mm forward of the start pose (along its heading)", "rt_x_mm()"),
-       ReadingSpec("y", DISTANCE, -32768, 32767,
-                   "odometry: mm to the left of the start pose", "rt_y_mm()"),
-       ReadingSpec("heading", ANGLE, -180, 179,
-                   "odometry: degrees turned from the start pose, counter-clockwise, "
-                   "-180..179", "rt_heading_deg()")))
-READINGS = {spec.name: spec for spec in READINGS_LIST}
 
 STANDARD_ACTIONS = {spec.name: spec for spec in ACTIONS}
 MOTOR_ACTIONS = frozenset(spec.name for spec in ACTIONS if spec.motors)

@@ -69,7 +69,7 @@ def _strip_comments(model):
     quote the source text and its line numbers."""
     if isinstance(model, dict):
         return {k: _strip_comments(v) for k, v in model.items()
-                if k not in ("comment", "action_label", "event_label")}
+                if k not in ("comment", "action_label", "event_label", "labels")}
     if isinstance(model, (list, tuple)):
         return [_strip_comments(v) for v in model]
     return model
