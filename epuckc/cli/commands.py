@@ -84,7 +84,17 @@ def _check_other_file(path: Path, shown: str) -> int:
     one (all its errors on stderr), a scenario is said to be one; both say
     how they are used. 1 when the file has errors or cannot be read."""
     if path.suffix == ".scn":
-        print(f"{shown}: a scenario file (sensor inputs over time), not a rule file: run a "
+        from ..sim.scenario import check_scenario
+        try:
+            problems = check_scenario(path, shown)
+        except OSError as exc:
+            print(f"epuckc: error: cannot read {shown}: {exc.strerror or exc}", file=sys.stderr)
+            return 1
+        if problems:
+            print("\n\n".join(problems) + f"\n\n{len(problems)} error"
+                  f"{'s' if len(problems) > 1 else ''} in {shown}", file=sys.stderr)
+            return 1
+        print(f"{shown}: a scenario file (sensor inputs over time), without errors: run a "
               f"program with it: `epuckc run PROG.epk --scenario {shown}`", file=sys.stderr)
         return 0
     from ..sim.world import WorldError, parse_world
@@ -342,8 +352,13 @@ def _scenario_problem(name: str):
                     "such as examples/obstacle.scn")
         if not path.exists():
             return f"--scenario {shown}: the file does not exist"
-        with open(path, "rb"):
-            pass
+        from ..sim.scenario import check_scenario
+        problems = check_scenario(path, shown)
     except OSError as exc:
         return f"--scenario {shown}: {exc.strerror or exc}"
+    if problems:
+        # every problem, before anything is built (the harness would stop
+        # at the first, at run time)
+        print("\n\n".join(problems) + "\n", file=sys.stderr)
+        return f"{len(problems)} error{'s' if len(problems) > 1 else ''} in the scenario {shown}"
     return None
