@@ -73,10 +73,26 @@ def run(args, program, load_program_file, run_host) -> int:
             _error(str(exc))
             return exc.status
         if args.svg:
-            plot_status = _plot(trace, Path(args.svg), title=Path(args.file).name)
+            plot_status = _plot(trace, Path(args.svg), title=picture_title(args.file, world))
             if plot_status:
                 return plot_status
     return status
+
+
+def picture_title(program: str, world) -> str:
+    """The picture's title: the program; in a world whose robots run
+    different programs, each program with its robots (`fast.epk: r1, r2;
+    slow.epk: r3`)."""
+    default = Path(program).name
+    if world is None:
+        return default
+    by_program = {}
+    for robot in world.robots:
+        name = robot.program.name if robot.program is not None else default
+        by_program.setdefault(name, []).append(robot.name)
+    if len(by_program) == 1:
+        return default
+    return "; ".join(f"{name}: {', '.join(robots)}" for name, robots in by_program.items())
 
 
 def _plot(trace: Path, out: Path, title: str) -> int:

@@ -2,16 +2,23 @@
 
 Above, the map (world frame, millimetres, +y up): the arena's walls, boxes
 and cylinders (from the trace's `world` record, when the run had a world),
-each robot's path through its poses (the `pose` records and the pose of
-every other record), a marker where a rule fired, labelled with the rule's
-`file:line`, and the robot at its final pose. Below, a timeline: one row per
-rule, a tick at each firing, time in seconds.
+a scale bar, each robot's path through its poses (the `pose` records and
+the pose of every other record), a marker where a rule fired, labelled with
+the rule's name (or its event), the modes entered, LEDs switched and the
+first contact, and the robot at its final pose with its name. Below, a
+timeline: one row per rule (and for modes, LEDs and contacts), a tick at
+each firing, time in seconds. Labels are laid out so that none covers
+another or a robot's name and none leaves the picture (a label with no
+free place is left to the marker's tooltip); tests/sim/test_plot_layout.py
+measures that in a browser.
 
 The drawing is made of named pieces that tests and tools can find again:
-`g#world` (`rect.arena`, `rect.box`, `circle.cylinder`), `g.robot-run`
-(`data-robot`) with `polyline.path`, `circle.firing` (`data-t-ms`,
-`data-label`; `text.firing-label`), `g.final-pose`; `g#timeline` with
-`g.timeline-row` (`data-label`) holding `line.tick` (`data-t-ms`).
+`g#world` (`rect.arena`, `rect.box`, `circle.cylinder`, `g.scale-bar`),
+`g.robot-run` (`data-robot`) with `polyline.path`, `circle.firing`
+(`data-t-ms`, `data-label`: the rule's `file:line`; `text.firing-label`),
+`polygon.mode-change`, `circle.led-change`, `path.contact`,
+`g.final-pose`; `g#timeline` with `g.timeline-row` (`data-label`: a rule's
+`file:line`, or `mode`, `led`, `contact`) holding `line.tick` (`data-t-ms`).
 """
 from __future__ import annotations
 
@@ -42,8 +49,19 @@ class PlotError(Exception):
 @dataclass
 class Firing:
     t_ms: int
-    label: str          # file:line, or the event's name
+    label: str          # file:line, or the event's name: what tells rules apart
     title: str          # the whole record name
+    x: float
+    y: float
+    shown: str = ""     # the words on the map: the rule's name, or its event
+
+
+@dataclass
+class Mark:
+    """A mode entered, an LED switched, the first contact: a point of a path."""
+    kind: str           # "mode" | "led" | "contact"
+    t_ms: int
+    text: str
     x: float
     y: float
 
@@ -53,6 +71,10 @@ class RobotRun:
     name: str
     poses: list = field(default_factory=list)       # (t_ms, x, y, heading)
     firings: list = field(default_factory=list)
+    marks: list = field(default_factory=list)
+
+
+SHOWN_CHARS = 24        # a label on the map; the timeline and the tooltip say it all
 
 
 def rule_label(name: str) -> str:
@@ -62,11 +84,22 @@ def rule_label(name: str) -> str:
     return m.group(1) if m else name
 
 
+def shown_label(name: str) -> str:
+    """What the map writes beside a firing: the rule's name (`avoid`), else
+    its event (`on sensor(ir0 > 300)`), cut to SHOWN_CHARS."""
+    m = _FILE_LINE.match(name)
+    rest = name[m.end():].strip() if m else name
+    named = re.match(r"rule (\w+):", rest)
+    text = named.group(1) if named else rest
+    return text if len(text) <= SHOWN_CHARS else text[:SHOWN_CHARS - 1] + "\u2026"
+
+
 def parse_trace(text: str, source: str = "trace"):
     """The world record (or None) and the robots' runs, in first-seen order."""
     world = None
     runs = {}
     end_ms = 0
+    contacts = []
     for lineno, line in enumerate(text.splitlines(), 1):
         if not line.strip():
             continue
@@ -80,6 +113,8 @@ def parse_trace(text: str, source: str = "trace"):
             world = rec
             continue
         if "x_mm" not in rec:
+            if rec["kind"] == "contacts" and int(rec.get("first_ms", -1)) >= 0:
+                contacts.append((str(rec.get("robot", "")), int(rec["first_ms"]), rec))
             continue        # contacts: counts, no pose
         try:
             t, x, y, h = int(rec["t_ms"]), float(rec["x_mm"]), float(rec["y_mm"]), \
@@ -93,9 +128,25 @@ def parse_trace(text: str, source: str = "trace"):
         end_ms = max(end_ms, t)
         if rec["kind"] == "event":
             ev = str(rec.get("name", ""))
-            run.firings.append(Firing(t, rule_label(ev), ev, x, y))
+            run.firings.append(Firing(t, rule_label(ev), ev, x, y, shown_label(ev)))
+        elif rec["kind"] == "mode":
+            run.marks.append(Mark("mode", t, f"mode {rec.get('name', '')}", x, y))
+        elif rec["kind"] == "led":
+            state = "on" if rec.get("state") else "off"
+            run.marks.append(Mark("led", t, f"{rec.get('name', 'LED')} {state}", x, y))
     if not runs:
         raise PlotError(f"{source}: the trace has no record with a pose")
+    for robot, first_ms, rec in contacts:
+        run = runs.get(robot)
+        if run is None:
+            continue
+        # where the robot was at its first contact: the last pose before it
+        before = [p for p in run.poses if p[0] <= first_ms] or run.poses[:1]
+        t, x, y, _ = before[-1]
+        what = ", ".join(f"{rec.get(k, 0)} {k}" for k in ("walls", "objects", "robots")
+                         if rec.get(k))
+        run.marks.append(Mark("contact", first_ms, f"contact ({what})" if what else "contact",
+                              x, y))
     return world, list(runs.values()), end_ms
 
 
@@ -124,22 +175,44 @@ def _bounds(world: Optional[dict], runs: list, radius: float):
     return x0, y0, x1, y1
 
 
-LABEL_H = 9.0
+LABEL_H = 11.0          # a 9 px label's box, descenders included (the browser's is ~10.5)
+BASELINE = 8.5          # from the top of a label's box
+CHAR_W = 5.6            # a 9 px sans-serif character, wide ones included (kept above the truth)
 
 
-def _label_box(label: str, x: float, y: float, placed: list):
-    """Where the label of a marker at (x, y) goes: right of it, above, below
-    or further down; None when every place covers a placed label."""
-    w = 5.0 * len(label)
+def _text_width(text: str, size: float = 9.0) -> float:
+    return CHAR_W * size / 9.0 * len(text)
+
+
+def _label_box(label: str, x: float, y: float, placed: list, width: float):
+    """Where the label of a marker at (x, y) goes: right of it (left of it
+    near the picture's right edge), above, below or further down; None when
+    every place covers a placed label. Boxes are (x, y, w, h, text), y the top."""
+    w = _text_width(label)
     if any(text == label and abs(bx - x - 5) < 40 and abs(by - y) < 2 * LABEL_H + 6
            for bx, by, _, _, text in placed):
         return None
+    left = x + 5 if x + 5 + w <= width - 2 else x - 5 - w
+    if left < 2:
+        return None
     for dy in (-LABEL_H - 2, 2.0, -2 * LABEL_H - 4, LABEL_H + 4):
-        box = (_r(x + 5), _r(y + dy), w, LABEL_H, label)
+        box = (_r(left), _r(y + dy), w, LABEL_H, label)
         if not any(box[0] < bx + bw and bx < box[0] + w and box[1] < by + bh and by < box[1] + LABEL_H
                    for bx, by, bw, bh, _ in placed):
             return box
     return None
+
+
+def _scale_length(scale: float) -> float:
+    """A round length (mm) that the map draws 40 px long or more."""
+    for mm in (10, 20, 50, 100, 200, 500, 1000, 2000, 5000, 10000, 20000, 50000):
+        if mm * scale >= 40:
+            return float(mm)
+    return 100000.0
+
+
+def _length_text(mm: float) -> str:
+    return f"{mm / 1000:g} m" if mm >= 1000 else f"{mm / 10:g} cm"
 
 
 def _r(v: float) -> float:
@@ -172,6 +245,13 @@ def plot_trace(text: str, title: str = "", source: str = "trace") -> str:
             if f.label not in rows:
                 rows.append(f.label)
                 row_titles[f.label] = f.title
+    mark_rows = [(kind, words) for kind, words in (("mode", "modes entered"),
+                                                   ("led", "LEDs switched"),
+                                                   ("contact", "first contact"))
+                 if any(m.kind == kind for run in runs for m in run.marks)]
+    for kind, words in mark_rows:
+        rows.append(kind)
+        row_titles[kind] = words
     timeline_top = top + map_h + 36.0
     timeline_h = max(len(rows), 1) * ROW_PX
     width = max(MARGIN_PX * 2 + map_w, MARGIN_PX * 2 + LABEL_COLUMN_PX + 360.0)
@@ -180,8 +260,12 @@ def plot_trace(text: str, title: str = "", source: str = "trace") -> str:
     dwg.viewbox(0, 0, _r(width), _r(height))
     dwg.add(dwg.rect(insert=(0, 0), size=(_r(width), _r(height)), fill="white", class_="background"))
     if title:
-        dwg.add(dwg.text(title, insert=(MARGIN_PX, MARGIN_PX + 6), class_="title",
-                         font_family="sans-serif", font_size=15))
+        room = int((width - 2 * MARGIN_PX) / (CHAR_W * 15 / 9))
+        shown_title = title if len(title) <= room else title[:room - 1] + "\u2026"
+        t = dwg.text(shown_title, insert=(MARGIN_PX, MARGIN_PX + 6), class_="title",
+                     font_family="sans-serif", font_size=15)
+        t.set_desc(title=title)
+        dwg.add(t)
 
     # -- the world
     g = dwg.g(id="world")
@@ -204,10 +288,35 @@ def plot_trace(text: str, title: str = "", source: str = "trace") -> str:
     for c in (world or {}).get("cylinders", []):
         g.add(dwg.circle(center=px(c["x_mm"], c["y_mm"]), r=_r(c["radius_mm"] * scale),
                          class_="cylinder", fill="#b0a08a", stroke="#6b5b45"))
+    # a scale bar in the map's lower left corner
+    bar_mm = _scale_length(scale)
+    bx0, by0 = MARGIN_PX + 8, _r(top + map_h - 10)
+    bar = dwg.g(class_="scale-bar")
+    bar["data-mm"] = f"{bar_mm:g}"
+    bar.add(dwg.line(start=(bx0, by0), end=(_r(bx0 + bar_mm * scale), by0), stroke="#222",
+                     stroke_width=2))
+    for x_end in (bx0, _r(bx0 + bar_mm * scale)):
+        bar.add(dwg.line(start=(x_end, _r(by0 - 3)), end=(x_end, _r(by0 + 3)), stroke="#222"))
+    bar.add(dwg.text(_length_text(bar_mm), insert=(bx0, _r(by0 - 5)), font_family="sans-serif",
+                     font_size=9, class_="scale-label"))
+    g.add(bar)
     dwg.add(g)
 
-    # -- each robot's path, firings and final pose
-    placed_labels = []
+    # -- each robot's path, firings, marks and final pose: the robots' names
+    # are placed first, so that no label covers them
+    placed_labels = [(bx0, _r(by0 - 5 - LABEL_H), _text_width(_length_text(bar_mm)), LABEL_H,
+                      "scale")]
+    name_boxes = {}
+    for run in runs:
+        if run.name:
+            _, fx, fy, _ = run.poses[-1]
+            cx, cy = px(fx, fy)
+            rr = max(radius * scale, 3.0)
+            w = _text_width(run.name, 10)
+            left = cx + rr + 2 if cx + rr + 2 + w <= width - 2 else cx - rr - 2 - w
+            box = (_r(left), _r(cy + 4 - 10), w, 13.0, run.name)     # 10 px text
+            name_boxes[run.name] = box
+            placed_labels.append(box)
     for i, run in enumerate(runs):
         colour = COLOURS[i % len(COLOURS)]
         rg = dwg.g(class_="robot-run")
@@ -231,15 +340,41 @@ def plot_trace(text: str, title: str = "", source: str = "trace") -> str:
             marker["data-label"] = f.label
             marker.set_desc(title=f"{run.name + ': ' if run.name else ''}{f.t_ms} ms {f.title}")
             rg.add(marker)
-            # its label, unless that would cover another label (the marker's
-            # tooltip still names it); the same label at the same spot once
-            box = _label_box(f.label, fx, fy, placed_labels)
+            # its label (the rule's name, or its event), unless that would
+            # cover another label (the marker's tooltip still names it); the
+            # same label at the same spot once
+            box = _label_box(f.shown, fx, fy, placed_labels, width)
             if box is not None:
                 placed_labels.append(box)
-                t = dwg.text(f.label, insert=(box[0], _r(box[1] + LABEL_H)), class_="firing-label",
+                t = dwg.text(f.shown, insert=(box[0], _r(box[1] + BASELINE)), class_="firing-label",
                              font_family="sans-serif", font_size=9, fill="#333")
                 t["data-t-ms"] = str(f.t_ms)
+                t["data-label"] = f.label
                 rg.add(t)
+        for m in run.marks:
+            mx, my = px(m.x, m.y)
+            if m.kind == "mode":
+                shape = dwg.polygon([(mx, _r(my - 5)), (_r(mx + 5), my), (mx, _r(my + 5)),
+                                     (_r(mx - 5), my)], class_="mode-change", fill="#ffd54f",
+                                    stroke="#7a5c00")
+            elif m.kind == "led":
+                shape = dwg.circle(center=(mx, my), r=2.5, class_="led-change", fill="#66bb6a",
+                                   stroke="#1b5e20", stroke_width=0.6)
+            else:
+                shape = dwg.path(d=f"M {_r(mx - 4)} {_r(my - 4)} L {_r(mx + 4)} {_r(my + 4)} "
+                                   f"M {_r(mx - 4)} {_r(my + 4)} L {_r(mx + 4)} {_r(my - 4)}",
+                                 class_="contact", stroke="#c62828", stroke_width=2, fill="none")
+            shape["data-t-ms"] = str(m.t_ms)
+            shape.set_desc(title=f"{run.name + ': ' if run.name else ''}{m.t_ms} ms {m.text}")
+            rg.add(shape)
+            if m.kind != "led":         # LEDs: the tooltip and the timeline
+                box = _label_box(m.text, mx, my, placed_labels, width)
+                if box is not None:
+                    placed_labels.append(box)
+                    t = dwg.text(m.text, insert=(box[0], _r(box[1] + BASELINE)),
+                                 class_=f"{m.kind}-label", font_family="sans-serif", font_size=9,
+                                 fill="#333")
+                    rg.add(t)
         _, fx, fy, fh = run.poses[-1]
         cx, cy = px(fx, fy)
         fin = dwg.g(class_="final-pose")
@@ -254,7 +389,8 @@ def plot_trace(text: str, title: str = "", source: str = "trace") -> str:
         fin.add(dwg.line(start=(cx, cy), end=(_r(hx), _r(hy)), stroke="#000", stroke_width=1.5,
                          class_="heading"))
         if run.name:
-            fin.add(dwg.text(run.name, insert=(_r(cx + rr + 2), _r(cy + 4)), font_family="sans-serif",
+            box = name_boxes[run.name]
+            fin.add(dwg.text(run.name, insert=(box[0], _r(box[1] + 10)), font_family="sans-serif",
                              font_size=10, class_="robot-name"))
         rg.add(fin)
         dwg.add(rg)
@@ -284,14 +420,15 @@ def plot_trace(text: str, title: str = "", source: str = "trace") -> str:
         rowg.add(dwg.line(start=(t_left, _r(y + ROW_PX / 2)), end=(t_right, _r(y + ROW_PX / 2)),
                           stroke="#ddd", stroke_width=1))
         for i, run in enumerate(runs):
-            for f in run.firings:
-                if f.label == label:
-                    tick = dwg.line(start=(tx(f.t_ms), _r(y + 3)), end=(tx(f.t_ms), _r(y + ROW_PX - 3)),
-                                    stroke=COLOURS[i % len(COLOURS)], stroke_width=1.5, class_="tick")
-                    tick["data-t-ms"] = str(f.t_ms)
-                    if run.name:
-                        tick["data-robot"] = run.name
-                    rowg.add(tick)
+            times = ([f.t_ms for f in run.firings if f.label == label]
+                     + [m.t_ms for m in run.marks if m.kind == label])
+            for t_ms in times:
+                tick = dwg.line(start=(tx(t_ms), _r(y + 3)), end=(tx(t_ms), _r(y + ROW_PX - 3)),
+                                stroke=COLOURS[i % len(COLOURS)], stroke_width=1.5, class_="tick")
+                tick["data-t-ms"] = str(t_ms)
+                if run.name:
+                    tick["data-robot"] = run.name
+                rowg.add(tick)
         tl.add(rowg)
     axis_y = _r(timeline_top + timeline_h + 4)
     tl.add(dwg.line(start=(t_left, axis_y), end=(t_right, axis_y), stroke="#444", class_="axis"))
