@@ -5,8 +5,12 @@ differs from what this script draws today.
 
     python3 docs/make_pictures.py              # rewrites docs/images/
     python3 docs/make_pictures.py --out DIR    # somewhere else
+    python3 docs/make_pictures.py --replay     # also the replay's screenshot
 
-Needs Enki (libenki-dev) and a C++ compiler, as `epuckc run --world` does.
+Needs Enki (libenki-dev) and a C++ compiler, as `epuckc run --world` does;
+the screenshot of the replay page (replay.png, a moment into the same run)
+needs Chromium, and is not compared by the tests (a browser's pixels vary
+with its fonts).
 """
 import argparse
 import os
@@ -25,6 +29,7 @@ PICTURES = [
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--out", type=Path, default=REPO / "docs" / "images")
+    parser.add_argument("--replay", action="store_true", help="also docs/images/replay.png")
     args = parser.parse_args()
     env = dict(os.environ, PYTHONPATH=str(REPO) + os.pathsep + os.environ.get("PYTHONPATH", ""),
                EPUCK_QUIET="1")
@@ -38,6 +43,22 @@ def main() -> int:
             sys.stderr.write(result.stdout + result.stderr)
             return 1
         print(f"wrote {args.out / picture}")
+    if args.replay:
+        page = args.out.resolve() / "replay.html"
+        result = subprocess.run([sys.executable, "-m", "epuckc", "run", "examples/wander.epk",
+                                 "--world", "examples/arena.world", "--time-limit", "60s",
+                                 "--html", str(page)], cwd=REPO, env=env, capture_output=True,
+                                text=True)
+        if result.returncode not in (0, 3):
+            sys.stderr.write(result.stdout + result.stderr)
+            return 1
+        # 1.2 s of play in virtual time (headless Chromium paints few frames)
+        subprocess.run(["chromium", "--headless", "--no-sandbox", "--disable-gpu",
+                        "--virtual-time-budget=1200", "--window-size=760,960",
+                        f"--screenshot={args.out.resolve() / 'replay.png'}",
+                        page.as_uri() + "#play"], check=True, capture_output=True)
+        page.unlink()
+        print(f"wrote {args.out / 'replay.png'}")
     return 0
 
 

@@ -22,8 +22,13 @@ def add_run_options(p: argparse.ArgumentParser, duration):
                         "instead of replaying a scenario")
     p.add_argument("--svg", metavar="OUT.svg",
                    help="also draw the run: world, paths, rule firings, a timeline")
+    p.add_argument("--html", metavar="OUT.html",
+                   help="also write a page that replays the run (robots moving, play/pause, a "
+                        "time slider, the rules fired and the variables at the cursor); it "
+                        "needs no network")
     p.add_argument("--pose-interval", type=duration, metavar="DURATION",
-                   help=f"add a pose record to the trace every DURATION (default with --svg: "
+                   help=f"add a pose record to the trace every DURATION (default with --svg "
+                        f"or --html: "
                         f"{DEFAULT_SVG_POSE_MS}ms; otherwise none)")
 
 
@@ -40,6 +45,7 @@ def add_plot_parser(sub, run):
 
 def wants_extension(args) -> bool:
     return bool(getattr(args, "world", None) or getattr(args, "svg", None)
+                or getattr(args, "html", None)
                 or getattr(args, "pose_interval", None))
 
 
@@ -51,7 +57,8 @@ def run(args, program, load_program_file, run_host) -> int:
         _error("--world and --scenario cannot be combined: in a world the proximity readings "
                "come from Enki's sensors, not from a scenario")
         return EXIT_USAGE
-    pose_ms = args.pose_interval or (DEFAULT_SVG_POSE_MS if args.svg else None)
+    pictures = args.svg or args.html
+    pose_ms = args.pose_interval or (DEFAULT_SVG_POSE_MS if pictures else None)
     world = None
     if args.world:
         try:
@@ -60,7 +67,7 @@ def run(args, program, load_program_file, run_host) -> int:
             print(exc, file=sys.stderr)
             return EXIT_USAGE
     with tempfile.TemporaryDirectory(prefix="epuckc-run-") as tmp:
-        trace = Path(args.trace) if args.trace else (Path(tmp) / "trace.jsonl" if args.svg else None)
+        trace = Path(args.trace) if args.trace else (Path(tmp) / "trace.jsonl" if pictures else None)
         try:
             if world is not None:
                 from ..sim.enki import run_world
@@ -72,10 +79,12 @@ def run(args, program, load_program_file, run_host) -> int:
         except BuildError as exc:
             _error(str(exc))
             return exc.status
-        if args.svg:
-            plot_status = _plot(trace, Path(args.svg), title=picture_title(args.file, world))
-            if plot_status:
-                return plot_status
+        for out, draw in ((args.svg, "svg"), (args.html, "html")):
+            if out:
+                plot_status = _plot(trace, Path(out), title=picture_title(args.file, world),
+                                    form=draw)
+                if plot_status:
+                    return plot_status
     return status
 
 
@@ -95,9 +104,11 @@ def picture_title(program: str, world) -> str:
     return "; ".join(f"{name}: {', '.join(robots)}" for name, robots in by_program.items())
 
 
-def _plot(trace: Path, out: Path, title: str) -> int:
+def _plot(trace: Path, out: Path, title: str, form: str = "svg") -> int:
+    """Draw a trace as an SVG picture, or as the page that replays it."""
     from ..base.output import write_atomic
     from ..sim.plot import PlotError, plot_trace
+    from ..sim.replay import replay_html
     try:
         text = trace.read_text(encoding="utf-8")
     except FileNotFoundError:
@@ -107,7 +118,8 @@ def _plot(trace: Path, out: Path, title: str) -> int:
         _error(f"cannot read {trace}: {getattr(exc, 'strerror', None) or exc}")
         return EXIT_USAGE
     try:
-        svg = plot_trace(text, title=title, source=str(trace))
+        draw = plot_trace if form == "svg" else replay_html
+        svg = draw(text, title=title, source=str(trace))
     except PlotError as exc:
         _error(str(exc))
         return EXIT_USAGE

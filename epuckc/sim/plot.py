@@ -267,8 +267,9 @@ def plot_trace(text: str, title: str = "", source: str = "trace") -> str:
         t.set_desc(title=title)
         dwg.add(t)
 
-    # -- the world
+    # -- the world; its frame (mm -> px) for a page that moves the robots
     g = dwg.g(id="world")
+    g["data-frame"] = f"{x0!r} {y1!r} {scale!r} {MARGIN_PX!r} {top!r}"
     if world is not None and world.get("arena"):
         a = world["arena"]
         (ax, ay), (bx, by) = px(0, a["height_mm"]), px(a["width_mm"], 0)
@@ -400,6 +401,7 @@ def plot_trace(text: str, title: str = "", source: str = "trace") -> str:
     t_left = MARGIN_PX + LABEL_COLUMN_PX
     t_right = width - MARGIN_PX
     span_ms = max(end_ms, 1)
+    tl["data-axis"] = f"{t_left!r} {t_right!r} {span_ms} {timeline_top!r} {timeline_top + timeline_h!r}"
 
     def tx(t_ms: int) -> float:
         return _r(t_left + (t_right - t_left) * t_ms / span_ms)

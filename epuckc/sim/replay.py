@@ -1,0 +1,143 @@
+"""`epuckc run ... --html replay.html`: one self-contained page (no network)
+that replays a run: the picture of plot.py (arena, obstacles, paths,
+timeline) with every robot moving along its path, play/pause, a time
+slider, and at the cursor the rules that fired last and the variables'
+values (`set` records, when the trace has them).
+
+The page carries the trace's poses, firings and variable changes as JSON
+and a small script; the picture's map frame and timeline axis come from
+its `data-frame` and `data-axis` attributes, so the script draws nothing
+the picture does not already place. tests/sim/test_replay.py plays it in
+headless Chromium.
+"""
+from __future__ import annotations
+
+import html
+import json
+
+from .plot import COLOURS, DEFAULT_ROBOT_RADIUS_MM, parse_trace, plot_trace
+
+_PAGE = """<!doctype html>
+<html lang="en"><head><meta charset="utf-8"><title>{title}</title>
+<style>
+body {{ font-family: sans-serif; margin: 16px; color: #222; }}
+#controls {{ display: flex; gap: 12px; align-items: center; margin: 8px 0; }}
+#slider {{ width: 480px; }}
+#panel {{ display: flex; gap: 32px; font-size: 13px; }}
+#panel ul {{ margin: 4px 0; padding-left: 18px; }}
+</style></head>
+<body data-errors="">
+<div id="controls"><button id="play" type="button">play</button>
+<input id="slider" type="range" min="0" max="{end}" step="1" value="0">
+<span id="clock">0.000 s</span></div>
+<div id="picture">{svg}</div>
+<div id="panel"><div><b>last rules fired</b><ul id="fired"></ul></div>
+<div><b>variables</b><ul id="vars"></ul></div></div>
+<script id="run-data" type="application/json">{data}</script>
+<script>
+window.addEventListener("error", e => {{ document.body.dataset.errors += e.message + ";"; }});
+(function () {{
+  const run = JSON.parse(document.getElementById("run-data").textContent);
+  const svg = document.querySelector("#picture svg");
+  const NS = "http://www.w3.org/2000/svg";
+  const [x0, y1, scale, margin, top] = document.getElementById("world").dataset.frame
+    .split(" ").map(Number);
+  const [tLeft, tRight, span, tTop, tBottom] = document.getElementById("timeline").dataset.axis
+    .split(" ").map(Number);
+  const px = (x, y) => [margin + (x - x0) * scale, top + (y1 - y) * scale];
+  const robots = run.robots.map(r => {{
+    const g = document.createElementNS(NS, "g");
+    g.setAttribute("class", "replay-robot");
+    g.dataset.robot = r.name;
+    const c = document.createElementNS(NS, "circle");
+    c.setAttribute("r", Math.max(run.radius * scale, 3));
+    c.setAttribute("fill", r.colour); c.setAttribute("fill-opacity", "0.6");
+    c.setAttribute("stroke", "#000");
+    const h = document.createElementNS(NS, "line");
+    h.setAttribute("x2", Math.max(run.radius * scale, 3)); h.setAttribute("stroke", "#000");
+    g.appendChild(c); g.appendChild(h); svg.appendChild(g);
+    return {{ poses: r.poses, g: g }};
+  }});
+  const cursor = document.createElementNS(NS, "line");
+  cursor.setAttribute("id", "cursor"); cursor.setAttribute("stroke", "#c00");
+  cursor.setAttribute("y1", tTop - 4); cursor.setAttribute("y2", tBottom + 4);
+  svg.appendChild(cursor);
+  const slider = document.getElementById("slider"), clock = document.getElementById("clock");
+  const button = document.getElementById("play");
+  function poseAt(poses, t) {{
+    let lo = 0, hi = poses.length - 1;
+    while (lo < hi) {{ const mid = (lo + hi + 1) >> 1; if (poses[mid][0] <= t) lo = mid; else hi = mid - 1; }}
+    return poses[lo];
+  }}
+  function show(t) {{
+    for (const r of robots) {{
+      const [, x, y, heading] = poseAt(r.poses, t);
+      const [cx, cy] = px(x, y);
+      r.g.setAttribute("transform", `translate(${{cx.toFixed(1)}} ${{cy.toFixed(1)}}) rotate(${{(-heading).toFixed(1)}})`);
+    }}
+    const cx = tLeft + (tRight - tLeft) * Math.min(t, span) / span;
+    cursor.setAttribute("x1", cx.toFixed(1)); cursor.setAttribute("x2", cx.toFixed(1));
+    clock.textContent = (t / 1000).toFixed(3) + " s";
+    const fired = run.firings.filter(f => f[0] <= t).slice(-8).reverse();
+    document.getElementById("fired").innerHTML = fired.map(f =>
+      `<li>${{(f[0] / 1000).toFixed(3)}} s ${{f[1] ? f[1] + ": " : ""}}${{escape(f[2])}}</li>`).join("");
+    const values = new Map();
+    for (const v of run.sets) {{ if (v[0] > t) break; values.set(v[1] + "\\u0000" + v[2], v); }}
+    document.getElementById("vars").innerHTML = [...values.values()].map(v =>
+      `<li>${{v[1] ? v[1] + ": " : ""}}${{escape(v[2])}} = ${{v[3]}}</li>`).join("") || "<li>none</li>";
+  }}
+  function escape(s) {{
+    return String(s).replace(/[&<>]/g, c => ({{"&": "&amp;", "<": "&lt;", ">": "&gt;"}})[c]);
+  }}
+  let playing = false, last = 0;
+  function frame(now) {{
+    if (!playing) return;
+    const t = Math.min(Number(slider.value) + Math.max(0, now - last) * run.speed, run.end);
+    last = now; slider.value = t; show(t);
+    if (t >= run.end) {{ playing = false; button.textContent = "play"; return; }}
+    requestAnimationFrame(frame);
+  }}
+  function play() {{
+    if (Number(slider.value) >= run.end) slider.value = 0;
+    playing = true; button.textContent = "pause"; last = performance.now();
+    requestAnimationFrame(frame);
+  }}
+  button.addEventListener("click", () => {{
+    if (playing) {{ playing = false; button.textContent = "play"; }} else play();
+  }});
+  slider.addEventListener("input", () => show(Number(slider.value)));
+  show(0);
+  if (location.hash === "#play") play();
+}})();
+</script></body></html>
+"""
+
+# Virtual time runs this many times faster than real time: a minute's run
+# plays in six seconds.
+SPEED = 10.0
+
+
+def replay_html(text: str, title: str = "", source: str = "trace") -> str:
+    """The replay page of a trace (deterministic)."""
+    world, runs, end_ms = parse_trace(text, source)
+    robots, firings, sets = [], [], []
+    for i, run in enumerate(runs):
+        robots.append({"name": run.name, "colour": COLOURS[i % len(COLOURS)],
+                       "poses": [[t, round(x, 1), round(y, 1), round(h, 1)]
+                                 for t, x, y, h in run.poses]})
+        firings += [[f.t_ms, run.name, f.shown] for f in run.firings]
+    for line in text.splitlines():
+        if '"set"' in line:
+            rec = json.loads(line)
+            if rec.get("kind") == "set":
+                sets.append([int(rec["t_ms"]), str(rec.get("robot", "")), str(rec["var"]),
+                             rec["value"]])
+    firings.sort(key=lambda f: f[0])
+    sets.sort(key=lambda s: s[0])
+    data = {"robots": robots, "firings": firings, "sets": sets, "end": end_ms, "speed": SPEED,
+            "radius": float((world or {}).get("robot_radius_mm", DEFAULT_ROBOT_RADIUS_MM))}
+    payload = json.dumps(data, separators=(",", ":")).replace("</", "<\\/")
+    svg = plot_trace(text, title=title, source=source)
+    svg = svg[svg.index("<svg"):]
+    return _PAGE.format(title=html.escape(title or "epuckc replay"), end=end_ms, svg=svg,
+                        data=payload)
