@@ -8,7 +8,7 @@ differs from what this script draws today.
     python3 docs/make_pictures.py --replay     # also the replay's screenshot
 
 Needs Enki (libenki-dev) and a C++ compiler, as `epuckc run --world` does;
-the screenshot of the replay page (replay.png, a moment into the same run)
+the screenshot of the replay page (replay.png, about 12 s into the same run)
 needs Chromium, and is not compared by the tests (a browser's pixels vary
 with its fonts).
 """
@@ -52,7 +52,7 @@ def main() -> int:
         if result.returncode not in (0, 3):
             sys.stderr.write(result.stdout + result.stderr)
             return 1
-        # 1.2 s of play in virtual time (headless Chromium paints few frames)
+        # 1.2 s of play in virtual time: about 12 s of the run
         subprocess.run(["chromium", "--headless", "--no-sandbox", "--disable-gpu",
                         "--virtual-time-budget=1200", "--window-size=760,960",
                         f"--screenshot={args.out.resolve() / 'replay.png'}",

@@ -89,18 +89,21 @@ window.addEventListener("error", e => {{ document.body.dataset.errors += e.messa
   function escape(s) {{
     return String(s).replace(/[&<>]/g, c => ({{"&": "&amp;", "<": "&lt;", ">": "&gt;"}})[c]);
   }}
+  // a frame every 40 ms by the clock (timers, not animation frames, which
+  // a hidden or headless page may not paint)
   let playing = false, last = 0;
-  function frame(now) {{
+  function frame() {{
     if (!playing) return;
+    const now = performance.now();
     const t = Math.min(Number(slider.value) + Math.max(0, now - last) * run.speed, run.end);
     last = now; slider.value = t; show(t);
     if (t >= run.end) {{ playing = false; button.textContent = "play"; return; }}
-    requestAnimationFrame(frame);
+    setTimeout(frame, 40);
   }}
   function play() {{
     if (Number(slider.value) >= run.end) slider.value = 0;
     playing = true; button.textContent = "pause"; last = performance.now();
-    requestAnimationFrame(frame);
+    setTimeout(frame, 40);
   }}
   button.addEventListener("click", () => {{
     if (playing) {{ playing = false; button.textContent = "play"; }} else play();
