@@ -89,8 +89,12 @@ def _describe_expected(prev, expected: set) -> tuple[str, str | None]:
 def _syntax_error(exc: lalr.ParseError, chunk: list, following, source: SourceFile,
                   diags: Collector):
     tok = exc.token
-    if getattr(tok, "after_bad", False):
-        return      # the unexpected character just before it is already reported (E002)
+    if getattr(tok, "after_bad", False) and chunk and tok is not chunk[0]:
+        # the unexpected character just before it, in this statement, is
+        # already reported (E002). One before the statement's first token
+        # belongs to the statement before: the language server, which lexes
+        # each statement on its own, could not see it, and must say the same.
+        return
     if tok.type == "$END":
         # Point at the last token read: that is where something is missing.
         prev = chunk[-1]

@@ -156,3 +156,17 @@ def test_a_long_editing_session_on_a_big_file():
         text = edit(rng, text)
         if step % 3 == 0:       # several edits may come between two analyses
             assert analyzer.analyse(text).diagnostics == full_check(text)
+
+
+def test_a_bad_character_before_a_statement_gives_the_same_errors():
+    """A bad character at the end of a mode's head, just before the next
+    statement's first word: the statement's syntax error is reported by
+    `epuckc check` and by the language server alike (it lexes each
+    statement on its own and cannot see the character before it).
+    Found by test_random_edit_sequences."""
+    text = ("initial mode home { on enter do stop_motor }\n"
+            "mode rest {\\n enter do exit_main }\n")
+    analyzer = Analyzer("prog.epk")
+    analyzer.analyse("initial mode home { on enter do stop_motor }\n")
+    assert analyzer.analyse(text).diagnostics == full_check(text)
+    assert [d.code for d in full_check(text)].count("E001") == 1
