@@ -8,7 +8,6 @@ starts from that and never re-derives a value.
 from __future__ import annotations
 
 import bisect
-
 from pathlib import Path
 from typing import Optional
 
