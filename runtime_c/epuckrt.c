@@ -682,12 +682,15 @@ static int poll_ranked(void)
 /* Phase (5): poll the armed events; without priorities and modes in index
  * order: the table's, then the registered ones.  Returns 1 when exit_main
  * ran. */
+unsigned long rt_poll_count;
+
 static int poll_events(void)
 {
     int i;
 
     conditions_valid = 0;
     rt_prox_valid = 0;
+    rt_poll_count++;            /* the other readings are read anew (rt_lang.c) */
     if (ranked)
         return poll_ranked();
     if (rt_prog != NULL && poll_static())
@@ -735,6 +738,7 @@ void mainloop(void)
     rt_wheels(0, 0);
     rt_seq = NULL;
     rt_seq_waiting = 0;
+    rt_seq_delay = 0;
     rt_seen_moving = 0;
     rt_exit_requested = 0;
     rt_prox_valid = 0;

@@ -369,4 +369,76 @@ void event_remote(void *param, void *status);
  * works without start_sensor. */
 void event_ambient(void *param, void *status);   /* param_event_sensor * */
 
+/* ---- Extension: the rule language's state and continuous control ---------
+ * What epuckc's expressions, variables, `when`, `every`, `after`,
+ * `set_speed` and `wait` compile to (runtime_c/rt_lang.c).  Values are
+ * 16-bit: every operation saturates at -32768..32767 (never overflows, on
+ * any int width), division truncates, and division or % by 0 gives 0. */
+#define RT_INT_MIN (-32767 - 1)
+#define RT_INT_MAX 32767
+int rt_add(int a, int b);
+int rt_sub(int a, int b);
+int rt_mul(int a, int b);
+int rt_div(int a, int b);
+int rt_mod(int a, int b);
+int rt_neg(int a);
+int rt_abs(int a);
+int rt_min(int a, int b);
+int rt_max(int a, int b);
+int rt_clamp(int x, int lo, int hi);    /* lo when x < lo, else hi when x > hi */
+/* A uniform random whole number in lo..hi (lo when hi < lo), from a 32-bit
+ * generator that gives the same sequence on every target for a seed. */
+int rt_random(int lo, int hi);
+void rt_seed(unsigned long seed);
+/* Readings, each read from the library at most once per poll (proximity
+ * readings need no start_sensor): proximity 0..7, ambient light 0..7,
+ * microphone volume 0..2, accelerometer axis 0..2, selector 0..15; the
+ * odometry of the wheels' steps since the start pose: x forward and y to
+ * the left in mm, heading in degrees counter-clockwise, -180..179. */
+int rt_ir(int sensor);
+int rt_ambient(int sensor);
+int rt_mic(int micro);
+int rt_acc(int axis);
+int rt_selector(void);
+int rt_x_mm(void);
+int rt_y_mm(void);
+int rt_heading_deg(void);
+/* `NAME = value`: stores it in *var and traces the change (variable number
+ * id, named with name_var). */
+void rt_assign(int *var, int id, int value);
+void name_var(int id, const char *name);
+#if defined(EPUCKRT_NO_NAMES) || (defined(__XC16__) && !defined(EPUCKRT_NAMES))
+#define name_var(id, name) ((void)(id))
+#endif
+/* The event function of a `when` rule calls rt_when with its condition: it
+ * occurs when the condition becomes true (status->memory: the condition at
+ * the previous poll, 0 when the rule is armed).  A guard (`if COND`) calls
+ * rt_guard after the event's function: an event whose guard is false did
+ * not occur. */
+void rt_when(void *status, int condition);
+void rt_guard(void *status, int guard);
+/* `every` and `after`: their own timers, from when the rule is armed
+ * (registration or its mode's entry); status->memory holds the next firing
+ * time + 1 (0: just armed). */
+typedef struct {
+    long period;    /* ms, > 0 */
+} param_event_every;
+void event_every(void *param, void *status);
+void event_after(void *param, void *status);
+/* set_speed: the wheels at these speeds (clamped to EPUCK_MAX_SPEED) until
+ * the next motor command; a motion without an end, arbitrated as the
+ * others (a `then` sequence goes on at once). */
+typedef struct {
+    int left;
+    int right;
+} param_set_speed;
+void action_set_speed(void *param);
+/* wait: a step of a sequence; the next step starts `time` ms later (and
+ * not before the motion in progress has ended).  Outside a sequence it
+ * does nothing. */
+typedef struct {
+    long time;
+} param_wait;
+void action_wait(void *param);
+
 #endif /* EPUCKRT_H */

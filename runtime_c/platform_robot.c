@@ -9,6 +9,7 @@
  * no trace on the robot).
  */
 #include "rt_platform.h"
+#include "a_d/advance_ad_scan/e_prox.h"
 
 void rt_platform_init(void)
 {
@@ -52,6 +53,30 @@ void rt_trace_suppressed(int event_id, int priority, int owner_event_id,
 void rt_trace_mode(int mode)
 {
     (void)mode;
+}
+
+void rt_trace_set(int id, int value)
+{
+    (void)id;
+    (void)value;
+}
+
+void rt_name_var(int id, const char *name)
+{
+    (void)id;
+    (void)name;
+}
+
+/* The seed of `random`: the low bits of the sensors' noise at start. */
+unsigned long rt_platform_seed(void)
+{
+    unsigned long seed = 0;
+    unsigned n;
+
+    for (n = 0; n < 8; n++)
+        seed = (seed << 4) ^ (seed >> 28) ^ (unsigned long)e_get_ambient_light(n)
+               ^ ((unsigned long)e_get_prox(n) << 12);
+    return seed;
 }
 
 void rt_name_mode(int mode, const char *name)

@@ -51,6 +51,7 @@ struct rt_motion {
     long right;
     int owner;      /* event whose action started it (-1: none); the
                        motors are its until the motion ends */
+    int endless;    /* set_speed: no target; a sequence does not wait for it */
 };
 
 /* ---- shared state and helpers, by the file that defines them ---- */
@@ -71,7 +72,8 @@ extern int rt_remote_started;   /* e_init_remote_control() has run */
 extern int rt_exit_requested;   /* set by exit_main, checked by mainloop */
 extern int rt_current_action_id;   /* the action being run by mainloop */
 extern int rt_current_event_id;   /* the event whose action runs (-1: none) */
-extern int rt_current_rearmed;   /* its action entered its mode again: it stays armed */
+extern int rt_current_rearmed;
+extern unsigned long rt_poll_count;   /* polls so far: readings are read once in each */   /* its action entered its mode again: it stays armed */
 
 /* rt_motion.c: motion and the sequencer */
 extern struct rt_motion rt_motion;
@@ -83,9 +85,17 @@ extern const param_sequence *rt_seq;   /* NULL: none */
 extern int rt_seq_event_id;   /* the event whose action started it */
 extern int rt_seq_waiting;   /* a step's motion is under way */
 extern unsigned rt_seq_generation;   /* changes when a sequence replaces one */
+extern int rt_seq_delay;   /* a wait step runs: the sequence goes on at rt_seq_until */
+extern long rt_seq_until;
+extern long rt_geo_circumference_um;   /* the geometry (set_robot_geometry) */
+extern long rt_geo_axle_um;
+extern long rt_geo_steps_per_rev;
 void rt_wheels(int left, int right);
 void rt_motion_update(void);
 void rt_sequence_advance(void);
+
+/* rt_lang.c: the rule language's expressions, odometry, random numbers */
+void rt_odometry(long dl, long dr);   /* the wheels' steps of this poll */
 
 /* rt_sensors.c: standard events, sensors and devices */
 extern int rt_sensors_on;

@@ -55,6 +55,7 @@ void enter_mode(int mode)
         rt_seq_generation++;
         rt_seq = NULL;
         rt_seq_waiting = 0;
+        rt_seq_delay = 0;
     }
     if (rt_motion.active && rt_motion.owner >= 0 && rt_event_mode(rt_motion.owner) == left) {
         /* stopped without a stop_motor event: the motion did not end, its

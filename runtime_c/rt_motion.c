@@ -7,7 +7,7 @@
 #include "rt_internal.h"
 
 /* The motion in progress (rt_internal.h). */
-struct rt_motion rt_motion = { 0, 0, 0, 0, 0, -1 };
+struct rt_motion rt_motion = { 0, 0, 0, 0, 0, -1, 0 };
 int rt_last_left;           /* raw counters at the previous poll */
 int rt_last_right;
 static unsigned motion_starts;  /* incremented at every motion start */
@@ -24,6 +24,8 @@ int rt_seq_event_id;            /* the event whose action started it */
 int rt_seq_waiting;             /* a step's motion is under way */
 unsigned rt_seq_generation;     /* changes when a sequence replaces one */
 static int in_step;                 /* > 0 while a step's function runs */
+int rt_seq_delay;               /* a wait step runs: go on at rt_seq_until */
+long rt_seq_until;
 
 /* ---- small arithmetic helpers ------------------------------------------- */
 
@@ -104,6 +106,7 @@ static void motion_begin(int left, int right, long target, int watch)
         right = 0;
     }
     rt_motion.active = 1;
+    rt_motion.endless = 0;
     rt_motion.owner = rt_current_event_id;
     rt_motion.watch = watch;
     rt_motion.target = target;
@@ -128,7 +131,8 @@ void rt_motion_update(void)
 
     rt_last_left = l;
     rt_last_right = r;
-    if (!rt_motion.active)
+    rt_odometry(dl, dr);
+    if (!rt_motion.active || rt_motion.endless)
         return;
     rt_motion.left += dl;
     rt_motion.right += dr;
@@ -147,9 +151,9 @@ void rt_motion_update(void)
 }
 
 /* The geometry that converts millimetres and degrees (set_robot_geometry). */
-static long geo_circumference_um = EPUCK_WHEEL_CIRCUMFERENCE_UM;
-static long geo_axle_um = EPUCK_AXLE_UM;
-static long geo_steps_per_rev = EPUCK_STEPS_PER_REV;
+long rt_geo_circumference_um = EPUCK_WHEEL_CIRCUMFERENCE_UM;
+long rt_geo_axle_um = EPUCK_AXLE_UM;
+long rt_geo_steps_per_rev = EPUCK_STEPS_PER_REV;
 
 void set_robot_geometry(long wheel_circumference_um, long axle_um, long steps_per_rev)
 {
@@ -157,9 +161,9 @@ void set_robot_geometry(long wheel_circumference_um, long axle_um, long steps_pe
         || axle_um <= 0 || axle_um > EPUCK_MAX_GEOMETRY_UM
         || steps_per_rev <= 0 || steps_per_rev > EPUCK_MAX_STEPS_PER_REV)
         return;
-    geo_circumference_um = wheel_circumference_um;
-    geo_axle_um = axle_um;
-    geo_steps_per_rev = steps_per_rev;
+    rt_geo_circumference_um = wheel_circumference_um;
+    rt_geo_axle_um = axle_um;
+    rt_geo_steps_per_rev = steps_per_rev;
     rt_geometry(wheel_circumference_um, axle_um, steps_per_rev);
 }
 
@@ -187,7 +191,7 @@ static long muldiv_round(long long a, long long b, long long d)
 static long mm_to_steps(int mm)
 {
     long long um = 1000LL * (mm < 0 ? -(long long)mm : (long long)mm);
-    return muldiv_round(um, geo_steps_per_rev, geo_circumference_um);
+    return muldiv_round(um, rt_geo_steps_per_rev, rt_geo_circumference_um);
 }
 
 /* Drive both wheels at |speed| for `steps` (>= 0), backwards when asked. */
@@ -234,10 +238,10 @@ void action_start_curve(void *param)
     two_r = 2LL * 1000LL * radius;
     /* outer arc = (r + axle/2) * |degrees| * pi / 180, pi = 355/113;
      * arc <= (6.6e7 + 1e8) * 32767 * 355 < 2^61 */
-    arc = (two_r + geo_axle_um) * degrees * 355LL;
-    outer_steps = muldiv_round(arc, geo_steps_per_rev, 360LL * 113LL * geo_circumference_um);
-    inner = clamp_speed((long)div_round((long long)outer * (two_r - geo_axle_um),
-                                        two_r + geo_axle_um));
+    arc = (two_r + rt_geo_axle_um) * degrees * 355LL;
+    outer_steps = muldiv_round(arc, rt_geo_steps_per_rev, 360LL * 113LL * rt_geo_circumference_um);
+    inner = clamp_speed((long)div_round((long long)outer * (two_r - rt_geo_axle_um),
+                                        two_r + rt_geo_axle_um));
     if (p->degrees >= 0)        /* left: the right wheel is outer */
         motion_begin(inner, outer, outer_steps, WATCH_RIGHT);
     else
@@ -261,6 +265,24 @@ void action_curve_steps(void *param)
                  al > ar ? WATCH_LEFT : ar > al ? WATCH_RIGHT : WATCH_BOTH);
 }
 
+void action_set_speed(void *param)
+{
+    const param_set_speed *p = (const param_set_speed *)param;
+    int left, right;
+
+    if (p == NULL || motors_refused("set_speed"))
+        return;
+    left = clamp_speed(p->left);
+    right = clamp_speed(p->right);
+    if (left == 0 && right == 0) {
+        /* stopped: a motion of no steps, that ends (stop_motor) at the next poll */
+        motion_begin(0, 0, 0, WATCH_BOTH);
+        return;
+    }
+    motion_begin(left, right, LONG_MAX_STEPS, WATCH_BOTH);
+    rt_motion.endless = 1;
+}
+
 void action_stop_motor(void *param)
 {
     (void)param;
@@ -280,6 +302,7 @@ static void sequence_outside_command(void)
     if (rt_seq != NULL && in_step == 0) {
         rt_seq = NULL;
         rt_seq_waiting = 0;
+        rt_seq_delay = 0;
     }
 }
 
@@ -330,7 +353,8 @@ static void sequence_run_steps(void)
             rt_seq = NULL;
             return;
         }
-        if (motion_starts != starts_before && rt_motion.active) {
+        if ((motion_starts != starts_before && rt_motion.active && !rt_motion.endless)
+                || rt_seq_delay) {
             rt_seq_waiting = 1;
             return;
         }
@@ -347,6 +371,7 @@ void action_run_sequence(void *param)
     rt_seq_generation++;
     rt_seq = NULL;
     rt_seq_waiting = 0;
+    rt_seq_delay = 0;
     if (p == NULL || p->steps == NULL || p->count <= 0)
         return;
     rt_seq = p;
@@ -363,10 +388,26 @@ void action_run_sequence(void *param)
     sequence_run_steps();
 }
 
-/* Phase (3) of a poll: continue a sequence whose step's motion has ended. */
+void action_wait(void *param)
+{
+    const param_wait *p = (const param_wait *)param;
+
+    if (p == NULL || in_step == 0 || rt_seq == NULL)
+        return;         /* not a step of a sequence: nothing to hold back */
+    rt_seq_delay = 1;
+    rt_seq_until = rt_millis() + (p->time > 0 ? p->time : 0);
+}
+
+/* Phase (3) of a poll: continue a sequence whose step's motion (and wait)
+ * has ended. */
 void rt_sequence_advance(void)
 {
-    if (rt_seq != NULL && rt_seq_waiting && !rt_motion.active) {
+    if (rt_seq != NULL && rt_seq_waiting && (!rt_motion.active || rt_motion.endless)) {
+        if (rt_seq_delay) {
+            if (rt_millis() - rt_seq_until < 0)
+                return;
+            rt_seq_delay = 0;
+        }
         rt_seq_waiting = 0;
         sequence_run_steps();
     }

@@ -34,6 +34,8 @@ void rt_trace_exit(void);
 void rt_trace_suppressed(int event_id, int priority, int owner_event_id,
                          int owner_priority, const char *command);
 void rt_trace_mode(int mode);
+/* Extension (the rule language): variable `id` changed to `value`. */
+void rt_trace_set(int id, int value);
 
 /* Registration and names, for the trace.  The core calls rt_new_action /
  * rt_new_event at each registration (the host names standard functions
@@ -49,6 +51,10 @@ void rt_name_action(int action_id, const char *name);
 void rt_name_steps(int action_id, const char *const *names, int count);
 void rt_name_event(int event_id, const char *name);
 void rt_name_mode(int mode, const char *name);
+void rt_name_var(int id, const char *name);
+/* The seed of `random` at start: the host's from EPUCK_SEED (default 1),
+ * the robot's from the sensors' noise. */
+unsigned long rt_platform_seed(void);
 
 /* Provided by the core: milliseconds since the runtime was initialised,
  * counted by a 1 ms e-puck agenda; 0 before.  Wraps to 0 after 2^31-1 ms

@@ -68,6 +68,18 @@ def _commands_motors(checker, steps, named: dict) -> bool:
     return False
 
 
+def _periods_meet(va: dict, every_a: bool, vb: dict, every_b: bool) -> bool:
+    """Whether an `every`/`after` rule and another, armed at the same poll,
+    can fire at the same time."""
+    ta, tb = va.get("period", va.get("delay")), vb.get("period", vb.get("delay"))
+    if every_a and every_b:
+        return True                     # at the least common multiple
+    if not every_a and not every_b:
+        return ta == tb
+    period, once = (ta, tb) if every_a else (tb, ta)
+    return once % period == 0
+
+
 def _timer_meets(a, b) -> bool:
     """Whether timer rules a, b (outside modes) can fire at the same time."""
     ta, tb = a.event.values["time"], b.event.values["time"]
@@ -92,12 +104,17 @@ def can_fire_together(a, b) -> bool:
     if ea.kind != "standard" or eb.kind != "standard":
         return True
     na, nb = ea.name, eb.name
-    # (stop_motor and timer events cannot occur at the first poll)
-    if (nb in ("stop_motor", "timer") and _at_first_poll_only(a)) or (
-            na in ("stop_motor", "timer") and _at_first_poll_only(b)):
+    # (stop_motor and timer events cannot occur at the first poll, nor
+    # can `every` and `after`, which count from it)
+    later = ("stop_motor", "timer", "every", "after")
+    if (nb in later and _at_first_poll_only(a)) or (na in later and _at_first_poll_only(b)):
         return False
     if na == "timer" and nb == "timer" and ma is None and mb is None:
         return _timer_meets(a, b)
+    own = ("every", "after")
+    if na in own and nb in own and ma is None and mb is None:
+        # both timers start at the first poll: they meet as one timer's would
+        return _periods_meet(ea.values, na == "every", eb.values, nb == "every")
     if ma is not None and ma == mb:
         for first, second in ((a, b), (b, a)):
             if first.event.name != "enter":
@@ -120,11 +137,14 @@ def describe(rule) -> str:
     depend on the layout (the note gives the position)."""
     if rule.name is not None:
         return f"rule {_code(rule.name)}"
-    return f"the rule {_code('on ' + event_text(rule.event.node))}"
+    head = "on " if rule.node.trigger == "on" else ""
+    return f"the rule {_code(head + event_text(rule.event.node))}"
 
 
 def event_text(call) -> str:
     """An event as written, in the formatter's layout."""
+    if call.name.name in ("when", "every", "after"):     # a rule head: `when COND`
+        return f"{call.name.name} {_shown(call.args[0].value)}"
     if call.args is None:
         return call.name.name
     args = []

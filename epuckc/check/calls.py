@@ -12,7 +12,7 @@ from ..stdlib.units import ANGLE, DISTANCE, curve_wheels, round_nearest
 from ..syntax import ast
 from . import modes
 from .messages import _code, _count, _shown, _signature_help, did_you_mean
-from .program import ResolvedCall
+from .program import Expr, ResolvedCall
 
 
 class Calls:
@@ -109,11 +109,32 @@ class Calls:
             ok = False
         return bound if ok else None
 
-    def _convert(self, bound: dict, params) -> Optional[tuple[dict, dict]]:
-        """Check and convert each bound argument to its runtime integer."""
+    def _convert(self, bound: dict, params, dynamic: bool = False,
+                 what: str = "") -> Optional[tuple[dict, dict]]:
+        """Check and convert each bound argument to its runtime integer; an
+        argument computed while the program runs to its Expr, where `dynamic`
+        (else an error that says what must be fixed: `what`)."""
         values, shown, ok = {}, {}, True
         for p in params:
             arg = bound[p.name]
+            value = arg.value
+            if value.__class__ is not ast.Number and p.kind != CHOICE and (
+                    self._is_dynamic(value) or (dynamic and value.__class__ is ast.ConstRef
+                                                and value.name.name not in self.consts)):
+                if not dynamic:
+                    self.diags.error("E052", arg.value.span,
+                                     f"{_code(p.name)} must be a fixed value, but "
+                                     f"`{self._text(arg.value)}` changes as the program runs",
+                                     help=what or "write a number (with its unit) or a "
+                                                  "constant")
+                    ok = False
+                    continue
+                e = self._dynamic_arg(arg.value, p, "")
+                if e is None:
+                    ok = False
+                    continue
+                values[p.name], shown[p.name] = e, self._text(arg.value)
+                continue
             v = self._plain(arg.value, p.kind, p.lo, p.hi)
             if v is not None:
                 values[p.name], shown[p.name] = v, _shown(arg.value)
@@ -138,6 +159,8 @@ class Calls:
         return (values, shown) if ok else None
 
     def _call(self, call) -> Optional[ResolvedCall]:
+        if isinstance(call, ast.Assign):
+            return self._assign(call)
         if isinstance(call, ast.EnterCall):
             return modes.enter_call(self, call)
         if isinstance(call, ast.CancelCall):
@@ -157,7 +180,10 @@ class Calls:
             info = self.externs[name]
             self.used_actions.add(name)
             bound = self._bind(call.name, call.args, info.params, "action")
-            converted = self._convert(bound, info.params) if bound is not None else None
+            converted = self._convert(
+                bound, info.params, what="an extern action's arguments are fixed when the "
+                "program is compiled; pass a value that changes through a variable of your C "
+                "file") if bound is not None else None
             if converted is None:
                 return None
             return ResolvedCall("extern", name, converted[0], converted[1], call)
@@ -191,14 +217,33 @@ class Calls:
         return None
 
     def _standard_action(self, name: str, call: ast.Call) -> Optional[ResolvedCall]:
-        params = STANDARD_ACTIONS[name].params
+        spec = STANDARD_ACTIONS[name]
+        params = spec.params
         bound = self._bind(call.name, call.args, params, "action")
         if bound is None:
             return None
-        converted = self._convert(bound, params)
+        converted = self._convert(bound, params, dynamic=spec.dynamic is not None,
+                                  what=f"`{name}` takes fixed values: write a number with "
+                                       f"its unit, or a constant")
         if converted is None:
             return None
         values, shown = converted
+        if any(isinstance(v, Expr) for v in values.values()):
+            # computed while the program runs: converted by the runtime, with
+            # the fixed arguments in the same natural units
+            for p in params:
+                if not isinstance(values[p.name], Expr):
+                    fixed = self._literal(bound[p.name].value)
+                    if fixed is None:
+                        return None
+                    values[p.name] = self._adapt(fixed, p.kind)
+            if name == "start_curve" and values["radius"].constant \
+                    and values["radius"].value < 0:
+                self.diags.error("E036", bound["radius"].value.span,
+                                 f"`radius` cannot be negative (`{shown['radius']}`)",
+                                 help="a positive `degrees` turns left, a negative one right")
+                return None
+            return ResolvedCall("standard", name, values, shown, call, dynamic=True)
         geo = self.geo
         if name == "start_curve":
             radius = self._value(bound["radius"].value, DISTANCE, "radius").mm(geo)

@@ -16,6 +16,8 @@ from ..stdlib.units import Geometry
 from ..syntax import ast
 from . import arbitration, modes
 from .calls import Calls
+from .exprs import Exprs
+from .variables import Variables
 from .externs import Externs
 from .names import Names
 from .program import CheckedProgram
@@ -24,7 +26,7 @@ from .rules import Rules
 from .values import Values
 
 
-class Checker(Names, Externs, RobotSettings, Values, Calls, Rules):
+class Checker(Names, Externs, RobotSettings, Values, Exprs, Variables, Calls, Rules):
     """The checker's state and its order of work; each concern's methods live in
     the mixin of its module (names.py, externs.py, robot.py, values.py,
     calls.py, rules.py), the whole-program analyses in modes.py and
@@ -51,6 +53,8 @@ class Checker(Names, Externs, RobotSettings, Values, Calls, Rules):
         self._const_diagnostics: set = set()
         self._resolved_actions: dict = {}
         self._flat_actions: dict = {}    # named action -> flattened steps (modes.flat_steps)
+        self.vars: dict = {}             # name -> VarInfo
+        self.vars_used: set = set()
         self.modes: dict = {}            # name -> ModeDef
         self.initial_mode: Optional[str] = None
 
@@ -60,8 +64,10 @@ class Checker(Names, Externs, RobotSettings, Values, Calls, Rules):
         self._declare()
         robot_blocks = self.program.of_type(ast.RobotBlock)
         self._robot(robot_blocks)
+        self._var_ranges()
         out = CheckedProgram(self.program.file, self.geo, robot_given=bool(robot_blocks))
         out.externs = self.externs
+        out.variables = self.vars
         self._resolve_actions(out)
         out.modes, out.initial_mode = list(self.modes), self.initial_mode
         for rule in self.program.of_type(ast.Rule):

@@ -23,9 +23,24 @@ def _code(text: str) -> str:
 
 
 def _shown(value) -> str:
-    if isinstance(value, ast.Number):
+    """A value or expression as the formatter would write it."""
+    cls = value.__class__
+    if cls is ast.Number:
         return value.text + (f" {value.unit}" if value.unit else "")
-    return ("-" if value.negative else "") + value.name.name
+    if cls is ast.ConstRef:
+        return ("-" if value.negative else "") + value.name.name
+    if cls is ast.BinOp:
+        return f"{_shown(value.left)} {value.op} {_shown(value.right)}"
+    if cls is ast.UnaryOp:
+        return f"not {_shown(value.operand)}" if value.op == "not" \
+            else f"-{_shown(value.operand)}"
+    if cls is ast.Paren:
+        return f"({_shown(value.expr)})"
+    if cls is ast.FuncCall:
+        return f"{value.name.name}({', '.join(_shown(a.value) for a in value.args or ())})"
+    if cls is ast.Ident:
+        return value.name
+    return "..."
 
 
 def _clip(text: str, limit: int = 24) -> str:

@@ -42,6 +42,9 @@ class Names:
                     self.actions[stmt.name.name] = stmt
             elif isinstance(stmt, ast.ExternDef):
                 self._extern(stmt, claim)
+        for stmt in self.program.statements:        # after the constants they may name
+            if isinstance(stmt, ast.VarDef):
+                self._declare_var(stmt, claim)
         modes.declare(self, claim)
 
     def _clashes_with_standard(self, ident: ast.Ident, namespace: str) -> bool:
@@ -117,6 +120,11 @@ class Names:
             if name not in self.const_used:
                 self.diags.warning("W007", node.name.span, f"constant {_code(name)} is never used",
                                    help="use it or remove it")
+        for name, info in self.vars.items():
+            if name not in self.vars_used:
+                self.diags.warning("W015", info.node.name.span,
+                                   f"variable {_code(name)} is never used",
+                                   help="use it in an expression or an assignment, or remove it")
         if not any(isinstance(s, ast.Rule) for s in self.program.statements):
             self.diags.warning("W006", Span(1, 1, 1, 1), "this program has no rules: it does nothing",
                                help="add a rule, e.g. `on immediate do start_straight(200, 10 cm)`")

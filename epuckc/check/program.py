@@ -14,9 +14,12 @@ class ResolvedCall:
     """A call whose arguments are checked and converted.
 
     kind: "standard" | "extern" | "named" | "cancel" | "enter" (name: the mode)
+          | "assign" (name: the variable; values: {"value": Expr}, the value
+          given, `+=` and `-=` included)
     values: parameter name -> integer in runtime units (for an enumerated
     parameter, the C text of its value: `SET_LED_BODY`); for start_curve
-    also `outer_steps` and `inner_speed`.
+    also `outer_steps` and `inner_speed`. An argument computed while the
+    program runs is an Expr (in its natural unit); `dynamic` is then True.
     shown: parameter name -> the argument as the user wrote it.
     """
     kind: str
@@ -24,13 +27,56 @@ class ResolvedCall:
     values: dict
     shown: dict
     node: object
+    dynamic: bool = False
+
+
+BOOL = "bool"          # the kind of a condition's value
+
+
+@record
+class Expr:
+    """An expression, checked: its kind (units.py, or BOOL) and the interval
+    [lo, hi] of its value in the kind's natural unit (mm, steps/s, deg, ms;
+    a BOOL is 0..1).
+
+    op: "num" (value), "var" and "read" (name), "neg", "abs", "not", a binary
+    operator (`+ - * / %`, a comparison, "and", "or") or a function ("min",
+    "max", "clamp", "random") over args. `bare`: a number written without a
+    unit, which takes the kind of what it is combined with."""
+    op: str
+    kind: str
+    lo: int
+    hi: int
+    args: tuple = ()
+    value: Optional[int] = None
+    name: Optional[str] = None
+    node: object = None
+    bare: bool = False
+
+    @property
+    def constant(self) -> bool:
+        return self.op == "num"
+
+
+@record
+class VarInfo:
+    """A variable: its kind (from its initial value), initial value, the
+    interval every value it is given lies in, and its number (its order of
+    declaration: the trace's id)."""
+    name: str
+    kind: str
+    init: int
+    lo: int
+    hi: int
+    index: int
+    node: ast.VarDef
 
 
 @record
 class ResolvedEvent:
     kind: str               # "standard" | "extern"
     name: str
-    values: dict            # timer: time (ms); extern: its params
+    values: dict            # timer: time (ms); extern: its params; when: condition (Expr)
     conditions: tuple = ()  # sensor, ambient: (index, op, threshold), sorted by index
     node: object = None
 
@@ -44,6 +90,7 @@ class ResolvedRule:
     node: ast.Rule
     priority: int = 0
     mode: Optional[str] = None      # the mode whose block holds it
+    guard: Optional[Expr] = None    # `if COND`
 
 
 @record
@@ -66,3 +113,4 @@ class CheckedProgram:
     robot_given: bool = False
     modes: list = field(default_factory=list)     # mode names, in declared order
     initial_mode: Optional[str] = None
+    variables: dict = field(default_factory=dict)  # name -> VarInfo, in declared order

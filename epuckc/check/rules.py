@@ -21,14 +21,52 @@ class Rules:
     """The checker's events and rules (a part of Checker)."""
 
     def _rule(self, rule: ast.Rule) -> Optional[ResolvedRule]:
-        event = self._event(rule.event)
+        if rule.trigger == "on":
+            event = self._event(rule.event)
+        else:
+            event = self._head_event(rule)
+        guard = self._condition(rule.guard) if rule.guard is not None else None
         body = self._body(rule.body)
         priority = self._priority(rule.priority)
         modes.check_rule(self, rule, event)
-        if event is None or priority is None:
+        if event is None or priority is None or (rule.guard is not None and guard is None):
             return None
-        return ResolvedRule(rule.name.name if rule.name else None, event, rule.repeat, body, rule,
-                            priority, rule.mode.name if rule.mode else None)
+        # `every` stays armed: it fires at each period
+        repeat = rule.repeat or rule.trigger == "every"
+        return ResolvedRule(rule.name.name if rule.name else None, event, repeat, body, rule,
+                            priority, rule.mode.name if rule.mode else None, guard)
+
+    def _head_event(self, rule: ast.Rule) -> Optional[ResolvedEvent]:
+        """`when COND`, `every D`, `after D`."""
+        call = rule.event
+        arg = call.args[0].value
+        if rule.trigger != "when" and rule.repeat:
+            keyword = call.name.name
+            self.diags.error("E055", rule.span if rule.span.line == rule.span.end_line
+                             else call.span,
+                             f"`{keyword}` takes no `repeat`",
+                             help="`every` fires at each period by itself" if keyword == "every"
+                             else "`after` fires once; for a period write `every`")
+            return None
+        if rule.trigger == "when":
+            condition = self._condition(arg)
+            if condition is None:
+                return None
+            if condition.constant:
+                self.diags.warning("W016", arg.span,
+                                   f"this condition is always "
+                                   f"{'true' if condition.value else 'false'}",
+                                   help="a `when` rule fires when its condition becomes true: "
+                                        "it needs a variable or a reading")
+            return ResolvedEvent("standard", "when", {"condition": condition}, node=call)
+        spec = STANDARD_EVENTS[rule.trigger]
+        bound = {spec.params[0].name: call.args[0]}
+        converted = self._convert(bound, spec.params,
+                                  what=f"the period of `{rule.trigger}` is fixed: for a "
+                                       f"changing one, use a variable and a `when` rule")
+        if converted is None:
+            return None
+        return ResolvedEvent("standard", rule.trigger, converted[0], node=call)
 
     def _priority(self, value) -> Optional[int]:
         """A rule's priority: a whole number 0..PRIORITY_MAX, 0 without one."""

@@ -173,6 +173,13 @@ def _build_parser(sub):
     p.set_defaults(run=cmd_build)
 
 
+def _seed(text: str) -> int:
+    if not text.isdigit() or int(text) > 0xFFFFFFFF:
+        raise argparse.ArgumentTypeError(f"{text} is not a seed: write a whole number from 0 "
+                                         f"to 4294967295")
+    return int(text)
+
+
 def _run_parser(sub):
     p = sub.add_parser("run", help="build for the host and run on the simulated e-puck",
                        description="Build for the host harness (cached) and run, printing the trace. "
@@ -185,6 +192,9 @@ def _run_parser(sub):
     p.add_argument("--trace", metavar="OUT.jsonl",
                    help="also write the trace as JSON lines; `-`: to standard output, "
                         "instead of the readable trace")
+    p.add_argument("--seed", type=_seed, metavar="N",
+                   help="seed of `random` (default 1: every run is the same); in a world, "
+                        "robot k gets N + k")
     from . import world as world_cli
     world_cli.add_run_options(p, _duration_ms)
     p.set_defaults(run=cmd_run)

@@ -225,6 +225,8 @@ def _load_and_build(args) -> int:
 def cmd_run(args) -> int:
     from . import world as world_cli
     wants_world = world_cli.wants_extension(args)
+    if args.seed is not None:       # the harness reads it (host/platform_host.c)
+        os.environ["EPUCK_SEED"] = str(args.seed)
     # A rule file built before goes straight to its executable (runcache.py).
     path, key, data = Path(args.file), None, None
     if path.suffix != ".c" and not wants_world:

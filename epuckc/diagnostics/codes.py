@@ -19,7 +19,7 @@ CODES = {
     "E010": "unknown event",
     "E011": "unknown action",
     "E012": "unknown rule",
-    "E013": "unknown constant",
+    "E013": "unknown constant (or, in an expression, variable or reading)",
     "E014": "unknown parameter",
     "E015": "name defined twice",
     "E016": "too many arguments",
@@ -53,6 +53,14 @@ CODES = {
     "E044": "`on enter` outside a mode",
     "E045": "`cancel` of a rule of another mode",
     "E046": "two initial modes",
+    # expressions and variables
+    "E048": "kinds that do not combine",
+    "E049": "division by zero",
+    "E050": "a condition where a number is needed, or the other way round",
+    "E051": "assignment to something that is not a variable",
+    "E052": "a changing value where a fixed one is needed",
+    "E054": "unknown function",
+    "E055": "`repeat` on `every` or `after`",
     # warnings
     "W001": "timer rule that can never fire",
     "W002": "sensor rule that can never fire",
@@ -66,6 +74,10 @@ CODES = {
     "W010": "mode never entered",
     "W011": "steps after `enter` never run",
     "W012": "a negative speed and a negative distance drive forward",
+    "W013": "a motor command can leave the robot's range",
+    "W014": "a divisor that can be 0",
+    "W015": "variable never used",
+    "W016": "condition that never changes",
 }
 
 _EXPLANATIONS = Path(__file__).resolve().parent / "explanations"

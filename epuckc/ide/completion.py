@@ -9,8 +9,8 @@ from typing import Optional
 from ..base.source import Span
 from ..check.messages import _shown
 from ..diagnostics import Collector
-from ..stdlib.table import (ACTION_ALIASES, CHOICE, EVENT_ALIASES, SENSOR_NAMES, STANDARD_ACTIONS,
-                            STANDARD_EVENTS, kind_name)
+from ..stdlib.table import (ACTION_ALIASES, CHOICE, EVENT_ALIASES, FUNCTIONS, READINGS,
+                            SENSOR_NAMES, STANDARD_ACTIONS, STANDARD_EVENTS, kind_name)
 from ..stdlib.units import KIND_UNITS, UNITS
 from ..syntax import ast
 from ..syntax.lexer import KEYWORDS
@@ -21,7 +21,8 @@ from .incremental import Analysis
 @dataclass(frozen=True)
 class Completion:
     label: str
-    kind: str               # "keyword", "action", "event", "param", "unit", "const", "rule", "sensor"
+    kind: str               # "keyword", "action", "event", "param", "unit", "const", "rule",
+                            # "sensor" (a reading), "variable", "function"
     detail: str = ""
     insert: Optional[str] = None
     doc: str = ""
@@ -121,6 +122,27 @@ def _const_items(analysis: Analysis, kind: Optional[str] = None) -> list:
     return out
 
 
+def _var_items(analysis: Analysis, kind: Optional[str] = None) -> list:
+    return [Completion(name, "variable", f"var: {info.kind}, {info.lo}..{info.hi}")
+            for name, info in analysis.checker.vars.items() if kind in (None, info.kind)]
+
+
+def _value_items(analysis: Analysis, kind: Optional[str] = None) -> list:
+    """What an expression may name: constants, variables, readings, functions."""
+    return (_const_items(analysis, kind) + _var_items(analysis)
+            + [Completion(r.name, "sensor", f"{r.kind}, {r.lo}..{r.hi}", doc=r.doc)
+               for r in READINGS]
+            + [Completion(name, "function", f"{name}({', '.join(params)})", doc=doc,
+                          insert=f"{name}(") for name, (params, doc) in FUNCTIONS.items()])
+
+
+_STARTS = {"_ROBOT", "_CONST", "_VAR", "_ACTION", "_EXTERN", "_ON", "_RULE", "_WHEN", "_EVERY",
+           "_AFTER"}
+# after these, an expression's operand comes
+_OPERAND_BEFORE = {"_PLUS", "_STAR", "_SLASH", "_PERCENT", "CMP", "_AND", "_OR", "_NOT", "_WHEN",
+                   "_IF", "_PLUSEQ", "_MINUSEQ"}
+
+
 def _unit_items(kind: Optional[str]) -> list:
     kinds = [kind] if kind in KIND_UNITS else list(KIND_UNITS)
     return [Completion(u, "unit", k) for k in kinds for u in KIND_UNITS[k]]
@@ -142,21 +164,24 @@ def completions(analysis: Analysis, line: int, column: int) -> list:
     expected = _expected(tokens)
     if expected is None:
         if not tokens:
-            expected = {t for t in _TERMINAL_KEYWORD} & {"_ROBOT", "_CONST", "_ACTION",
-                                                        "_EXTERN", "_ON", "_RULE"}
+            expected = {t for t in _TERMINAL_KEYWORD} & _STARTS
         else:
             return []
     items = []
     prev = tokens[-1] if tokens else None
     prev_type = prev.type if prev is not None else None
     if "$END" in expected:      # the statement may end here: another may start
-        expected |= {"_ROBOT", "_CONST", "_ACTION", "_EXTERN", "_ON", "_RULE"}
+        expected |= _STARTS
     for t in sorted(expected):
         if t in _TERMINAL_KEYWORD:
             items.append(Completion(_TERMINAL_KEYWORD[t], "keyword"))
     if "NAME" not in expected:
         return items
     call = _enclosing_call(tokens)
+    if prev_type in _OPERAND_BEFORE or (prev_type in ("_LPAR", "MINUS") and call is None) \
+            or (prev_type == "_EQUAL" and len(tokens) >= 2 and tokens[0].type != "_ACTION"
+                and tokens[0].type not in ("_CONST", "_VAR") and call is None):
+        return items + _value_items(analysis)
     if prev_type == "_ON":
         return items + _event_items(analysis)
     if prev_type == "_CANCEL":
@@ -186,17 +211,17 @@ def completions(analysis: Analysis, line: int, column: int) -> list:
         param = params[positional] if positional < len(params) else None
         if param is not None and param.kind == CHOICE:
             return items + out + _choice_items(param)
-        return items + out + _const_items(analysis, param.kind if param else None)
+        return items + out + _value_items(analysis, param.kind if param else None)
     if call is not None and prev_type in ("_COLON", "MINUS"):
         param = _arg_param(analysis, tokens, call)
         if param is not None and param.kind == CHOICE:
             return items + _choice_items(param)
-        return items + _const_items(analysis, _arg_kind(analysis, tokens, call))
+        return items + _value_items(analysis, _arg_kind(analysis, tokens, call))
     if prev_type == "_ENTER":
         return items + [Completion(name, "const", "mode") for name in analysis.checker.modes]
     if prev_type in ("_DO", "_THEN") or (prev_type == "_EQUAL" and tokens[0].type == "_ACTION") \
             or (prev_type == "_COMMA" and call is None and any(t.type == "_DO" for t in tokens)):
-        return items + _action_items(analysis)
+        return items + _action_items(analysis) + _var_items(analysis)
     if prev_type in ("_COLON", "_EQUAL", "MINUS"):
         return items + _const_items(analysis)
     return items

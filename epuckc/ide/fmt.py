@@ -102,6 +102,11 @@ def _collect_comments(text: str, tokens: list) -> _Comments:
 
 # ---- from the syntax tree to the document ---------------------------------------------
 
+_ASSIGN_TOKENS = {"=": "_EQUAL", "+=": "_PLUSEQ", "-=": "_MINUSEQ"}
+_OPERATOR_TOKENS = {"+": "_PLUS", "-": "MINUS", "*": "_STAR", "/": "_SLASH", "%": "_PERCENT",
+                    "and": "_AND", "or": "_OR"}
+
+
 class _Builder:
     """Builds one statement's document, taking its tokens in order."""
 
@@ -188,6 +193,14 @@ class _Builder:
             self.open(_Indent())
             self.body(node.body)
             self.close()
+        elif isinstance(node, ast.VarDef):
+            self.token("_VAR")
+            self.sep(" ")
+            self.token("NAME")
+            self.sep(" ")
+            self.token("_EQUAL")
+            self.sep(" ")
+            self.value(node.value)
         elif isinstance(node, ast.ConstDef):
             self.token("_CONST")
             self.sep(" ")
@@ -221,9 +234,14 @@ class _Builder:
             self.token("NAME")
             self.token("_COLON")
             self.sep(" ")
-        self.token("_ON")
-        self.sep(" ")
-        self.call(node.event)
+        if node.trigger == "on":
+            self.token("_ON")
+            self.sep(" ")
+            self.call(node.event)
+        else:                               # `when COND`, `every D`, `after D`
+            self.token("_" + node.trigger.upper())
+            self.sep(" ")
+            self.expr(node.event.args[0].value)
         if node.repeat:
             self.sep(" ")
             self.token("_REPEAT")
@@ -232,6 +250,11 @@ class _Builder:
             self.token("_PRIORITY")
             self.sep(" ")
             self.token(self.peek())         # a NUMBER or a constant's NAME
+        if node.guard is not None:
+            self.sep(" ")
+            self.token("_IF")
+            self.sep(" ")
+            self.expr(node.guard)
         self.open(_Indent())
         self.sep(LINE)
         self.token("_DO")
@@ -263,6 +286,13 @@ class _Builder:
         self.close()
 
     def call(self, node):
+        if isinstance(node, ast.Assign):
+            self.token("NAME")
+            self.sep(" ")
+            self.token(_ASSIGN_TOKENS[node.op])
+            self.sep(" ")
+            self.expr(node.value)
+            return
         if isinstance(node, (ast.CancelCall, ast.EnterCall)):
             self.token("_CANCEL" if isinstance(node, ast.CancelCall) else "_ENTER")
             self.sep(" ")
@@ -296,7 +326,7 @@ class _Builder:
             self.token("NAME")
             self.token("_COLON")
             self.sep(" ")
-            self.value(node.value)
+            self.expr(node.value)
         elif isinstance(node, ast.ConditionArg):
             self.token("NAME")
             self.sep(" ")
@@ -304,7 +334,34 @@ class _Builder:
             self.sep(" ")
             self.value(node.value)
         else:
-            self.value(node.value)
+            self.expr(node.value)
+
+    def expr(self, node):
+        """An expression: single spaces around binary operators, none after
+        a unary minus or inside parentheses."""
+        cls = node.__class__
+        if cls is ast.BinOp:
+            self.expr(node.left)
+            self.sep(" ")
+            self.token(_OPERATOR_TOKENS.get(node.op, "CMP"))
+            self.sep(" ")
+            self.expr(node.right)
+        elif cls is ast.UnaryOp:
+            if node.op == "not":
+                self.token("_NOT")
+                self.sep(" ")
+            else:
+                self.token("MINUS")
+            self.expr(node.operand)
+        elif cls is ast.Paren:
+            self.token("_LPAR")
+            self.expr(node.expr)
+            self.token("_RPAR")
+        elif cls is ast.FuncCall:
+            self.token("NAME")
+            self.arguments(node.args or (), self.arg)
+        else:
+            self.value(node)
 
     def value(self, node):
         if isinstance(node, ast.Number):

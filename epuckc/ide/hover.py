@@ -6,8 +6,9 @@ from typing import Iterator, Optional
 
 from ..check.messages import _shown
 from ..diagnostics import Collector
-from ..stdlib.table import (ACTION_ALIASES, CHOICE, EVENT_ALIASES, SENSOR_CONDITION_DOC,
-                            STANDARD_ACTIONS, STANDARD_EVENTS, Param)
+from ..stdlib.table import (ACTION_ALIASES, CHOICE, EVENT_ALIASES, FUNCTIONS,
+                            SENSOR_CONDITION_DOC, STANDARD_ACTIONS, STANDARD_EVENTS,
+                            STANDARD_READINGS, Param)
 from ..stdlib.units import (ANGLE, ARTICLE, DISTANCE, DURATION, INT, KIND_UNITS, NATURAL_UNIT,
                             SPEED, UNITS)
 from ..syntax import ast
@@ -138,11 +139,109 @@ def _const_markdown(analysis: Analysis, const: ast.ConstDef) -> str:
     return "\n\n".join(out)
 
 
+_EXPRESSIONS = (ast.BinOp, ast.UnaryOp, ast.FuncCall, ast.Paren, ast.ConstRef, ast.Number)
+
+
+def _children(node) -> Iterator:
+    """The expressions directly inside a node of a statement."""
+    if isinstance(node, ast.Rule):
+        yield node.event
+        if node.guard is not None:
+            yield node.guard
+        yield node.body
+    elif isinstance(node, ast.ActionBody):
+        for step in node.steps:
+            yield from step.calls
+    elif isinstance(node, (ast.Call, ast.FuncCall)):
+        for arg in node.args or ():
+            if isinstance(arg, (ast.NamedArg, ast.PositionalArg)):
+                yield arg.value
+    elif isinstance(node, ast.Assign):
+        yield node.target
+        yield node.value
+    elif isinstance(node, ast.ActionDef):
+        yield node.body
+    elif isinstance(node, ast.BinOp):
+        yield node.left
+        yield node.right
+    elif isinstance(node, ast.UnaryOp):
+        yield node.operand
+    elif isinstance(node, ast.Paren):
+        yield node.expr
+
+
+def _expression_at(statement, line: int, column: int):
+    """The innermost expression (or assigned variable) at a position."""
+    found, node = None, statement
+    while node is not None:
+        inner = None
+        for child in _children(node):
+            if child is not None and _inside(child.span, line, column):
+                inner = child
+                break
+        if inner is None:
+            break
+        if isinstance(inner, _EXPRESSIONS + (ast.Ident,)):
+            found = inner
+        node = inner
+    return found
+
+
+def _kind_words(kind: str) -> str:
+    from ..check.exprs import KIND_WORDS
+    return KIND_WORDS.get(kind, kind)
+
+
+def _expression_hover(analysis: Analysis, node) -> Optional[str]:
+    """A variable, a reading, or an expression: its unit and its interval."""
+    checker = analysis.checker
+    name = node.name if isinstance(node, ast.Ident) else \
+        node.name.name if isinstance(node, ast.ConstRef) else None
+    if name is not None and name not in checker.consts:
+        info = checker.vars.get(name)
+        if info is not None:
+            return (f"```epuck\nvar {name}\n```\n\nVariable: {_kind_words(info.kind)}, "
+                    f"{info.init} at start; every value it is given lies in "
+                    f"{info.lo}..{info.hi}.")
+        reading = STANDARD_READINGS.get(name)
+        if reading is not None:
+            return (f"```epuck\n{name}\n```\n\nReading: {reading.doc}; "
+                    f"{_kind_words(reading.kind)}, {reading.lo}..{reading.hi}.")
+        return None
+    if isinstance(node, ast.Number) or isinstance(node, ast.ConstRef):
+        return None
+    saved, saved_used = checker.diags, (set(checker.const_used), set(checker.vars_used))
+    checker.diags = Collector(checker.diags.source)
+    try:
+        e = checker._expr(node)
+    finally:
+        checker.diags = saved
+        checker.const_used, checker.vars_used = saved_used
+    if e is None:
+        return None
+    text = _shown(node)
+    if e.kind == "bool":
+        value = ("always true" if e.value else "always false") if e.constant else \
+            "true or false"
+        return f"```epuck\n{text}\n```\n\nA condition: {value}."
+    head = f"```epuck\n{text}\n```\n\n{_kind_words(e.kind).capitalize()}"
+    if isinstance(node, ast.FuncCall) and node.name.name in FUNCTIONS:
+        head += f"; `{node.name.name}`: {FUNCTIONS[node.name.name][1]}"
+    if e.constant:
+        return f"{head}: always {e.value}."
+    return f"{head}, within {e.lo}..{e.hi} (16-bit, saturating)."
+
+
 def hover(analysis: Analysis, line: int, column: int) -> Optional[tuple]:
     """(markdown, real span of what it is about), or None."""
     s, vline, vcol = statement_at(analysis, line, column)
     if s is None:
         return None
+    node = _expression_at(s, vline, vcol)
+    if node is not None:
+        markdown = _expression_hover(analysis, node)
+        if markdown is not None:
+            return markdown, analysis.real(node.span)
     # an argument: its parameter and what its value becomes on the robot
     for call in _calls(s):
         for arg in call.args or ():

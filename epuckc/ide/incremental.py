@@ -71,7 +71,7 @@ class _Capture:
     says all its own diagnostics; what is said twice is dropped when the
     steps are put together (IncrementalChecker._replay), as the whole
     file's check says it once."""
-    FACTS = ("called", "used_actions", "const_used")
+    FACTS = ("called", "used_actions", "const_used", "vars_used")
     FRESH = ("_const_memo", "_const_reported", "_const_diagnostics")
 
     def __init__(self, checker: Checker):
@@ -103,7 +103,7 @@ class _Capture:
 
 _MISSING = object()
 _ALL = object()
-_TABLES = ("consts", "actions", "externs", "broken_externs", "rule_names", "modes")
+_TABLES = ("consts", "actions", "externs", "broken_externs", "rule_names", "modes", "vars")
 
 
 class _Watched:
@@ -181,7 +181,7 @@ class IncrementalChecker(Checker):
         return (self.geo, tuple(self.consts.items()), tuple(self.actions.items()),
                 tuple((n, e.kind, e.params, e.node) for n, e in self.externs.items()),
                 tuple(self.broken_externs.items()), tuple(self.rule_names),
-                tuple(self.modes.items()))
+                tuple(self.modes.items()), tuple(self.vars.items()))
 
     def _replay(self, diags, facts):
         if diags:

@@ -408,7 +408,9 @@ def create_server() -> EpuckServer:
     kinds = {"keyword": lsp.CompletionItemKind.Keyword, "action": lsp.CompletionItemKind.Function,
              "event": lsp.CompletionItemKind.Event, "param": lsp.CompletionItemKind.Property,
              "unit": lsp.CompletionItemKind.Unit, "const": lsp.CompletionItemKind.Constant,
-             "rule": lsp.CompletionItemKind.Reference, "sensor": lsp.CompletionItemKind.Field}
+             "rule": lsp.CompletionItemKind.Reference, "sensor": lsp.CompletionItemKind.Field,
+             "variable": lsp.CompletionItemKind.Variable,
+             "function": lsp.CompletionItemKind.Function}
 
     @request(lsp.TEXT_DOCUMENT_COMPLETION,
              lsp.CompletionOptions(trigger_characters=[" ", "(", ",", ":", "/"]))
@@ -452,6 +454,7 @@ def create_server() -> EpuckServer:
                 for o in navigate.references(analysis, target, include)]
 
     symbol_kinds = {"robot": lsp.SymbolKind.Object, "const": lsp.SymbolKind.Constant,
+                    "variable": lsp.SymbolKind.Variable,
                     "action": lsp.SymbolKind.Function, "extern action": lsp.SymbolKind.Function,
                     "extern event": lsp.SymbolKind.Event, "rule": lsp.SymbolKind.Event,
                     "mode": lsp.SymbolKind.Namespace}

@@ -37,8 +37,20 @@ class Occurrence:
 
 
 def _value_names(value, statement) -> Iterator[Occurrence]:
-    if isinstance(value, ast.ConstRef):
+    """The names in a value or an expression: constants and variables (one
+    namespace, as the checker's), readings (which resolve to nothing)."""
+    cls = value.__class__
+    if cls is ast.ConstRef:
         yield Occurrence(CONST, value.name, False, statement, "ref")
+    elif cls is ast.BinOp:
+        yield from _value_names(value.left, statement)
+        yield from _value_names(value.right, statement)
+    elif cls is ast.UnaryOp:
+        yield from _value_names(value.operand, statement)
+    elif cls is ast.Paren:
+        yield from _value_names(value.expr, statement)
+    elif cls is ast.FuncCall:
+        yield from _arg_names(value.args, statement)
 
 
 def _arg_names(args, statement) -> Iterator[Occurrence]:
@@ -57,6 +69,9 @@ def _body_names(body: ast.ActionBody, statement) -> Iterator[Occurrence]:
                 yield Occurrence(RULE, call.rule, False, statement, "cancel")
             elif isinstance(call, ast.EnterCall):
                 yield Occurrence(MODE, call.mode, False, statement, "enter")
+            elif isinstance(call, ast.Assign):
+                yield Occurrence(CONST, call.target, False, statement, "assign")
+                yield from _value_names(call.value, statement)
             else:
                 yield Occurrence(ACTION, call.name, False, statement, "call")
                 yield from _arg_names(call.args, statement)
@@ -65,7 +80,7 @@ def _body_names(body: ast.ActionBody, statement) -> Iterator[Occurrence]:
 def occurrences(statement) -> Iterator[Occurrence]:
     """Every name in a statement, in order."""
     s = statement
-    if isinstance(s, ast.ConstDef):
+    if isinstance(s, (ast.ConstDef, ast.VarDef)):
         yield Occurrence(CONST, s.name, True, s)
         yield from _value_names(s.value, s)
     elif isinstance(s, ast.ActionDef):
@@ -78,6 +93,8 @@ def occurrences(statement) -> Iterator[Occurrence]:
             yield Occurrence(RULE, s.name, True, s)
         yield Occurrence(EVENT, s.event.name, False, s, "event")
         yield from _arg_names(s.event.args, s)
+        if s.guard is not None:
+            yield from _value_names(s.guard, s)
         yield from _body_names(s.body, s)
     elif isinstance(s, ast.RobotBlock):
         for setting in s.settings:
@@ -216,7 +233,7 @@ def check_new_name(analysis: Analysis, target: Target, new: str):
 def renameable(analysis: Analysis, occ: Optional[Occurrence]) -> Target:
     """The user definition a rename at `occ` would rename, or RenameError."""
     if occ is None or occ.namespace not in (CONST, ACTION, EVENT, RULE):
-        raise RenameError("only a constant, an action or a rule can be renamed here")
+        raise RenameError("only a constant, a variable, an action or a rule can be renamed here")
     target = resolve(analysis, occ)
     if target is None:
         raise RenameError(f"`{occ.ident.name}` is not defined in this file")
@@ -265,6 +282,9 @@ def symbols(analysis: Analysis) -> list:
         elif isinstance(s, ast.ConstDef):
             out.append(Symbol(s.name.name, "const", _text_of(analysis, s.value.span), real,
                               analysis.real(s.name.span)))
+        elif isinstance(s, ast.VarDef):
+            out.append(Symbol(s.name.name, "variable", _text_of(analysis, s.value.span), real,
+                              analysis.real(s.name.span)))
         elif isinstance(s, ast.ActionDef):
             out.append(Symbol(s.name.name, "action", _text_of(analysis, s.body.span), real,
                               analysis.real(s.name.span)))
@@ -275,7 +295,8 @@ def symbols(analysis: Analysis) -> list:
             out.append(Symbol(s.name.name, "mode", "initial" if s.initial else "", real,
                               analysis.real(s.name.span)))
         elif isinstance(s, ast.Rule):
-            on = "on " + _event_text(s.event, analysis) + (" repeat" if s.repeat else "")
+            on = ("on " if s.trigger == "on" else "") + _event_text(s.event, analysis) \
+                + (" repeat" if s.repeat else "")
             if s.name is not None:
                 out.append(Symbol(s.name.name, "rule", on, real, analysis.real(s.name.span)))
             else:

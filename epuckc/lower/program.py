@@ -29,10 +29,11 @@ from dataclasses import dataclass, field
 from pathlib import PurePath
 from typing import Optional
 
-from ..check.program import CheckedProgram, ResolvedCall
+from ..check.program import CheckedProgram, Expr, ResolvedCall
 from ..check.splice import splice
 from ..stdlib.table import STANDARD_ACTIONS, STANDARD_EVENTS
 from ..stdlib.units import round_nearest
+from .exprs import c_expr, c_int, var_name
 
 # Every C name that epuckc makes up starts with this; see the module doc.
 PREFIX = "epk_"
@@ -74,6 +75,25 @@ class CFunction:
     name: str
     comment: str
     statements: list
+
+
+@dataclass
+class CEventFunction:
+    """A generated event function (a `when` condition, a guard):
+    `static void NAME(void *epk_param, void *epk_status)` running
+    `statements`."""
+    name: str
+    comment: str
+    statements: list
+
+
+@dataclass
+class CVariable:
+    """`static int NAME = INIT; /* COMMENT */`, traced as `label`."""
+    name: str
+    init: str
+    comment: str
+    label: str
 
 
 @dataclass
@@ -148,7 +168,9 @@ class CProgram:
     extern_structs: list = field(default_factory=list)
     externs: list = field(default_factory=list)
     structs: list = field(default_factory=list)
+    variables: list = field(default_factory=list)     # CVariable
     functions: list = field(default_factory=list)
+    event_functions: list = field(default_factory=list)   # CEventFunction
     sequences: list = field(default_factory=list)
     rule_ids: list = field(default_factory=list)     # (C name, event id) for `cancel RULE`
     actions: list = field(default_factory=list)      # CAction
@@ -277,6 +299,16 @@ class _Lowerer:
             param = self.params[key]
             return _Primitive("action_enter_mode", param,
                               f"action_enter_mode({void_ref(param)});", text)
+        if call.kind == "assign":
+            info = self.program.variables[call.name]
+            return _Primitive(None, "", f"rt_assign(&{var_name(call.name)}, {info.index}, "
+                                        f"{c_expr(call.values['value'])});", text)
+        if call.dynamic:
+            function, ctype, fields = STANDARD_ACTIONS[call.name].dynamic
+            values = {name: c_expr(v) for name, v in call.values.items()}
+            init = ", ".join(f.format(**values) for f in fields)
+            return _Primitive(None, "", f"{{ {ctype} {PREFIX}arg = {{{init}}}; "
+                                        f"{function}(&{PREFIX}arg); }}", text)
         function = STANDARD_ACTIONS[call.name].runtime if call.kind == "standard" else call.name
         if not call.values:       # stop_motor, exit_main, an extern without parameters...
             return _Primitive(function, "NULL", f"{function}(NULL);", text)
@@ -374,6 +406,10 @@ class _Lowerer:
                                             self.extern_init(info.params, ev.values), comment))
             return ev.name, when, True, None
         spec = STANDARD_EVENTS[ev.name]
+        if ev.name == "when":
+            self.out.event_functions.append(CEventFunction(
+                when, comment, [f"rt_when(epk_status, {c_expr(ev.values['condition'])});"]))
+            return when, "NULL", True, None
         if spec.runtime_param is None:      # immediate, stop_motor, enter
             return spec.runtime, "NULL", spec.memory, None
         if spec.fields:
@@ -397,6 +433,17 @@ class _Lowerer:
             self.out.structs.append(CStruct(spec.runtime_param, when,
                                             f"{{{ev.values['time']}L}}", comment))
             return spec.runtime, when, spec.memory, None
+        if rule.guard is not None:      # its function, which the guard wraps
+            thresholds = ["SENSOR_OFF"] * 8
+            below = 0
+            for sensor, op, value in ev.conditions:
+                thresholds[sensor] = str(value)
+                if op == "<":
+                    below |= 1 << sensor
+            self.out.structs.append(CStruct(spec.runtime_param, when,
+                                            f"{{{{{', '.join(thresholds)}}}, 0x{below:02x}}}",
+                                            comment))
+            return "event_sensor", when, True, None
         terms = [f"{PREFIX}ir{sensor} {op} {value}" for sensor, op, value in ev.conditions]
         self.sensors |= {sensor for sensor, _, _ in ev.conditions}
         return "NULL", "NULL", False, " || ".join(terms)
@@ -422,6 +469,7 @@ class _Lowerer:
     def lower(self) -> CProgram:
         out = self.out
         self.externs()
+        self.variables()
         cancelled = self.cancelled_rules()
         for index, rule in enumerate(self.program.rules):
             if rule.name is not None and rule.name in cancelled:
@@ -450,6 +498,8 @@ class _Lowerer:
                                            c_comment(f"{registered[key]}: {_shorten(where)}"),
                                            c_string(_shorten(body_text))))
             function, param, memory, condition = self.event(rule, index)
+            if rule.guard is not None:
+                function, param = self.guarded(rule, index, function, param), "NULL"
             event_id = len(out.events)
             if condition is not None:
                 term = f"if ({condition}) {PREFIX}c[{event_id // 16}] |= 0x{1 << (event_id % 16):04x}u;"
@@ -464,9 +514,10 @@ class _Lowerer:
                 function, const_ref(param), registered[key], "RT_REPEAT" if rule.repeat else "0",
                 slot, c_comment(f"{event_id}: {self.where(rule.node)}: {self.text_of(rule.node)}"
                                 + (f" (mode {rule.mode})" if rule.mode is not None else "")),
-                c_string(_shorten(f"{self.where(rule.node)} {head}on "
+                c_string(_shorten(f"{self.where(rule.node)} {head}"
+                                  f"{'on ' if rule.node.trigger == 'on' else ''}"
                                   f"{self.text_of(rule.node.event)}"
-                                  + (" repeat" if rule.repeat else "")
+                                  + (" repeat" if rule.node.repeat else "")
                                   + (f" priority {rule.priority}" if rule.priority else ""))),
                 priority=rule.priority or 0,
                 mode=self.mode_ids[rule.mode] if rule.mode is not None else 0))
@@ -486,6 +537,23 @@ class _Lowerer:
             out.geometry = (f"{round_nearest(geo.wheel_circumference_mm * 1000)}L, "
                             f"{round_nearest(geo.axle_mm * 1000)}L, {geo.steps_per_rev}L")
         return out
+
+    def guarded(self, rule, index: int, function: str, param: str) -> str:
+        """An event function that runs the rule's event, then its guard."""
+        name = f"{PREFIX}if_r{index}"
+        self.out.event_functions.append(CEventFunction(
+            name, c_comment(f"{self.where(rule.node)}: {self.text_of(rule.node.event)} if "
+                            f"{self.text_of(rule.node.guard)}"),
+            [f"{function}({'NULL' if param == 'NULL' else void_ref(param)}, epk_status);",
+             f"rt_guard(epk_status, {c_expr(rule.guard)});"]))
+        return name
+
+    def variables(self):
+        for info in self.program.variables.values():
+            self.out.variables.append(CVariable(
+                var_name(info.name), c_int(info.init),
+                c_comment(f"{self.where(info.node)}: var {info.name}: "
+                          f"{info.lo}..{info.hi}"), c_string(info.name)))
 
     def cancelled_rules(self) -> set:
         """The rules that some `cancel` names, found in one pass."""

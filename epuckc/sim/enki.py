@@ -156,6 +156,8 @@ def run_world(world: World, default_program: Program, load_program, time_limit_m
     `load_program(path)` gives the Program of a robot's own `program`, or
     raises BuildError. Returns the highest of the robots' exit statuses."""
     runner = build_runner()
+    text = os.environ.get("EPUCK_SEED", "")
+    seed = int(text) if text.isdigit() else 1
     libs = {}
     robots = []
     for placement in world.robots:
@@ -172,7 +174,9 @@ def run_world(world: World, default_program: Program, load_program, time_limit_m
             copy = tmpdir / f"robot{i}.so"
             shutil.copyfile(lib, copy)
             settings = {"EPUCK_TIME_LIMIT_MS": str(time_limit_ms),
-                        "EPUCK_TRACE": str(tmpdir / f"robot{i}.jsonl")}
+                        "EPUCK_TRACE": str(tmpdir / f"robot{i}.jsonl"),
+                        # each robot its own `random` (`run --seed N`: N + i)
+                        "EPUCK_SEED": str((seed + i) & 0xFFFFFFFF)}
             if pose_ms:
                 settings["EPUCK_POSE_MS"] = str(pose_ms)
             if quiet and quiet != "0":

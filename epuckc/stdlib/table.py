@@ -82,6 +82,10 @@ class ActionSpec:
     # for an action without parameters given arguments [E016]: where what the
     # user meant goes instead (`set_timer(2 s)`: the time goes on `timer`)
     misuse: str = ""
+    # what a call whose arguments are expressions (computed while the program
+    # runs) becomes: (function, struct, fields) with the values in their
+    # natural units (mm, steps/s, deg); None: its arguments must be fixed
+    dynamic: Optional[tuple] = None
 
     @property
     def signature(self) -> str:
@@ -101,9 +105,14 @@ class EventSpec:
     # the function keeps status->memory between polls: a compiled program
     # gives the rule a long of RAM for it (False: the function never reads it)
     memory: bool = True
+    # written as a rule's head of its own (`when COND`, `every D`, `after D`),
+    # not `on NAME(...)`
+    head: bool = False
 
     @property
     def signature(self) -> str:
+        if self.head:
+            return f"{self.name} {self.params[0].name.upper()}"
         if self.params is None:
             return f"{self.name}(irN > T, irM < T, ...)"
         return signature(self.name, self.params)
@@ -149,7 +158,9 @@ ACTIONS = (
                "drives straight; backwards when exactly one of them is negative (both: forward [W012])",
                # compiled to exact steps: the runtime's extension, so the
                # paper's param_start_straight stays the paper's
-               "straight_steps", motion=True, motors=True, runtime_param="param_straight_steps"),
+               "straight_steps", motion=True, motors=True, runtime_param="param_straight_steps",
+               dynamic=("action_start_straight", "param_start_straight",
+                        ("{speed}", "{distance}"))),
     ActionSpec("start_curve",
                (Param("radius", DISTANCE, "from the robot's centre to the circle's centre",
                       ">= 0 [E036], a 16-bit int of mm [E034]"),
@@ -159,7 +170,24 @@ ACTIONS = (
                       _SPEED_RANGE)),
                "drives an arc through the robot's centre; positive degrees turn left, negative "
                "right; `speed` is the outer wheel's; radius 0 turns on the spot",
-               "curve_steps", motion=True, motors=True, runtime_param="param_curve_steps"),
+               "curve_steps", motion=True, motors=True, runtime_param="param_curve_steps",
+               dynamic=("action_start_curve", "param_start_curve",
+                        ("{radius}", "{degrees}", "{speed}"))),
+    ActionSpec("set_speed",
+               (Param("left", SPEED, "the left wheel's speed; negative turns it backwards",
+                      _SPEED_RANGE),
+                Param("right", SPEED, "the right wheel's speed", _SPEED_RANGE)),
+               "drives the wheels at these speeds until the next motor command (no "
+               "`stop_motor` event: it has no end)",
+               "action_set_speed", motors=True, runtime_param="param_set_speed",
+               fields=("{left}", "{right}"),
+               dynamic=("action_set_speed", "param_set_speed", ("{left}", "{right}"))),
+    ActionSpec("wait",
+               (Param("time", DURATION, "how long the sequence waits",
+                      "> 0 [E033], at most 2147483647 ms [E034]"),),
+               "a step of a `then` sequence: the next step starts `time` later (and not "
+               "before the motion of the step before has ended)",
+               "action_wait", runtime_param="param_wait", fields=("{time}L",)),
     ActionSpec("stop_motor", (), "stops the wheels; the current motion ends", "stop_motor",
                misuse="it stops the wheels at once; to stop after a distance or an angle, give "
                       "it to the motion (`start_straight(300, 10 cm)`) and use `on stop_motor`",
@@ -194,6 +222,22 @@ ACTIONS = (
 )
 
 EVENTS = (
+    EventSpec("when",
+              (Param("condition", "condition", "a condition on variables and readings",
+                     "comparisons joined with `and`, `or`, `not` [E050]"),),
+              "when the condition becomes true (and, with `repeat`, every time it becomes "
+              "true again)", "rt_when", head=True),
+    EventSpec("every",
+              (Param("period", DURATION, "time between two firings",
+                     "> 0 [E033], at most 2147483647 ms [E034]"),),
+              "every `period`, counted from when the rule is armed (start, or its mode's "
+              "entry); its own timer", "event_every", "param_event_every",
+              fields=("{period}L",), head=True),
+    EventSpec("after",
+              (Param("delay", DURATION, "time from when the rule is armed",
+                     "> 0 [E033], at most 2147483647 ms [E034]"),),
+              "once, `delay` after the rule is armed (start, or its mode's entry); its own "
+              "timer", "event_after", "param_event_every", fields=("{delay}L",), head=True),
     EventSpec("immediate", (), "at the first poll", "immediate", memory=False),
     EventSpec("stop_motor", (),
               "when a motion has ended (reached its distance or stopped by `stop_motor`)",
@@ -253,7 +297,8 @@ MOTION_ACTIONS = frozenset(spec.name for spec in ACTIONS if spec.motion)
 # `event_timer`), so that its tables can be copied as they are.
 ACTION_ALIASES = {f"action_{name}": name for name in STANDARD_ACTIONS}
 # (`enter` is written as its keyword only: it has no long spelling)
-EVENT_ALIASES = {f"event_{spec.name}": spec.name for spec in EVENTS if not spec.in_mode}
+EVENT_ALIASES = {f"event_{spec.name}": spec.name for spec in EVENTS
+                 if not spec.in_mode and not spec.head}
 
 SENSOR_NAMES = tuple(f"ir{i}" for i in range(SENSOR_COUNT))
 SENSOR_CONDITION_DOC = (f"`{SENSOR_NAMES[0]}`..`{SENSOR_NAMES[-1]}` `>` or `<` a whole "
@@ -261,6 +306,57 @@ SENSOR_CONDITION_DOC = (f"`{SENSOR_NAMES[0]}`..`{SENSOR_NAMES[-1]}` `>` or `<` a
                         f"{THRESHOLD_MAX}: touching)")
 
 EXTERN_TYPES = ("int", "distance", "speed", "angle", "duration")
+
+
+@record(frozen=True)
+class Reading:
+    """A value of the robot that expressions read: its kind (units.py), the
+    interval the checker assumes, the runtime call that reads it, and what
+    it is."""
+    name: str
+    kind: str
+    lo: int
+    hi: int
+    c: str
+    doc: str
+
+
+READINGS = tuple(
+    [Reading(f"ir{i}", INT, 0, THRESHOLD_MAX, f"rt_ir({i})",
+             f"proximity sensor {i} (`e_get_prox`; 0: nothing near, {THRESHOLD_MAX}: touching)")
+     for i in range(SENSOR_COUNT)]
+    + [Reading(f"ambient{i}", INT, 0, THRESHOLD_MAX, f"rt_ambient({i})",
+               f"ambient light at sensor {i} (`e_get_ambient_light`, raw)")
+       for i in range(SENSOR_COUNT)]
+    + [Reading(f"mic{i}", INT, 0, THRESHOLD_MAX, f"rt_mic({i})",
+               f"volume of microphone {i} (`e_get_micro_volume`, peak to peak)")
+       for i in range(3)]
+    + [Reading(f"acc_{axis}", INT, 0, THRESHOLD_MAX, f"rt_acc({i})",
+               f"accelerometer axis {axis} (`e_get_acc`, raw)")
+       for i, axis in enumerate("xyz")]
+    + [Reading("selector", INT, 0, 15, "rt_selector()",
+               "the 16-position selector (`getselector()`)"),
+       Reading("x", DISTANCE, -32768, 32767, "rt_x_mm()",
+               "odometry: mm forward of the start pose (along its heading)"),
+       Reading("y", DISTANCE, -32768, 32767, "rt_y_mm()",
+               "odometry: mm to the left of the start pose"),
+       Reading("heading", ANGLE, -180, 179, "rt_heading_deg()",
+               "odometry: degrees turned since the start, counter-clockwise, -180..179")])
+STANDARD_READINGS = {r.name: r for r in READINGS}
+
+# The functions of expressions: name -> (arguments, doc).
+FUNCTIONS = {
+    "abs": (("x",), "the absolute value of `x`"),
+    "min": (("a", "b"), "the smaller of `a` and `b`"),
+    "max": (("a", "b"), "the larger of `a` and `b`"),
+    "clamp": (("x", "lo", "hi"), "`x` kept within `lo`..`hi`"),
+    "random": (("lo", "hi"), "a random whole number in `lo`..`hi` (both included), new at each "
+               "evaluation"),
+}
+
+
+def _reference_functions_defined_below():     # READINGS, FUNCTIONS: see the end
+    pass
 
 
 def signature(name: str, params) -> str:
@@ -294,7 +390,14 @@ def reference_markdown() -> str:
     for e in EVENTS:
         params = ("conditions: " + (e.conditions_doc or SENSOR_CONDITION_DOC) if e.params is None
                   else ", ".join(describe_param(p) for p in e.params) or "-")
-        lines.append(f"| `{e.name}` | {params} | {e.doc} |")
+        lines.append(f"| `{e.signature if e.head else e.name}` | {params} | {e.doc} |")
+    lines += ["", "Rules headed `when`, `every` and `after` are written `when COND do ...`, "
+              "`every D do ...`, `after D do ...` (section 2.10).",
+              "", "### 3.3 Readings", "", "| reading | kind | interval | is |", "|---|---|---|---|"]
+    lines += [f"| `{r.name}` | {r.kind} | {r.lo}..{r.hi} | {r.doc} |" for r in READINGS]
+    lines += ["", "### 3.4 Functions", "", "| function | gives |", "|---|---|"]
+    lines += [f"| `{name}({', '.join(params)})` | {doc} |"
+              for name, (params, doc) in FUNCTIONS.items()]
     for choices in CHOICES:
         lines += ["", f"The {choices.what} values"
                   + (f" (besides the numbers {choices.numbers[0]}..{choices.numbers[1]})"

@@ -387,7 +387,7 @@ static PyObject *driver_parse(DriverObject *d, PyObject *text)
             starts = 0;
         if (starts && sym == d->t_mode && lx.items[i - 1].sym == d->t_initial && i - begin == 1)
             starts = 0;
-        if (starts && sym == d->t_on && lx.items[begin].sym == d->t_rule && !seen_on)
+        if (starts && (d->starts[sym] & 4) && lx.items[begin].sym == d->t_rule && !seen_on)
             starts = 0;
         if (starts) {
             EMIT(begin, i);
@@ -395,7 +395,7 @@ static PyObject *driver_parse(DriverObject *d, PyObject *text)
             seen_on = 0;
             depth = 0;
         }
-        seen_on = seen_on || sym == d->t_on;
+        seen_on = seen_on || (d->starts[sym] & 4);
         if (sym == d->t_lbrace) {
             if (d->starts[lx.items[begin].sym] & 2) {
                 EMIT(begin, i + 1);
@@ -483,7 +483,7 @@ static int int_item(PyObject *seq, Py_ssize_t i, int *out)
  *            mode starts (symbol, ...)) */
 static PyObject *make_driver(PyObject *module, PyObject *args)
 {
-    PyObject *names, *rules, *meta, *lexer, *keywords, *punctuation, *starts, *modes;
+    PyObject *names, *rules, *meta, *lexer, *keywords, *punctuation, *starts, *modes, *triggers;
     Py_buffer packed;
     int start, end, i;
     Py_ssize_t nsyms, nstates, nrules, r;
@@ -622,10 +622,11 @@ static PyObject *make_driver(PyObject *module, PyObject *args)
             goto bad_size;
     }
 
-    if (!PyArg_ParseTuple(lexer, "OOiiiiiiiiiiiiOO", &keywords, &punctuation,
+    if (!PyArg_ParseTuple(lexer, "OOiiiiiiiiiiiiOOO", &keywords, &punctuation,
                           &d->t_name, &d->t_number, &d->t_string, &d->t_end,
                           &d->t_lbrace, &d->t_rbrace, &d->t_action, &d->t_extern,
-                          &d->t_mode, &d->t_initial, &d->t_on, &d->t_rule, &starts, &modes))
+                          &d->t_mode, &d->t_initial, &d->t_on, &d->t_rule, &starts, &modes,
+                          &triggers))
         goto fail;
     {
         const int ids[] = {d->t_name, d->t_number, d->t_string, d->t_end, d->t_lbrace,
@@ -636,7 +637,7 @@ static PyObject *make_driver(PyObject *module, PyObject *args)
                 goto bad_size;
     }
     for (i = 0; i < 128; i++)
-        d->punct_sym[i] = -1;
+        d->punct_sym[i] = d->punct_eq_sym[i] = -1;
     {
         Py_ssize_t k, n = PySequence_Size(keywords);
         if (n < 0)
@@ -682,16 +683,21 @@ static PyObject *make_driver(PyObject *module, PyObject *args)
                 goto fail;
             }
             Py_DECREF(pair);
-            if (!PyUnicode_Check(ch) || PyUnicode_GET_LENGTH(ch) != 1
+            if (!PyUnicode_Check(ch) || PyUnicode_GET_LENGTH(ch) < 1
+                    || PyUnicode_GET_LENGTH(ch) > 2
+                    || (PyUnicode_GET_LENGTH(ch) == 2 && PyUnicode_READ_CHAR(ch, 1) != '=')
                     || PyUnicode_READ_CHAR(ch, 0) >= 128 || sym < 0 || sym >= nsyms) {
                 Py_DECREF(ch);
                 goto bad_size;
             }
-            d->punct_sym[PyUnicode_READ_CHAR(ch, 0)] = sym;
+            if (PyUnicode_GET_LENGTH(ch) == 2)
+                d->punct_eq_sym[PyUnicode_READ_CHAR(ch, 0)] = sym;
+            else
+                d->punct_sym[PyUnicode_READ_CHAR(ch, 0)] = sym;
             Py_DECREF(ch);
         }
-        for (k = 0; k < 2; k++) {
-            PyObject *set = k == 0 ? starts : modes;
+        for (k = 0; k < 3; k++) {
+            PyObject *set = k == 0 ? starts : k == 1 ? modes : triggers;
             Py_ssize_t j, m = PySequence_Size(set);
             if (m < 0)
                 goto fail;
@@ -701,7 +707,7 @@ static PyObject *make_driver(PyObject *module, PyObject *args)
                     goto fail;
                 if (sym < 0 || sym >= nsyms)
                     goto bad_size;
-                d->starts[sym] |= (unsigned char)(k == 0 ? 1 : 2);
+                d->starts[sym] |= (unsigned char)(1 << k);
             }
         }
     }

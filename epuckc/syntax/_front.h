@@ -57,11 +57,13 @@ typedef struct {
     PyObject *meta;         /* source.Span */
     PyObject **names;       /* each symbol's name, for Token.type */
     unsigned char *kept;    /* whether a token of the symbol reaches a callback */
-    unsigned char *starts;  /* 1: starts a statement; 2: starts a mode too */
+    unsigned char *starts;  /* 1: starts a statement; 2: starts a mode too;
+                               4: starts a rule's head (`on`, `when`, ...) */
     int n_keywords;
     char keyword[MAX_KEYWORDS][MAX_KEYWORD_LEN + 1];
     int keyword_sym[MAX_KEYWORDS];
     int punct_sym[128];
+    int punct_eq_sym[128];  /* the two-character token of c followed by `=`, or -1 */
     int t_name, t_number, t_string, t_end;
     int t_lbrace, t_rbrace, t_action, t_extern, t_mode, t_initial, t_on, t_rule;
 } DriverObject;

@@ -186,6 +186,9 @@ int front_tokenise(DriverObject *d, PyObject *text, Lexemes *out)
                 }
             }
             sym = d->t_string;
+        } else if (pos + 1 < n && CH(pos + 1) == '=' && d->punct_eq_sym[c] >= 0) {
+            sym = d->punct_eq_sym[c];   /* `<=`, `+=`, ... */
+            pos += 2;
         } else {
             sym = d->punct_sym[c];
             if (sym < 0)

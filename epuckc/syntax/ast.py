@@ -127,6 +127,48 @@ class ConstRef(Node):
 Value = Union[Number, ConstRef]
 
 
+# ---- expressions ----------------------------------------------------------------
+# A plain number or name (with its minus) stays a Number or ConstRef, as in
+# a `value`; these nodes are made by the operators.
+
+class BinOp(Node):
+    """`left OP right`: OP is one of `+ - * / %`, a comparison
+    (`< <= > >= == !=`), `and` or `or`."""
+    __slots__ = ("op", "left", "right", "span")
+    op: str
+    left: object
+    right: object
+    span: Span
+
+
+class UnaryOp(Node):
+    """`-x` (of something other than a number or a name) or `not x`."""
+    __slots__ = ("op", "operand", "span")
+    op: str
+    operand: object
+    span: Span
+
+
+class FuncCall(Node):
+    """`abs(x)`, `min(a, b)`, `clamp(x, lo, hi)`, `random(lo, hi)`: `args`
+    are PositionalArg (or what else the user wrote, for the checker to
+    report)."""
+    __slots__ = ("name", "args", "span")
+    name: Ident
+    args: tuple
+    span: Span
+
+
+class Paren(Node):
+    """`( expr )`, kept so that the formatter meets its parentheses."""
+    __slots__ = ("expr", "span")
+    expr: object
+    span: Span
+
+
+Expr = Union[Number, ConstRef, BinOp, UnaryOp, FuncCall, Paren]
+
+
 class NamedArg(Node):
     __slots__ = ("name", "value", "span")
     name: Ident
@@ -174,6 +216,15 @@ class EnterCall(Node):
     span: Span
 
 
+class Assign(Node):
+    """`NAME = EXPR`, `NAME += EXPR`, `NAME -= EXPR`: an action."""
+    __slots__ = ("target", "op", "value", "span")
+    target: Ident
+    op: str                 # "=", "+=" or "-="
+    value: object
+    span: Span
+
+
 class Step(Node):
     """Calls that run together, in order, in one poll: `A, B`."""
     __slots__ = ("calls", "span")
@@ -208,6 +259,14 @@ class ConstDef(Node):
     span: Span
 
 
+class VarDef(Node):
+    """`var NAME = VALUE`."""
+    __slots__ = ("name", "value", "span")
+    name: Ident
+    value: Value
+    span: Span
+
+
 class ActionDef(Node):
     __slots__ = ("name", "body", "span")
     name: Ident
@@ -233,7 +292,11 @@ class ExternDef(Node):
 
 
 class Rule(Node):
-    __slots__ = ("name", "event", "repeat", "body", "span", "priority", "mode")
+    """A rule. `trigger` is its head's keyword: `on EVENT`; `when COND`,
+    `every D` and `after D` have `event` Call(`when`|`every`|`after`,
+    (PositionalArg(COND or D),)) so that every rule has an event."""
+    __slots__ = ("name", "event", "repeat", "body", "span", "priority", "mode", "guard",
+                 "trigger")
     name: Optional[Ident]
     event: Call
     repeat: bool
@@ -241,11 +304,13 @@ class Rule(Node):
     span: Span
     priority: Optional[Value]           # `priority N`; None: 0
     mode: Optional[Ident]               # the mode whose block holds it, or None
+    guard: Optional[object]             # `if COND`, or None
+    trigger: str                        # "on", "when", "every" or "after"
 
     def in_mode(self, mode: Ident) -> "Rule":
         """The same rule, inside the block of `mode`."""
         return Rule(self.name, self.event, self.repeat, self.body, self.span, self.priority,
-                    mode)
+                    mode, self.guard, self.trigger)
 
 
 class ModeDef(Node):
@@ -277,7 +342,7 @@ class ModeEnd(Node):
     span: Span
 
 
-Statement = Union[RobotBlock, ConstDef, ActionDef, ExternDef, Rule, ModeDef, ModeEnd]
+Statement = Union[RobotBlock, ConstDef, VarDef, ActionDef, ExternDef, Rule, ModeDef, ModeEnd]
 
 
 class Program:

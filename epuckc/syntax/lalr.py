@@ -31,12 +31,17 @@ NO_ACTION = -(2 ** 31)  # an empty cell of the packed table
 
 class ParseError(Exception):
     """The token `token` cannot come next; `expected` are the terminal
-    names that could have."""
+    names that could have (as Lark says: where the parser stopped), and
+    `before` those that could have come after the last token, before the
+    reductions `token` caused (LALR merges the lookaheads of states alike:
+    a `do` may end a number's `value` that a unit or an operator could have
+    continued), which the messages list."""
 
-    def __init__(self, token, expected):
+    def __init__(self, token, expected, before=None):
         super().__init__(f"unexpected {token.type}")
         self.token = token
         self.expected = expected
+        self.before = expected if before is None else before | expected
 
 
 class Meta:
@@ -325,6 +330,23 @@ def _accepts(tables: Tables, stack: list, terminal: str) -> bool:
     return False
 
 
+def _stack_after(tables: Tables, tokens: list, n: int) -> list:
+    """The parser's states right after shifting tokens[n - 1] (they parse)."""
+    states, rules = tables.states, tables.rules
+    stack = [tables.start]
+    for token in tokens[:n]:
+        while True:
+            code = states[stack[-1]][token.type]
+            if code >= 0:
+                stack.append(code)
+                break
+            origin, _, size, _, _ = rules[-code - 1]
+            if size:
+                del stack[-size:]
+            stack.append(states[stack[-1]][origin])
+    return stack
+
+
 def expected(tables: Tables, stack: list) -> set:
     """The terminals that can really come next. LALR merges states, so a
     state's row may list terminals that only fit in another context (a `}`
@@ -402,7 +424,8 @@ def parse(tables: Tables, tokens, callbacks, meta=Meta) -> object:
         while True:
             code = states[stack[-1]].get(ttype)
             if code is None:
-                raise ParseError(token, expected(tables, stack))
+                raise ParseError(token, expected(tables, stack),
+                                 expected(tables, _stack_after(tables, tokens, index)))
             if code >= 0:
                 stack.append(code)
                 values.append(token)

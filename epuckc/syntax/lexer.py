@@ -16,12 +16,15 @@ KEYWORDS = {
     "extern": "_EXTERN", "event": "_EVENT", "on": "_ON", "rule": "_RULE",
     "do": "_DO", "then": "_THEN", "repeat": "_REPEAT", "cancel": "_CANCEL",
     "from": "_FROM", "priority": "_PRIORITY", "mode": "_MODE", "initial": "_INITIAL",
-    "enter": "_ENTER",
+    "enter": "_ENTER", "var": "_VAR", "when": "_WHEN", "every": "_EVERY", "after": "_AFTER",
+    "if": "_IF", "and": "_AND", "or": "_OR", "not": "_NOT",
 }
 PUNCTUATION = {
     "(": "_LPAR", ")": "_RPAR", "{": "_LBRACE", "}": "_RBRACE", ",": "_COMMA",
     ":": "_COLON", "=": "_EQUAL", "/": "_SLASH", "-": "MINUS", ">": "CMP",
-    "<": "CMP",
+    "<": "CMP", "+": "_PLUS", "*": "_STAR", "%": "_PERCENT",
+    # two characters, the second always `=`
+    "<=": "CMP", ">=": "CMP", "==": "CMP", "!=": "CMP", "+=": "_PLUSEQ", "-=": "_MINUSEQ",
 }
 class Token:
     """One token: its terminal name (`NAME`, `_ON`, ...), its text and where
@@ -53,7 +56,9 @@ class Token:
 
 # Keywords that begin a statement: the parser restarts at each of them.
 STATEMENT_STARTS = {"_ROBOT", "_CONST", "_ACTION", "_EXTERN", "_ON", "_RULE", "_MODE",
-                    "_INITIAL"}
+                    "_INITIAL", "_VAR", "_WHEN", "_EVERY", "_AFTER"}
+# The keywords that start a rule's head: `rule NAME: when ...` is one statement.
+TRIGGERS = {"_ON", "_WHEN", "_EVERY", "_AFTER"}
 MODE_STARTS = {"_MODE", "_INITIAL"}
 
 # Stop reporting bad characters after this many: the file is likely not a
@@ -73,12 +78,12 @@ _TOKEN_RE = re.compile(r"""
   | (?P<NUMBER>[0-9]+(?:\.[0-9]+)?)
   | (?P<STRING>"(?:[^"\\\n]|\\.)*")
   | (?P<open_string>"(?:[^"\\\n]|\\.)*)
-  | (?P<punct>[(){},:=/\-><])
+  | (?P<punct>[<>=!+\-]=|[(){},:=/\-><+*%])
     )""", re.VERBOSE)
 _BLANKS_RE = re.compile(r"[ \t\r\f\v]*")
 
 # A run of characters that start no token (every other character starts one).
-_BAD_RE = re.compile(r"""[^\w \t\r\n\f\v#"(){},:=/\-><]+""")
+_BAD_RE = re.compile(r"""(?:!(?!=)|[^\w \t\r\n\f\v#"(){},:=/\-><+*%!])+""")
 
 
 # Symbols that stand for a unit, and the unit's name in rule files.
@@ -95,7 +100,7 @@ def _bad_help(source: SourceFile, text: str, start: int, end: int):
         number = re.search(r"[0-9.]*$", text[:start].rstrip(" \t")).group(0) or "90"
         return Fix(source.span(start, end), spaced,
                    f"units are written as words: `{number} {unit}`")
-    return ("rule files use names, numbers, units and `( ) { } , : = / - > <`; "
+    return ("rule files use names, numbers, units and `( ) { } , : = + - * / % > < !=`; "
             "comments start with `#`")
 
 
@@ -237,14 +242,14 @@ def iter_statements(tokens):
             starts = False
         if starts and tok.type == "_MODE" and current[-1].type == "_INITIAL" and len(current) == 1:
             starts = False
-        if starts and tok.type == "_ON" and current[0].type == "_RULE" and not seen_on:
+        if starts and tok.type in TRIGGERS and current[0].type == "_RULE" and not seen_on:
             starts = False
         if starts:
             yield current
             current = []
             seen_on = False
             depth = 0
-        seen_on = seen_on or tok.type == "_ON"
+        seen_on = seen_on or tok.type in TRIGGERS
         current.append(tok)
         if tok.type == "_LBRACE":
             if current[0].type in MODE_STARTS:

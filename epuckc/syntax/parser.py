@@ -6,6 +6,7 @@ and the rest of the file is still checked.
 """
 from __future__ import annotations
 
+import re
 from functools import lru_cache
 
 from . import accel
@@ -30,8 +31,10 @@ _FRIENDLY = {
     "NAME": "a name", "NUMBER": "a number", "STRING": 'a file name in quotes ("blink.c")',
     "CMP": "`>` or `<`", "MINUS": "`-`", "$END": "the end of the statement",
     "_LPAR": "`(`", "_RPAR": "`)`", "_LBRACE": "`{`", "_RBRACE": "`}`", "_COMMA": "`,`",
-    "_COLON": "`:`", "_EQUAL": "`=`", "_SLASH": "`/`",
+    "_COLON": "`:`", "_EQUAL": "`=`", "_SLASH": "`/`", "_PLUS": "`+`", "_STAR": "`*`",
+    "_PERCENT": "`%`", "_PLUSEQ": "`+=`", "_MINUSEQ": "`-=`",
 }
+_OPERATORS = {"_PLUS", "MINUS", "_STAR", "_SLASH", "_PERCENT"}
 _STATEMENT_LIST = "a statement (`on`, `rule`, `action`, `const`, `extern`, `robot` or `mode`)"
 
 
@@ -69,9 +72,14 @@ def _describe_expected(prev, expected: set) -> tuple[str, str | None]:
     if expected >= {"NUMBER", "NAME", "MINUS"}:
         wanted = "a value or `)`" if "_RPAR" in expected else "a value"
         return wanted, "a value is a number with an optional unit (`20 cm`) or a constant's name"
-    names = sorted(_friendly(t) for t in expected if not (t == "NAME" and prev_type == "NUMBER"))
+    operators = _OPERATORS <= expected
+    names = sorted(_friendly(t) for t in expected if not (t == "NAME" and prev_type == "NUMBER")
+                   and not (operators and t in _OPERATORS)
+                   and not (operators and t == "CMP"))
     if prev_type == "NUMBER" and "NAME" in expected:
         names.append("a unit")
+    if operators:
+        names.append("an operator")
     if not names:
         return "nothing more", None
     wanted = ", ".join(names[:-1]) + " or " + names[-1] if len(names) > 1 else names[0]
@@ -108,7 +116,7 @@ def _syntax_error(exc: lalr.ParseError, chunk: list, following, source: SourceFi
         prev = chunk[index - 1] if index > 0 else None
         found = _describe_found(tok)
         span = Span(tok.line, tok.column, tok.end_line, tok.end_column)
-    expected = set(exc.expected)
+    expected = set(exc.before)
     wanted, hint = _describe_expected(prev, expected)
     after = f" after `{prev.value}`" if prev is not None else ""
     if tok.type == "_EQUAL" and "_COLON" in expected and prev is not None:
@@ -128,9 +136,10 @@ def _syntax_error(exc: lalr.ParseError, chunk: list, following, source: SourceFi
                        ",", "conditions are separated by `,`, which means or: "
                             "write `,` for `or`")
         else:
-            help = ("conditions are separated by `,`, which means *or*: the rule occurs when "
-                    "any of them becomes true; a sensor rule cannot wait for two at once "
-                    "(a rule per sensor, or `,` if either will do)")
+            help = _when_fix(chunk, source) or (
+                "conditions are separated by `,`, which means *or*: the rule occurs when "
+                "any of them becomes true; to wait for two at once, write a `when` rule: "
+                "`when ir0 > 300 and ir7 > 300 do ...`")
         diags.error("E001", where, f"`{word}` cannot join the conditions of an event", help=help)
         return
     if tok.type == "_REPEAT" and "_DO" in expected and index >= 2 \
@@ -154,13 +163,43 @@ def _syntax_error(exc: lalr.ParseError, chunk: list, following, source: SourceFi
                 help=_fix(tok, prev, expected, hint))
 
 
+def _when_fix(chunk: list, source: SourceFile):
+    """`on sensor(ir0 > 300 and ir7 > 300)` as the `when` rule it means:
+    `when ir0 > 300 and ir7 > 300` (for `ambient`, on the ambient readings)."""
+    types = [t.type for t in chunk]
+    if "_ON" not in types:
+        return None
+    at = types.index("_ON")
+    if at + 2 >= len(chunk) or chunk[at + 1].value not in ("sensor", "ambient") \
+            or types[at + 2] != "_LPAR":
+        return None
+    depth, close = 0, None
+    for i in range(at + 2, len(chunk)):
+        depth += {"_LPAR": 1, "_RPAR": -1}.get(types[i], 0)
+        if depth == 0:
+            close = i
+            break
+    if close is None:
+        return None
+    inside = [t for t in chunk[at + 3:close]]
+    if any(t.type in ("_COMMA", "_OR") for t in inside):
+        return None         # `,` is already an or: mixing them needs a person
+    text = " ".join(t.value for t in inside)
+    if chunk[at + 1].value == "ambient":
+        text = re.sub(r"\bir([0-7])\b", r"ambient\1", text)
+    start, end = chunk[at], chunk[close]
+    return Fix(Span(start.line, start.column, end.end_line, end.end_column), f"when {text}",
+               f"a sensor rule's conditions are or-ed; to wait for both, write a `when` "
+               f"rule: `when {text}`")
+
+
 def _joining_word(chunk: list, tok, prev, expected: set):
     """The `and` or `or` token that joins two conditions of an event's
     arguments, or None."""
     if tok.type == "$END":
         return None
     for word in (prev, tok):
-        if word is not None and word.type == "NAME" and word.value in ("and", "or") \
+        if word is not None and word.type in ("_AND", "_OR") \
                 and ("_RPAR" in expected or "_COMMA" in expected) and chunk.index(word) > 0:
             return word
     return None
@@ -219,6 +258,11 @@ _Rule = ast.maker(ast.Rule)
 _Setting = ast.maker(ast.Setting)
 _ConstDef = ast.maker(ast.ConstDef)
 _ActionDef = ast.maker(ast.ActionDef)
+_BinOp = ast.maker(ast.BinOp)
+_UnaryOp = ast.maker(ast.UnaryOp)
+_FuncCall = ast.maker(ast.FuncCall)
+_Paren = ast.maker(ast.Paren)
+_Assign = ast.maker(ast.Assign)
 
 
 def _ident(tok) -> ast.Ident:
@@ -275,10 +319,36 @@ class _ToAst:
     def repeat(self, span, children):
         return True
 
+    def var_def(self, span, children):
+        name, value = children
+        return ast.VarDef(_ident(name), value, span)
+
     def rule_def(self, span, children):
-        name, event, repeat, priority, body = children
+        name, (trigger, event), repeat, priority, guard, body = children
         return _Rule(_ident(name) if name is not None else None, event, bool(repeat), body,
-                     span, priority, None)
+                     span, priority, None, guard, trigger)
+
+    def trigger(self, span, children):
+        return "on", children[0]
+
+    @staticmethod
+    def _keyword_event(word, span, children):
+        """`when COND`, `every D`, `after D` as the event Call(word, (COND or D,))."""
+        keyword = _Ident(word, Span(span.line, span.column, span.line, span.column + len(word)))
+        (arg,) = children
+        return word, _Call(keyword, (_PositionalArg(arg, arg.span),), span)
+
+    def when_trigger(self, span, children):
+        return self._keyword_event("when", span, children)
+
+    def every_trigger(self, span, children):
+        return self._keyword_event("every", span, children)
+
+    def after_trigger(self, span, children):
+        return self._keyword_event("after", span, children)
+
+    def guard(self, span, children):
+        return children[0]
 
     def priority_number(self, span, children):
         (number,) = children
@@ -318,6 +388,18 @@ class _ToAst:
 
     plain_call = event_ref
 
+    def assign_call(self, span, children):
+        name, value = children
+        return _Assign(_ident(name), "=", value, span)
+
+    def add_assign_call(self, span, children):
+        name, value = children
+        return _Assign(_ident(name), "+=", value, span)
+
+    def sub_assign_call(self, span, children):
+        name, value = children
+        return _Assign(_ident(name), "-=", value, span)
+
     def cancel_call(self, span, children):
         (name,) = children
         return _CancelCall(_ident(name), span)
@@ -342,6 +424,59 @@ class _ToAst:
         if unit is None:
             return _Number(float(text), text, None, None, span)
         return _Number(float(text), text, unit[0], unit[1], span)
+
+    # -- expressions: a level without its operator passes its one child on --
+
+    def _pass(self, span, children):
+        return children[0]
+
+    expr = conjunction = negation = comparison = sum = product = unary = _pass
+
+    def _binary(op):
+        def make(self, span, children):
+            return _BinOp(op, children[0], children[-1], span)
+        return make
+
+    or_op, and_op = _binary("or"), _binary("and")
+    add_op, sub_op = _binary("+"), _binary("-")
+    mul_op, div_op, mod_op = _binary("*"), _binary("/"), _binary("%")
+    del _binary
+
+    def compare_op(self, span, children):
+        left, op, right = children
+        return _BinOp(op.value, left, right, span)
+
+    def not_op(self, span, children):
+        return _UnaryOp("not", children[0], span)
+
+    def neg_op(self, span, children):
+        """`-3 cm` and `-NAME` are the Number and ConstRef a `value` makes;
+        a minus before anything else is an operator."""
+        _, operand = children
+        cls = operand.__class__
+        if cls is ast.Number and not operand.text.startswith("-"):
+            return _Number(-operand.value, "-" + operand.text, operand.unit, operand.unit_span,
+                           span)
+        if cls is ast.ConstRef and not operand.negative:
+            return _ConstRef(operand.name, True, span)
+        return _UnaryOp("-", operand, span)
+
+    def number_atom(self, span, children):
+        number, unit = children
+        if unit is None:
+            return _Number(float(number.value), number.value, None, None, span)
+        return _Number(float(number.value), number.value, unit[0], unit[1], span)
+
+    def name_atom(self, span, children):
+        ident = _ident(children[0])
+        return _ConstRef(ident, False, span)
+
+    def function_atom(self, span, children):
+        name, args = children
+        return _FuncCall(_ident(name), args, span)
+
+    def paren_atom(self, span, children):
+        return _Paren(children[0], span)
 
     def const_ref(self, span, children):
         minus, name = children
@@ -370,7 +505,7 @@ def make_c_driver(front, tables: lalr.Tables, callbacks):
     """A C driver over `tables` and `callbacks`: the packed table as it is,
     and the lexer's own tables for which word or character is which
     terminal and which ones start a statement."""
-    from .lexer import MODE_STARTS, PUNCTUATION
+    from .lexer import MODE_STARTS, PUNCTUATION, TRIGGERS
     terminals = {"NAME", "NUMBER", "STRING", "$END"} | set(KEYWORDS.values()) \
         | set(PUNCTUATION.values())
     names, packed = tables.names, tables.packed
@@ -386,7 +521,7 @@ def make_c_driver(front, tables: lalr.Tables, callbacks):
              sym["NAME"], sym["NUMBER"], sym["STRING"], sym["$END"], sym["_LBRACE"],
              sym["_RBRACE"], sym["_ACTION"], sym["_EXTERN"], sym["_MODE"], sym["_INITIAL"],
              sym["_ON"], sym["_RULE"], tuple(sym[t] for t in STATEMENT_STARTS),
-             tuple(sym[t] for t in MODE_STARTS))
+             tuple(sym[t] for t in MODE_STARTS), tuple(sym[t] for t in TRIGGERS))
     return front.make_driver(names, packed, tables.start, tables.end, rules, Span, lexer)
 
 

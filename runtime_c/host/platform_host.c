@@ -46,7 +46,7 @@ typedef struct {
     int size;
 } name_table;
 
-static name_table action_names, event_names, mode_names;
+static name_table action_names, event_names, mode_names, var_names;
 
 static char *copy_string(const char *s)
 {
@@ -207,6 +207,11 @@ void rt_name_mode(int mode, const char *name)
     set_name(&mode_names, mode, name);
 }
 
+void rt_name_var(int id, const char *name)
+{
+    set_name(&var_names, id, name);
+}
+
 /* ---- settings errors ------------------------------------------------------ */
 
 /* Run by `epuckc run` (EPUCK_FRONTEND=epuckc), messages name the options the
@@ -218,6 +223,7 @@ static const char *setting_name(const char *variable)
         {"EPUCK_TRACE", "--trace"},
         {"EPUCK_SCENARIO", "--scenario"},
         {"EPUCK_POSE_MS", "--pose-interval"},
+        {"EPUCK_SEED", "--seed"},
     };
     const char *frontend = getenv("EPUCK_FRONTEND");
     size_t i;
@@ -740,6 +746,39 @@ void rt_trace_mode(int mode)
     record("mode", name, mode, -1, 0);
     if (!quiet)
         printf("[%6ld ms] mode      %s\n", now_ms, name);
+}
+
+/* a variable changed: one line of its own, {"t_ms", "kind": "set", "var", "value"} */
+void rt_trace_set(int id, int value)
+{
+    char buf[32];
+    const char *name = get_name(&var_names, id, "var", buf, sizeof buf);
+
+    if (trace_file != NULL) {
+        fprintf(trace_file, "{\"t_ms\": %ld, \"kind\": \"set\", \"var\": ", now_ms);
+        json_string(trace_file, name);
+        fprintf(trace_file, ", \"value\": %d}\n", value);
+        fflush(trace_file);
+    }
+    if (!is_quiet())
+        printf("[%6ld ms] set       %s = %d\n", now_ms, name, value);
+}
+
+/* The seed of `random`: EPUCK_SEED (`epuckc run --seed N`), 1 without it. */
+unsigned long rt_platform_seed(void)
+{
+    const char *seed = getenv("EPUCK_SEED");
+    char *end;
+    unsigned long v;
+
+    if (seed == NULL || *seed == '\0')
+        return 1UL;
+    errno = 0;
+    v = strtoul(seed, &end, 10);
+    if (errno != 0 || *end != '\0' || !isdigit((unsigned char)*seed) || v > 0xFFFFFFFFUL)
+        fail("%s: expected a whole number from 0 to 4294967295, got '%s'",
+             setting_name("EPUCK_SEED"), seed);
+    return v;
 }
 
 /* the harness's view of the robot's outputs */

@@ -18,7 +18,8 @@ from epuckc.diagnostics import Collector
 from epuckc.syntax.lexer import KEYWORDS, iter_tokens
 from epuckc.syntax.parser import parse
 from epuckc.base.source import SourceFile
-from epuckc.stdlib.table import ACTION_ALIASES, EVENT_ALIASES, STANDARD_ACTIONS, STANDARD_EVENTS
+from epuckc.stdlib.table import (ACTION_ALIASES, EVENT_ALIASES, FUNCTIONS, STANDARD_ACTIONS,
+                                 STANDARD_EVENTS, STANDARD_READINGS)
 from epuckc.stdlib.units import UNITS
 
 from tests.conftest import require_tool
@@ -163,14 +164,16 @@ def expected_name_scope(tokens, k) -> str:
         return "entity.name.function.rule.epuck"
     if same_line(prev) and prev.type in ("_ACTION", "_EVENT"):
         return "entity.name.function.action.epuck"
-    if same_line(prev) and prev.type == "_CONST":
+    if same_line(prev) and prev.type in ("_CONST", "_VAR"):
         return "variable.other.constant.definition.epuck"
     if same_line(after) and after.type == "_COLON":
         return "variable.parameter.epuck"
     if tok.value in STANDARD:
         return "support.function.epuck"
-    if re.fullmatch(r"ir[0-9]+", tok.value):
+    if re.fullmatch(r"ir[0-9]+", tok.value) or tok.value in STANDARD_READINGS:
         return "variable.language.sensor.epuck"
+    if tok.value in FUNCTIONS and same_line(after) and after.type == "_LPAR":
+        return "support.function.math.epuck"
     return "variable.other.epuck"
 
 
@@ -191,7 +194,8 @@ def test_every_token_has_the_scope_of_its_kind(path, scopes):
     for k, tok in enumerate(tokens):
         got = scopes(path, tok.line, tok.column)
         if tok.type.startswith("_") and tok.value in KEYWORDS:
-            assert got[-1].startswith(("storage.type.", "keyword.control.")), (tok, got)
+            assert got[-1].startswith(("storage.type.", "keyword.control.",
+                                       "keyword.operator.logical.")), (tok, got)
         elif tok.type == "NUMBER":
             assert got[-1] == "constant.numeric.epuck", (tok, got)
         elif k in unit_tokens:

@@ -70,7 +70,7 @@ def test_extern_actions_and_events_get_converted_arguments(tmp_path):
     # distance in steps, speed in steps/s, angle in deg, duration in ms
     assert "mark count=3 length=155 pace=776 turn=45 wait=2000" in out
     assert "mark count=1 length=10 pace=10 turn=1 wait=1" in out
-    assert [r["t_ms"] for r in events(records, "after")] == [250]
+    assert [r["t_ms"] for r in events(records, "elapsed")] == [250]
 
 
 def test_names_that_are_c_keywords_or_runtime_names(tmp_path):

@@ -198,13 +198,15 @@ async def test_completion(client, tmp_path):
     labels = await _complete(client, tmp_path, "on immediate do start_straight(speed: 3, ")
     assert labels == ["distance"]
     labels = await _complete(client, tmp_path, "on immediate do start_straight(")
-    assert labels == ["speed", "distance", "fast"]
+    # the parameters and the constants first, then what an expression reads
+    assert labels[:3] == ["speed", "distance", "fast"]
+    assert {"ir0", "heading", "clamp", "random"} <= set(labels[3:])
     labels = await _complete(client, tmp_path, "on immediate do start_straight(300, 20 ")
     assert labels == ["cm", "m", "mm", "steps"]
     assert await _complete(client, tmp_path, "on timer(3 ") == ["ms", "s"]
     assert await _complete(client, tmp_path, "on sensor(ir1 > 30, ") == [
         "ir0", "ir2", "ir3", "ir4", "ir5", "ir6", "ir7"]
-    assert await _complete(client, tmp_path, "on immediate ") == ["do", "priority", "repeat"]
+    assert await _complete(client, tmp_path, "on immediate ") == ["do", "if", "priority", "repeat"]
 
 
 async def test_definition_references_and_symbols(client, tmp_path):

@@ -19,7 +19,7 @@ def test_language_reference_prints_the_table():
 
 def test_every_runtime_name_is_declared_by_the_runtime():
     header = (REPO / "runtime_c" / "epuckrt.h").read_text()
-    declared = set(re.findall(r"\b(\w+)\s*\(void \*param", header)) | \
+    declared = set(re.findall(r"\b(\w+)\s*\(void \*(?:param|status)", header)) | \
         set(re.findall(r"\}\s*(\w+)\s*;", header)) | \
         set(re.findall(r"typedef \w+ (\w+);", header))
     for spec in (*stdlib.ACTIONS, *stdlib.EVENTS):
@@ -58,7 +58,7 @@ def test_parameter_structs_and_choices_are_the_runtime_s():
     for spec in (*stdlib.ACTIONS, *stdlib.EVENTS):
         if spec.fields:
             assert spec.runtime_param in structs, spec.name
-            fields = re.findall(r"\bint \w+;", structs[spec.runtime_param])
+            fields = re.findall(r"\b(?:int|long) \w+;", structs[spec.runtime_param])
             assert len(fields) == len(spec.fields), spec.name
             for field in spec.fields:
                 names = set(re.findall(r"\{(\w+)\}", field))

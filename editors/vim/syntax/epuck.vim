@@ -7,8 +7,9 @@ endif
 
 syntax case match
 
-syntax keyword epuckDeclaration robot const action extern event rule mode initial
-syntax keyword epuckKeyword on do then repeat cancel from priority enter
+syntax keyword epuckDeclaration robot const var action extern event rule mode initial
+syntax keyword epuckKeyword on do then repeat cancel from priority enter when every after if
+syntax keyword epuckKeyword and or not
 syntax keyword epuckBuiltin start_straight start_curve stop_motor set_timer reset_timer
 syntax keyword epuckBuiltin start_sensor stop_sensor exit_main immediate timer sensor
 syntax keyword epuckBuiltin action_start_straight action_start_curve action_stop_motor
@@ -20,11 +21,15 @@ syntax keyword epuckBuiltin action_led_on action_led_off action_led_toggle actio
 syntax keyword epuckBuiltin selector clap tap tilt remote ambient
 syntax keyword epuckBuiltin event_selector event_clap event_tap event_tilt event_remote
 syntax keyword epuckBuiltin event_ambient
+syntax keyword epuckBuiltin set_speed wait action_set_speed action_wait
+syntax keyword epuckFunction abs min max clamp random
+syntax keyword epuckReading x y heading acc_x acc_y acc_z
 
 " the name a statement defines
-syntax match epuckDefinition "\%(\<\%(rule\|action\|event\|const\)\s\+\)\@<=\h\w*"
+syntax match epuckDefinition "\%(\<\%(rule\|action\|event\|const\|var\)\s\+\)\@<=\h\w*"
 
 syntax match epuckSensor "\<ir\d\+\>"
+syntax match epuckReading "\<\%(ambient\d\|mic\d\)\>"
 syntax match epuckNumber "\<\d\+\%(\.\d\+\)\=\>" nextgroup=epuckUnit skipwhite
 
 " units after a number; for matches at one place the last one defined wins,
@@ -43,13 +48,15 @@ syntax match epuckUnit contained "\<mm\s*/\s*s\>"
 syntax match epuckUnit contained "\<cm\s*/\s*s\>"
 syntax match epuckUnit contained "\<m\s*/\s*s\>"
 
-syntax match epuckOperator "[=<>-]"
+syntax match epuckOperator "[=<>!+*%-]"
 syntax region epuckString start=+"+ skip=+\\.+ end=+"+ end=+$+ contains=epuckEscape oneline
 syntax match epuckEscape contained "\\."
 syntax match epuckComment "#.*$" contains=@Spell
 
 highlight default link epuckDeclaration StorageClass
 highlight default link epuckKeyword Keyword
+highlight default link epuckFunction Function
+highlight default link epuckReading Constant
 highlight default link epuckBuiltin Function
 highlight default link epuckDefinition Identifier
 highlight default link epuckSensor Constant

@@ -14,8 +14,8 @@
 static const param_mark epk_p1_r1 = {3, 155, 776, 45, 2000L};
 /* extern.epk:7: mark(1, 10 steps, 10, 1, 1) */
 static const param_mark epk_p1_r2 = {1, 10, 10, 1, 1L};
-/* extern.epk:7: after(ms: 250) */
-static const param_after epk_when_r2 = {250L};
+/* extern.epk:7: elapsed(ms: 250) */
+static const param_elapsed epk_when_r2 = {250L};
 
 /* extern.epk:6: mark(count: 3, length: 2 cm, pace: 100 mm/s, turn: 45 deg, wait: 2 s), noop */
 static void epk_do_r1(void *epk_param)
@@ -47,8 +47,8 @@ static const rt_action epk_action_table[] = {
 static const rt_event epk_event_table[] = {
     /* 0: extern.epk:6: on immediate do mark(count: 3, length: 2 cm, pace: 100 mm/s, turn: 45 deg, wait: 2 s), noop */
     {immediate, NULL, 0, 0, RT_NO_MEMORY, 0, 0},
-    /* 1: extern.epk:7: on after(ms: 250) do mark(1, 10 steps, 10, 1, 1), exit_main */
-    {after, &epk_when_r2, 1, 0, 0, 0, 0},
+    /* 1: extern.epk:7: on elapsed(ms: 250) do mark(1, 10 steps, 10, 1, 1), exit_main */
+    {elapsed, &epk_when_r2, 1, 0, 0, 0, 0},
 };
 
 /* What changes while the program runs, the only part in RAM. */
@@ -69,7 +69,7 @@ int main(void)
     name_action(0, "mark(count: 3, length: 2 cm, pace: 100 mm/s, turn: 45 deg, wait: 2 s), noop");
     name_action(1, "mark(1, 10 steps, 10, 1, 1), exit_main");
     name_event(0, "extern.epk:6 on immediate");
-    name_event(1, "extern.epk:7 on after(ms: 250)");
+    name_event(1, "extern.epk:7 on elapsed(ms: 250)");
 
     mainloop();
     return 0;

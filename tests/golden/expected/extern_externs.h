@@ -24,12 +24,12 @@ typedef struct {
 
 typedef struct {
     long ms;
-} param_after;
+} param_elapsed;
 
 /* extern.epk:2: extern action mark(count: int, length: distance, pace: speed, turn: angle, wait: duration) */
 void mark(void *);              /* param_mark * */
-/* extern.epk:3: extern event after(ms: duration) */
-void after(void *, void *);      /* param_after *, event_status * */
+/* extern.epk:3: extern event elapsed(ms: duration) */
+void elapsed(void *, void *);      /* param_elapsed *, event_status * */
 /* extern.epk:4: extern action noop() */
 void noop(void *);              /* NULL */
 

@@ -1,0 +1,119 @@
+"""Variables: their declarations, the intervals of their values (from every
+assignment of the program, iterated to a fixed point and widened where
+they keep growing), and assignments."""
+from __future__ import annotations
+
+from typing import Optional
+
+from ..diagnostics import Collector, Note
+from ..stdlib.table import STANDARD_READINGS
+from ..stdlib.units import INT16_MAX, INT16_MIN
+from ..syntax import ast
+from .exprs import _kind_word
+from .messages import _code, did_you_mean
+from .program import BOOL, Expr, ResolvedCall, VarInfo
+
+# passes of the variables' intervals before the growing ones are widened
+RANGE_PASSES = 4
+
+
+class Variables:
+    """The checker's variables and assignments (a part of Checker; the
+    expressions they hold are exprs.py's)."""
+
+    def _declare_var(self, stmt: ast.VarDef, claim):
+        name = stmt.name.name
+        if name in STANDARD_READINGS:
+            self.diags.error("E015", stmt.name.span,
+                             f"{_code(name)} is already the name of a reading of the robot",
+                             help=f"choose another name, e.g. `my_{name}`")
+            return
+        if not claim("const", stmt.name, "variable"):
+            return
+        value = self._literal(stmt.value, allow_vars=False)
+        if value is None:
+            return
+        if value.kind == BOOL:
+            return
+        self.vars[name] = VarInfo(name, value.kind, value.value, value.value, value.value,
+                                  len(self.vars), stmt)
+
+    def _var_ranges(self):
+        """Each variable's interval: its initial value joined with what
+        every assignment of the program can give it."""
+        if not self.vars:
+            return
+        assigns = []
+        for stmt in self.program.statements:
+            bodies = []
+            if isinstance(stmt, ast.Rule):
+                bodies.append(stmt.body)
+            elif isinstance(stmt, ast.ActionDef):
+                bodies.append(stmt.body)
+            for body in bodies:
+                assigns += [c for step in body.steps for c in step.calls
+                            if isinstance(c, ast.Assign) and c.target.name in self.vars]
+        if not assigns:
+            return
+        saved = self.diags
+        self.diags = Collector(saved.source)
+        try:
+            for attempt in range(RANGE_PASSES + 1):
+                changed = False
+                for call in assigns:
+                    info = self.vars[call.target.name]
+                    value = self._assigned(call, info)
+                    if value is None or value.kind == BOOL:
+                        continue
+                    lo, hi = min(info.lo, value.lo), max(info.hi, value.hi)
+                    if (lo, hi) != (info.lo, info.hi):
+                        if attempt == RANGE_PASSES:       # still growing: widen
+                            lo = INT16_MIN if lo < info.lo else lo
+                            hi = INT16_MAX if hi > info.hi else hi
+                        info.lo, info.hi = lo, hi
+                        changed = True
+                if not changed:
+                    break
+        finally:
+            self.diags = saved
+
+    def _assigned(self, call: ast.Assign, info: VarInfo) -> Optional[Expr]:
+        """The value an assignment gives its variable (`x += e` is x + e)."""
+        value = self._expr(call.value)
+        if value is None:
+            return None
+        if call.op == "=":
+            return self._adapt(value, info.kind)
+        current = Expr("var", info.kind, info.lo, info.hi, name=info.name, node=call.target)
+        return self._binary("+" if call.op == "+=" else "-", current, value, call)
+
+    def _assign(self, call: ast.Assign) -> Optional[ResolvedCall]:
+        name = call.target.name
+        info = self.vars.get(name)
+        if info is None:
+            if name in self.consts or name in STANDARD_READINGS:
+                what = "constant" if name in self.consts else "reading of the robot"
+                self.diags.error("E051", call.target.span,
+                                 f"{_code(name)} is a {what}: it cannot be given a value",
+                                 help=f"declare a variable instead: `var {name} = ...`"
+                                 if name in self.consts else
+                                 f"store it in a variable: `var my_{name} = 0` and "
+                                 f"`my_{name} = {name}`")
+            else:
+                self.diags.error("E051", call.target.span, f"unknown variable {_code(name)}",
+                                 help=did_you_mean(call.target, self.vars) or
+                                 f"declare it first: `var {name} = 0`")
+            return None
+        self.vars_used.add(name)
+        value = self._assigned(call, info)
+        if value is None:
+            return None
+        if value.kind != info.kind:
+            self._kind_clash(call, info.kind, value.kind,
+                             f"variable {_code(name)} is {_kind_word(info.kind)} (from its "
+                             f"initial value)", notes=[Note(f"{_code(name)} is declared here",
+                                                            info.node.span)])
+            return None
+        return ResolvedCall("assign", name, {"value": value}, {"value": self._text(call.value)},
+                            call, dynamic=True)
+

@@ -1,0 +1,331 @@
+/*
+ * rt_lang.c - what the rule language's expressions compile to: 16-bit
+ * saturating arithmetic, the robot's readings (once per poll), odometry,
+ * random numbers, variables with their trace, and the `when`, `every` and
+ * `after` events.  Part of the runtime behind epuckrt.h; see epuckrt.c.
+ *
+ * Every value is computed in long (at least 32 bits on every target) and
+ * saturated back to -32768..32767, so the results are the same where int
+ * is 16 bits (the dsPIC) and where it is 32, and no operation overflows.
+ */
+#include "rt_internal.h"
+
+/* ---- arithmetic ------------------------------------------------------------ */
+
+static int sat(long v)
+{
+    return v < RT_INT_MIN ? RT_INT_MIN : v > RT_INT_MAX ? RT_INT_MAX : (int)v;
+}
+
+int rt_add(int a, int b)
+{
+    return sat((long)a + b);
+}
+
+int rt_sub(int a, int b)
+{
+    return sat((long)a - b);
+}
+
+int rt_mul(int a, int b)
+{
+    return sat((long)a * b);
+}
+
+/* C99 division truncates towards zero, as the language's does. */
+int rt_div(int a, int b)
+{
+    return b == 0 ? 0 : sat((long)a / b);
+}
+
+int rt_mod(int a, int b)
+{
+    return b == 0 ? 0 : sat((long)a % b);
+}
+
+int rt_neg(int a)
+{
+    return sat(-(long)a);
+}
+
+int rt_abs(int a)
+{
+    return sat(a < 0 ? -(long)a : (long)a);
+}
+
+int rt_min(int a, int b)
+{
+    return a < b ? a : b;
+}
+
+int rt_max(int a, int b)
+{
+    return a > b ? a : b;
+}
+
+int rt_clamp(int x, int lo, int hi)
+{
+    int v = x < lo ? lo : x;
+    return v > hi ? hi : v;
+}
+
+/* ---- random numbers: xorshift32, the same sequence on every target ------------ */
+
+static unsigned long rng_state = 1;
+static int rng_seeded;
+
+void rt_seed(unsigned long seed)
+{
+    seed &= 0xFFFFFFFFUL;
+    rng_state = seed != 0 ? seed : 0x2545F491UL;
+    rng_seeded = 1;
+}
+
+static unsigned long rng_next(void)
+{
+    unsigned long x;
+
+    if (!rng_seeded)
+        rt_seed(rt_platform_seed());
+    x = rng_state;
+    x ^= (x << 13) & 0xFFFFFFFFUL;
+    x ^= x >> 17;
+    x ^= (x << 5) & 0xFFFFFFFFUL;
+    rng_state = x;
+    return x;
+}
+
+int rt_random(int lo, int hi)
+{
+    unsigned long span;
+
+    if (hi <= lo)
+        return lo;
+    span = (unsigned long)((long)hi - lo) + 1UL;     /* 1..65536 */
+    return (int)((long)lo + (long)(rng_next() % span));
+}
+
+/* ---- readings ------------------------------------------------------------------- */
+
+/* Bit n of valid: reading n was read in this poll; cleared with the
+ * proximity readings' at the start of each poll (rt_prox_valid == 0). */
+static int ambient[8], mic[3], acc[3], selector;
+static unsigned ambient_valid, other_valid;
+static unsigned long poll_seen;
+
+static void new_poll(void)
+{
+    if (poll_seen != rt_poll_count) {
+        poll_seen = rt_poll_count;
+        ambient_valid = 0;
+        other_valid = 0;
+    }
+}
+
+int rt_ir(int sensor)
+{
+    if (sensor < 0 || sensor > 7)
+        return 0;
+    rt_read_prox(1u << sensor);
+    return rt_prox[sensor];
+}
+
+int rt_ambient(int sensor)
+{
+    if (sensor < 0 || sensor > 7)
+        return 0;
+    new_poll();
+    if (!(ambient_valid & (1u << sensor))) {
+        ambient[sensor] = e_get_ambient_light((unsigned)sensor);
+        ambient_valid |= 1u << sensor;
+    }
+    return ambient[sensor];
+}
+
+int rt_mic(int micro)
+{
+    if (micro < 0 || micro > 2)
+        return 0;
+    new_poll();
+    if (!(other_valid & (1u << micro))) {
+        mic[micro] = e_get_micro_volume((unsigned)micro);
+        other_valid |= 1u << micro;
+    }
+    return mic[micro];
+}
+
+int rt_acc(int axis)
+{
+    if (axis < 0 || axis > 2)
+        return 0;
+    new_poll();
+    if (!(other_valid & (8u << axis))) {
+        acc[axis] = e_get_acc((unsigned)axis);
+        other_valid |= 8u << axis;
+    }
+    return acc[axis];
+}
+
+int rt_selector(void)
+{
+    new_poll();
+    if (!(other_valid & 64u)) {
+        selector = getselector() & 15;
+        other_valid |= 64u;
+    }
+    return selector;
+}
+
+/* ---- odometry ---------------------------------------------------------------------
+ * From the wheels' steps alone, in integers, so that every target computes
+ * the same pose.  The heading follows from the difference of the wheels'
+ * total steps (no drift from rounding); the position is summed poll by
+ * poll along the heading, in micrometres times 2^15. */
+
+static long total_left, total_right;
+static long long pos_x, pos_y;          /* um * 32768 */
+static unsigned theta;                  /* heading, 1/65536 turn (16 bits) */
+
+/* sin of 0..90 degrees in 64 steps, times 32767 */
+static const int quarter_sine[65] = {
+    0, 804, 1608, 2410, 3212, 4011, 4808, 5602, 6393, 7179, 7962, 8739, 9512, 10278,
+    11039, 11793, 12539, 13279, 14010, 14732, 15446, 16151, 16846, 17530, 18204, 18868,
+    19519, 20159, 20787, 21403, 22005, 22594, 23170, 23731, 24279, 24811, 25329, 25832,
+    26319, 26790, 27245, 27683, 28105, 28510, 28898, 29268, 29621, 29956, 30273, 30571,
+    30852, 31113, 31356, 31580, 31785, 31971, 32137, 32285, 32412, 32521, 32609, 32678,
+    32728, 32757, 32767
+};
+
+/* sin(angle * 2 pi / 65536) * 32767, interpolated in the table */
+static long sine(unsigned angle)
+{
+    unsigned a = angle & 0xFFFFu;
+    unsigned quadrant = a >> 14, within = a & 0x3FFFu, index, frac;
+    long v;
+
+    if (quadrant & 1u)
+        within = 0x4000u - within;          /* 0x4000: the table's last entry */
+    index = within >> 8;
+    frac = within & 0xFFu;
+    v = quarter_sine[index];
+    if (index < 64)
+        v += ((long)(quarter_sine[index + 1] - quarter_sine[index]) * (long)frac) / 256L;
+    return quadrant >= 2 ? -v : v;
+}
+
+static unsigned heading_of(long diff)
+{
+    /* turns = diff * circumference / (steps_per_rev * axle * 2 pi), 2 pi = 710/113 */
+    long long num = (long long)diff * rt_geo_circumference_um * 113LL;
+    long long den = (long long)rt_geo_steps_per_rev * rt_geo_axle_um * 710LL;
+    long long r = num % den;
+
+    if (r < 0)
+        r += den;
+    while (den >= (1LL << 46)) {            /* so that r * 65536 fits */
+        den /= 2;
+        r /= 2;
+    }
+    return (unsigned)(((r * 65536LL) / den) & 0xFFFFLL);
+}
+
+void rt_odometry(long dl, long dr)
+{
+    unsigned before = theta, mid;
+    long long ds = (long long)(dl + dr) * rt_geo_circumference_um;  /* um * 2 * steps_per_rev */
+    long long scale = 2LL * rt_geo_steps_per_rev;
+
+    if (dl == 0 && dr == 0)
+        return;
+    total_left += dl;
+    total_right += dr;
+    theta = heading_of(total_right - total_left);
+    /* the heading half-way through the poll's move */
+    mid = (before + (((theta - before) & 0xFFFFu) >= 0x8000u
+                     ? 0x10000u - ((0x10000u - ((theta - before) & 0xFFFFu)) / 2u)
+                     : ((theta - before) & 0xFFFFu) / 2u)) & 0xFFFFu;
+    pos_x += ds * sine(mid + 0x4000u) / scale;
+    pos_y += ds * sine(mid) / scale;
+}
+
+static int to_mm(long long q)
+{
+    long long mm = q / (32767LL * 1000LL);
+    return mm < RT_INT_MIN ? RT_INT_MIN : mm > RT_INT_MAX ? RT_INT_MAX : (int)mm;
+}
+
+int rt_x_mm(void)
+{
+    return to_mm(pos_x);
+}
+
+int rt_y_mm(void)
+{
+    return to_mm(pos_y);
+}
+
+int rt_heading_deg(void)
+{
+    long deg = ((long)theta * 360L + 32768L) / 65536L;     /* 0..360 */
+    return (int)(deg >= 180 ? deg - 360 : deg);
+}
+
+/* ---- variables --------------------------------------------------------------------- */
+
+void rt_assign(int *var, int id, int value)
+{
+    if (*var == value)
+        return;
+    *var = value;
+    rt_trace_set(id, value);
+}
+
+#undef name_var
+void name_var(int id, const char *name)
+{
+    rt_name_var(id, name);
+}
+
+/* ---- events ------------------------------------------------------------------------ */
+
+void rt_when(void *status, int condition)
+{
+    event_status *st = (event_status *)status;
+
+    st->occurred = condition && !st->memory;
+    st->memory = condition != 0;
+}
+
+void rt_guard(void *status, int guard)
+{
+    if (!guard)
+        ((event_status *)status)->occurred = 0;
+}
+
+static void deadline(const param_event_every *p, event_status *st, int again)
+{
+    long now = rt_millis();
+
+    st->occurred = 0;
+    if (p == NULL || p->period <= 0)
+        return;
+    if (st->memory == 0) {                  /* armed now */
+        st->memory = now + p->period + 1;
+        return;
+    }
+    if (now - (st->memory - 1) >= 0) {
+        st->occurred = 1;
+        /* the next period from the one due, not from now: no drift */
+        st->memory = again ? st->memory + p->period : st->memory;
+    }
+}
+
+void event_every(void *param, void *status)
+{
+    deadline((const param_event_every *)param, (event_status *)status, 1);
+}
+
+void event_after(void *param, void *status)
+{
+    deadline((const param_event_every *)param, (event_status *)status, 0);
+}
