@@ -23,6 +23,8 @@ REPO = Path(__file__).resolve().parent.parent
 # (picture, program, world, extra options)
 PICTURES = [
     ("wander.svg", "examples/wander.epk", "examples/arena.world", ["--time-limit", "60s"]),
+    ("braitenberg.svg", "examples/braitenberg.epk", "examples/braitenberg.world",
+     ["--time-limit", "60s"]),
 ]
 
 

@@ -75,6 +75,9 @@ class RobotRun:
 
 
 SHOWN_CHARS = 24        # a label on the map; the timeline and the tooltip say it all
+# A rule that fires more often than this in a run (`every 10 ms`: continuous
+# control) has no markers on the map and one band on the timeline.
+DENSE = 50
 
 
 def rule_label(name: str) -> str:
@@ -333,7 +336,12 @@ def plot_trace(text: str, title: str = "", source: str = "trace") -> str:
                             stroke_linejoin="round"))
         sx, sy = px(run.poses[0][1], run.poses[0][2])
         rg.add(dwg.circle(center=(sx, sy), r=3, class_="start", fill="white", stroke=colour))
+        counts: dict = {}
         for f in run.firings:
+            counts[f.label] = counts.get(f.label, 0) + 1
+        for f in run.firings:
+            if counts[f.label] > DENSE:
+                continue            # a rule of continuous control: its timeline bar says it
             fx, fy = px(f.x, f.y)
             marker = dwg.circle(center=(fx, fy), r=3.5, class_="firing", fill=colour,
                                 stroke="white", stroke_width=0.8)
@@ -424,6 +432,17 @@ def plot_trace(text: str, title: str = "", source: str = "trace") -> str:
         for i, run in enumerate(runs):
             times = ([f.t_ms for f in run.firings if f.label == label]
                      + [m.t_ms for m in run.marks if m.kind == label])
+            if len(times) > DENSE:
+                # one band from the first firing to the last, not thousands of ticks
+                band = dwg.rect(insert=(tx(times[0]), _r(y + 4)),
+                                size=(_r(max(tx(times[-1]) - tx(times[0]), 1.5)), ROW_PX - 8),
+                                fill=COLOURS[i % len(COLOURS)], class_="dense")
+                band["data-count"] = str(len(times))
+                band.set_desc(title=f"{len(times)} firings from {times[0]} ms to {times[-1]} ms")
+                if run.name:
+                    band["data-robot"] = run.name
+                rowg.add(band)
+                continue
             for t_ms in times:
                 tick = dwg.line(start=(tx(t_ms), _r(y + 3)), end=(tx(t_ms), _r(y + ROW_PX - 3)),
                                 stroke=COLOURS[i % len(COLOURS)], stroke_width=1.5, class_="tick")

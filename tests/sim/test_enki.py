@@ -283,16 +283,17 @@ def test_world_svg_shows_walls_obstacles_every_robot_and_every_firing(tmp_path):
 
 
 def test_readme_picture_is_up_to_date(tmp_path):
-    """docs/images/wander.svg is what docs/make_pictures.py draws today."""
+    """docs/images/wander.svg and braitenberg.svg are what docs/make_pictures.py
+    draws today."""
     import subprocess
     import sys
     from tests.support.world import REPO
-    out = tmp_path / "wander.svg"
     result = subprocess.run([sys.executable, str(REPO / "docs" / "make_pictures.py"), "--out", str(tmp_path)],
                             capture_output=True, text=True)
     assert result.returncode == 0, result.stderr
-    assert out.read_bytes() == (REPO / "docs" / "images" / "wander.svg").read_bytes(), \
-        "run python3 docs/make_pictures.py and commit docs/images/"
+    for name in ("wander.svg", "braitenberg.svg"):
+        assert (tmp_path / name).read_bytes() == (REPO / "docs" / "images" / name).read_bytes(), \
+            f"{name}: run python3 docs/make_pictures.py and commit docs/images/"
 
 
 def test_the_portable_coroutine_switch_gives_the_same_run(tmp_path):

@@ -141,3 +141,22 @@ def test_a_bad_pose_interval_setting_is_reported(tmp_path):
         assert result.returncode == 2
         assert result.stderr == ("epuck host: EPUCK_POSE_MS: expected a whole number of "
                                  f"milliseconds from 1 to 1000000000, got '{value}'\n")
+
+
+def test_a_rule_of_continuous_control_is_one_band_not_thousands_of_marks(tmp_path):
+    """`every 10 ms do set_speed(...)`: its firings are not drawn one by one
+    on the map (they would bury the path), and its timeline row is one band
+    from the first firing to the last; a rule that fires now and then keeps
+    its marks."""
+    prog = tmp_path / "steer.epk"
+    prog.write_text("var n = 0\nevery 10 ms do n += 1, set_speed(left: 300, right: 200)\n"
+                    "after 1 s do exit_main\n")
+    picture = tmp_path / "steer.svg"
+    records, _, _ = run(prog, tmp_path, "--svg", picture)
+    root = svg(picture)
+    firings = by_class(root, "firing")
+    assert [f.get("data-t-ms") for f in firings] == ["1001"]        # the `after` only
+    [band] = by_class(root, "dense")
+    assert band.get("data-count") == str(sum(1 for r in records if r["kind"] == "event"
+                                             and "every" in r["name"]))
+    assert not [t for t in by_class(root, "tick") if t.get("data-t-ms") != "1001"]
