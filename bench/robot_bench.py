@@ -96,14 +96,31 @@ def sensor_program(n: int, priorities: bool = False) -> str:
     """The rules share one action, so that 1,000 of them fit the AVR's RAM
     (avr-gcc copies const tables to RAM); what a rule would do does not
     change the cost of a poll where none fires. With `priorities`, the
-    rules take PRIORITY_LEVELS levels in turn, which makes the runtime poll
-    one event at a time, level by level, instead of sixteen at a time."""
+    rules take PRIORITY_LEVELS levels in turn (epuckc numbers the events by
+    priority, so the runtime's walk is the same as without)."""
     lines = [f"# {n} sensor rules that stay armed and never fire (bench/robot_bench.py)",
              "action turn = start_curve(5 cm, 90 deg, 300)",
              "on immediate do start_sensor"]
     for i, (sensor, threshold) in enumerate(sensor_rules(n)):
         level = f" priority {i % PRIORITY_LEVELS}" if priorities else ""
         lines.append(f"on sensor(ir{sensor} > {threshold}) repeat{level} do turn")
+    return "\n".join(lines) + "\n"
+
+
+def when_program(n: int) -> str:
+    """The same rules as `when` condition rules of the language (readings in
+    an expression need no start_sensor)."""
+    lines = [f"# {n} when rules that stay armed and never fire (bench/robot_bench.py)",
+             "action turn = start_curve(5 cm, 90 deg, 300)"]
+    for sensor, threshold in sensor_rules(n):
+        lines.append(f"when ir{sensor} > {threshold} repeat do turn")
+    return "\n".join(lines) + "\n"
+
+
+def vars_program(n: int) -> str:
+    """n variables, all given a value by one rule (RAM per variable)."""
+    lines = [f"var v{i} = {i}" for i in range(n)]
+    lines.append("on immediate do " + ", ".join(f"v{i} += 1" for i in range(n)))
     return "\n".join(lines) + "\n"
 
 
@@ -168,22 +185,68 @@ def callgrind_ir(exe: Path, work: Path, args=(), env=None, function=None) -> tup
     return total, inner
 
 
+def per_poll(text: str, d: Path, name: str, p1=1000, p2=2000) -> float:
+    """x86 instructions per poll of a rule file's program (the harness's
+    own per-poll work subtracted)."""
+    c, defines = compile_epk(text, d, name)
+    exe = d / name
+    run(["cc", *HOST_CFLAGS, *defines, f"-I{RT}", f"-I{RT / 'epuck_api'}", f"-I{RT / 'host'}",
+         c, *HOST_SOURCES, "-o", exe, "-lm"])
+    per = []
+    for polls in (p1, p2):
+        env = {k: v for k, v in os.environ.items() if not k.startswith("EPUCK_")}
+        env.update(EPUCK_QUIET="1", EPUCK_TIME_LIMIT_MS=str(polls))
+        total, idle = callgrind_ir(exe, d, env=env, function="rt_platform_idle")
+        per.append(total - idle)
+    return (per[1] - per[0]) / (p2 - p1)
+
+
+def reference_per_poll(n: int, d: Path, p1=1000, p2=2000) -> float:
+    """The hand-written if-chain with an edge latch per rule."""
+    (d / "chain_rules.h").write_text("".join(f"RULE({i}, {s}, {t})\n"
+                                             for i, (s, t) in enumerate(sensor_rules(n))))
+    ref_exe = d / "chain"
+    run(["cc", *HOST_CFLAGS, f"-I{RT}", f"-I{RT / 'epuck_api'}", f"-I{d}", BENCH / "reference_chain.c",
+         RT / "host" / "epuck_stub.c", "-o", ref_exe, "-lm"])
+    ref = [callgrind_ir(ref_exe, d, args=[polls])[0] for polls in (p1, p2)]
+    return (ref[1] - ref[0]) / (p2 - p1)
+
+
+def bench_conditions(sizes, work: Path) -> list:
+    """(n, sensor rules, when rules, sensor rules on 4 priority levels,
+    the reference chain), x86 instructions per poll."""
+    rows = []
+    for n in sizes:
+        d = work / f"cond{n}"
+        d.mkdir()
+        rows.append((n, per_poll(sensor_program(n), d, f"sensors{n}"),
+                     per_poll(when_program(n), d, f"when{n}"),
+                     per_poll(sensor_program(n, priorities=True), d, f"levels{n}"),
+                     reference_per_poll(n, d)))
+    return rows
+
+
+def bench_vars(sizes, work: Path, mcu="atmega128") -> list:
+    """(n, RAM bytes of the program's object) for n variables on avr-gcc."""
+    rows = []
+    for n in sizes:
+        d = work / f"vars{n}"
+        d.mkdir()
+        c, _ = compile_epk(vars_program(n), d, f"vars{n}")
+        obj = d / f"vars{n}.o"
+        run(["avr-gcc", *AVR_CFLAGS, f"-mmcu={mcu}", f"-I{RT}", f"-I{RT / 'epuck_api'}", "-c", c,
+             "-o", obj])
+        (_, _, data, bss), = avr_size([obj])
+        rows.append((n, data + bss))
+    return rows
+
+
 def bench_callgrind(sizes, work: Path, p1=1000, p2=2000) -> list:
     rows = []
     for n in sizes:
         d = work / f"cg{n}"
         d.mkdir()
-        c, defines = compile_epk(sensor_program(n), d, f"sensors{n}")
-        exe = d / f"sensors{n}"
-        run(["cc", *HOST_CFLAGS, *defines, f"-I{RT}", f"-I{RT / 'epuck_api'}", f"-I{RT / 'host'}",
-             c, *HOST_SOURCES, "-o", exe, "-lm"])
-        per = []
-        for polls in (p1, p2):
-            env = {k: v for k, v in os.environ.items() if not k.startswith("EPUCK_")}
-            env.update(EPUCK_QUIET="1", EPUCK_TIME_LIMIT_MS=str(polls))
-            total, idle = callgrind_ir(exe, d, env=env, function="rt_platform_idle")
-            per.append(total - idle)
-        runtime = (per[1] - per[0]) / (p2 - p1)
+        runtime = per_poll(sensor_program(n), d, f"sensors{n}", p1, p2)
         dyn_c = d / f"dynamic{n}.c"
         dyn_c.write_text(dynamic_program(n))
         dyn_exe = d / f"dynamic{n}"
@@ -196,14 +259,7 @@ def bench_callgrind(sizes, work: Path, p1=1000, p2=2000) -> list:
             total, idle = callgrind_ir(dyn_exe, d, env=env, function="rt_platform_idle")
             per.append(total - idle)
         dynamic = (per[1] - per[0]) / (p2 - p1)
-        (d / "chain_rules.h").write_text("".join(f"RULE({i}, {s}, {t})\n"
-                                                 for i, (s, t) in enumerate(sensor_rules(n))))
-        ref_exe = d / "chain"
-        run(["cc", *HOST_CFLAGS, f"-I{RT}", f"-I{RT / 'epuck_api'}", f"-I{d}", BENCH / "reference_chain.c",
-             RT / "host" / "epuck_stub.c", "-o", ref_exe, "-lm"])
-        ref = [callgrind_ir(ref_exe, d, args=[polls])[0] for polls in (p1, p2)]
-        reference = (ref[1] - ref[0]) / (p2 - p1)
-        rows.append((n, runtime, reference, dynamic))
+        rows.append((n, runtime, reference_per_poll(n, d, p1, p2), dynamic))
     return rows
 
 
@@ -264,16 +320,17 @@ def simavr_misdecodes(elf: Path) -> list:
     return found
 
 
-def bench_simavr(sizes, work: Path, priorities: bool = False) -> list:
+def bench_simavr(sizes, work: Path, priorities: bool = False, when: bool = False) -> list:
     harness = work / "simavr_polls"
     if not harness.exists():
         run(["cc", "-std=c99", "-O2", BENCH / "avr" / "simavr_polls.c", "-o", harness,
              "-lsimavr"])
     rows = []
     for n in sizes:
-        d = work / (f"sim{n}" + ("p" if priorities else ""))
+        d = work / (f"sim{n}" + ("p" if priorities else "") + ("w" if when else ""))
         d.mkdir(exist_ok=True)
-        c, defines = compile_epk(sensor_program(n, priorities), d, f"sensors{n}")
+        c, defines = compile_epk(when_program(n) if when else sensor_program(n, priorities), d,
+                                 f"sensors{n}")
         elf = d / f"sensors{n}.elf"
         res = subprocess.run(["avr-gcc", *AVR_CFLAGS, f"-mmcu={SIM_MCU}", *defines, f"-I{RT}",
                               f"-I{RT / 'epuck_api'}", f"-I{BENCH / 'avr'}", str(c),
@@ -320,7 +377,9 @@ def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--only", default="callgrind,ram,simavr",
                     help="comma-separated parts: callgrind, ram, simavr, priorities (simavr's "
-                         "programs with and without priorities, side by side)")
+                         "programs with and without priorities, side by side), when (callgrind: "
+                         "sensor rules, when rules, priority levels, the reference chain), vars "
+                         "(RAM per variable)")
     ap.add_argument("--sizes", default="10,100,1000", help="rule counts (default 10,100,1000)")
     ap.add_argument("--keep", type=Path, help="keep the generated files in this folder")
     args = ap.parse_args()
@@ -373,22 +432,53 @@ def main() -> int:
                     print(f"{n:>6} {'-':>8} {'-':>10}   {note}")
                 else:
                     print(f"{n:>6} {cyc:>8} {100 * cyc / BUDGET_CYCLES:>9.1f}%   {note}")
+    if "when" in parts:
+        if missing("cc", "valgrind", "callgrind_annotate"):
+            print(f"when: skipped, missing {missing('cc', 'valgrind', 'callgrind_annotate')}")
+            status = 1
+        else:
+            print("\n== x86 instructions per poll (callgrind), N armed rules that never fire:"
+                  " sensor rules, the same as `when irK > T repeat` rules, the sensor rules on"
+                  f" {PRIORITY_LEVELS} priority levels, and the hand-written edge-latch chain")
+            print(f"{'rules':>6} {'sensor':>8} {'when':>8} {'levels':>8} {'chain':>8}"
+                  f" {'when/sensor':>12} {'when/chain':>11} {'levels/sensor':>14}")
+            for n, sensor, when, levels, chain in bench_conditions(sizes, work):
+                print(f"{n:>6} {sensor:>8.0f} {when:>8.0f} {levels:>8.0f} {chain:>8.0f}"
+                      f" {when / sensor:>11.2f}x {when / chain:>10.2f}x {levels / sensor:>13.2f}x")
+    if "vars" in parts:
+        if missing("avr-gcc", "avr-size"):
+            print(f"vars: skipped, missing {missing('avr-gcc', 'avr-size')}")
+            status = 1
+        else:
+            print("\n== RAM of N variables on avr-gcc (16-bit): data + bss of the program's"
+                  " object (its event state and memory included)")
+            rows = bench_vars(sizes, work)
+            print(f"{'vars':>6} {'RAM B':>8}")
+            for n, ram in rows:
+                print(f"{n:>6} {ram:>8}")
+            if len(rows) >= 2:
+                (n0, r0), (n1, r1) = rows[-2], rows[-1]
+                print(f"marginal RAM per variable, {n0} -> {n1}: "
+                      f"{(r1 - r0) / (n1 - n0):.2f} B")
     if "priorities" in parts:
         if missing("avr-gcc", "cc") or not Path("/usr/include/simavr/sim_avr.h").exists():
             print("priorities: skipped, needs avr-gcc and libsimavr-dev")
             status = 1
         else:
             print(f"\n== AVR cycles per poll ({SIM_MCU}, simavr), N armed sensor rules that never"
-                  f" fire, without and with {PRIORITY_LEVELS} priority levels; budget"
-                  f" {BUDGET_CYCLES}")
-            print(f"{'rules':>6} {'plain':>8} {'priorities':>11} {'ratio':>7} {'of budget':>10}")
+                  f" fire, without and with {PRIORITY_LEVELS} priority levels, and as `when`"
+                  f" rules; budget {BUDGET_CYCLES}")
+            print(f"{'rules':>6} {'plain':>8} {'priorities':>11} {'ratio':>7} {'of budget':>10}"
+                  f" {'when rules':>11} {'ratio':>7}")
             plain = bench_simavr(sizes, work)
             levels = bench_simavr(sizes, work, priorities=True)
-            for (n, a, note_a), (_, b, note_b) in zip(plain, levels):
-                if a is None or b is None:
-                    print(f"{n:>6}   {note_a if a is None else note_b}")
+            whens = bench_simavr(sizes, work, when=True)
+            for (n, a, note_a), (_, b, note_b), (_, w, note_w) in zip(plain, levels, whens):
+                if a is None or b is None or w is None:
+                    print(f"{n:>6}   {note_a if a is None else note_b if b is None else note_w}")
                 else:
-                    print(f"{n:>6} {a:>8} {b:>11} {b / a:>6.2f}x {100 * b / BUDGET_CYCLES:>9.1f}%")
+                    print(f"{n:>6} {a:>8} {b:>11} {b / a:>6.2f}x {100 * b / BUDGET_CYCLES:>9.1f}%"
+                          f" {w:>11} {w / a:>6.2f}x")
     return status
 
 

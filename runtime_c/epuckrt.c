@@ -66,7 +66,7 @@ int rt_event_mode(int id)
  * never overflows a signed type. */
 static volatile unsigned long ms_ticks;
 
-static void clock_tick(void)
+void rt_clock_tick(void)
 {
     ms_ticks++;
 }
@@ -109,7 +109,7 @@ static void rt_init(void)
     e_start_agendas_processing();
     e_init_motors();
     e_init_ad_scan(ALL_ADC);
-    (void)e_activate_agenda(clock_tick, 10);
+    (void)e_activate_agenda(rt_clock_tick, 10);
     rt_platform_init();
     remote_start();     /* only for programs that use the remote control */
 }
@@ -325,14 +325,19 @@ int register_program(const rt_program *p)
         rt_new_action(k, p->actions[k].action_function);
     for (k = 0; k < p->n_events; k++) {
         const rt_event *e = &p->events[k];
-        BIT_SET(rt_ev_armed, k);
+        /* a mode's events are armed when it is entered (rt_mode_arm) */
+        if (e->mode == 0 || (e->mode == rt_current_mode && !rt_mode_arm_pending))
+            BIT_SET(rt_ev_armed, k);
         if (e->flags & RT_REPEAT)
             BIT_SET(ev_repeat, k);
         if (e->event_function == NULL)
             BIT_SET(ev_compiled, k);
         if (e->memory != RT_NO_MEMORY)
             p->memory[e->memory] = 0;
-        if (e->priority != 0 || e->mode != 0)
+        /* epuckc numbers the events by priority, highest first: the table's
+         * order is then the walk's, sixteen at a time; another order needs
+         * the walk by levels */
+        if (e->priority < 0 || (k > 0 && e->priority > p->events[k - 1].priority))
             ranked = 1;
         if (e->event_function == event_remote)
             remote_wanted = 1;
@@ -340,6 +345,8 @@ int register_program(const rt_program *p)
             accel_wanted = 1;
         rt_new_event(k, e->event_function);
     }
+    if (p->order != NULL)
+        ranked = 1;
     remote_start();
     rt_prog = p;
     s_actions = p->n_actions;
@@ -415,11 +422,13 @@ static void fire_static(int id)
  * a mask for ev_now. */
 static unsigned conditions_mask(void)
 {
-    if (!rt_sensors_on || rt_prog->conditions == NULL)
+    if (rt_prog->conditions == NULL
+            || (!rt_sensors_on && !(rt_prog->sensors & RT_CONDITIONS_ALWAYS)))
         return 0;
     if (!conditions_valid) {
-        rt_read_prox(rt_prog->sensors);
-        rt_prog->conditions(rt_prox, ev_now);
+        if (rt_sensors_on)
+            rt_read_prox(rt_prog->sensors);
+        rt_prog->conditions(rt_sensors_on ? rt_prox : NULL, ev_now);
         conditions_valid = 1;
     }
     return ~0u;
@@ -691,8 +700,13 @@ static int poll_events(void)
     conditions_valid = 0;
     rt_prox_valid = 0;
     rt_poll_count++;            /* the other readings are read anew (rt_lang.c) */
+    if (rt_mode_arm_pending && rt_prog != NULL)
+        rt_mode_arm();
     if (ranked)
         return poll_ranked();
+    rt_mode_entered_in_poll = 0;
+    if (rt_mode_entry_pending && poll_enter_events())
+        return 1;
     if (rt_prog != NULL && poll_static())
         return 1;
     /* n_events is re-read: an action may register events, polled at once */

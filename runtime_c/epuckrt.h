@@ -126,6 +126,7 @@ typedef struct {
 
 #define RT_REPEAT 1u            /* rt_event.flags: stays armed after firing */
 #define RT_NO_MEMORY (-1)       /* rt_event.memory: the function gets 0 */
+#define RT_CONDITIONS_ALWAYS 0x100u   /* rt_program.sensors: see conditions */
 
 typedef struct {
     event_func event_function;  /* NULL: the event is the program's compiled
@@ -153,7 +154,13 @@ typedef struct {
      * read).  Called at most once per poll, while the sensors are on; the
      * event occurs when its condition becomes true, as event_sensor's. */
     void (*conditions)(const int *ir, unsigned *bits);
-    unsigned sensors;           /* bit n: conditions reads ir[n] */
+    unsigned sensors;           /* bit n: conditions reads ir[n]; and
+                                   RT_CONDITIONS_ALWAYS: some conditions are
+                                   not the sensors' (the rule language's
+                                   `when`): conditions is then called at
+                                   every poll, with ir NULL while the
+                                   sensors are off (the sensor conditions
+                                   are then false) */
     unsigned *state;            /* RAM, RT_STATE_WORDS(n_actions, n_events) */
     long *memory;               /* RAM, one per memory index used, or NULL */
     /* The events' ids (n_events of them) by priority, highest first, in id
@@ -396,6 +403,10 @@ void rt_seed(unsigned long seed);
  * odometry of the wheels' steps since the start pose: x forward and y to
  * the left in mm, heading in degrees counter-clockwise, -180..179. */
 int rt_ir(int sensor);
+/* The proximity readings of this poll, the sensors of `mask` (bit n:
+ * sensor n) read if they were not yet: a `when` rule's conditions read
+ * them with one call. */
+const int *rt_proximity(unsigned mask);
 int rt_ambient(int sensor);
 int rt_mic(int micro);
 int rt_acc(int axis);
@@ -403,6 +414,9 @@ int rt_selector(void);
 int rt_x_mm(void);
 int rt_y_mm(void);
 int rt_heading_deg(void);
+/* The odometry is kept only for a program that reads it: it calls this
+ * before mainloop (its integer arithmetic costs every poll). */
+void rt_use_odometry(void);
 /* `NAME = value`: stores it in *var and traces the change (variable number
  * id, named with name_var). */
 void rt_assign(int *var, int id, int value);
@@ -412,10 +426,11 @@ void name_var(int id, const char *name);
 #endif
 /* The event function of a `when` rule calls rt_when with its condition: it
  * occurs when the condition becomes true (status->memory: the condition at
- * the previous poll, 0 when the rule is armed).  A guard (`if COND`) calls
- * rt_guard after the event's function: an event whose guard is false did
- * not occur. */
+ * the previous poll, 0 when the rule is armed).  A guard (`if COND`) is
+ * evaluated only when the rule's event occurred (rt_occurred), and rt_guard
+ * with a false guard makes the event not occur. */
 void rt_when(void *status, int condition);
+int rt_occurred(void *status);          /* the event occurred in this poll */
 void rt_guard(void *status, int guard);
 /* `every` and `after`: their own timers, from when the rule is armed
  * (registration or its mode's entry); status->memory holds the next firing

@@ -20,7 +20,11 @@
 #include "a_d/advance_ad_scan/e_ad_conv.h"
 #include "a_d/advance_ad_scan/e_micro.h"
 #include "a_d/advance_ad_scan/e_acc.h"
+#ifdef EPUCKRT_EPUCK2
+#include "motor_led/advance_one_timer/e_led.h"     /* the e-puck2's epuck1x layer */
+#else
 #include "motor_led/e_led.h"
+#endif
 #include "motor_led/advance_one_timer/e_remote_control.h"
 #include "codec/e_sound.h"
 #include "utility/utility.h"
@@ -109,5 +113,7 @@ extern int rt_current_mode;
 extern int rt_mode_entered_in_poll;
 extern int rt_mode_entry_pending;   /* a mode was entered: its `on enter` events go first */
 extern int rt_mode_trace_pending;   /* enter_mode before mainloop */
+extern int rt_mode_arm_pending;   /* the current mode's table events wait to be armed */
+void rt_mode_arm(void);
 
 #endif

@@ -130,6 +130,12 @@ int rt_ir(int sensor)
     return rt_prox[sensor];
 }
 
+const int *rt_proximity(unsigned mask)
+{
+    rt_read_prox(mask);
+    return rt_prox;
+}
+
 int rt_ambient(int sensor)
 {
     if (sensor < 0 || sensor > 7)
@@ -182,6 +188,7 @@ int rt_selector(void)
  * total steps (no drift from rounding); the position is summed poll by
  * poll along the heading, in micrometres times 2^15. */
 
+static int odometry_used;
 static long total_left, total_right;
 static long long pos_x, pos_y;          /* um * 32768 */
 static unsigned theta;                  /* heading, 1/65536 turn (16 bits) */
@@ -229,14 +236,20 @@ static unsigned heading_of(long diff)
     return (unsigned)(((r * 65536LL) / den) & 0xFFFFLL);
 }
 
+void rt_use_odometry(void)
+{
+    odometry_used = 1;
+}
+
 void rt_odometry(long dl, long dr)
 {
     unsigned before = theta, mid;
-    long long ds = (long long)(dl + dr) * rt_geo_circumference_um;  /* um * 2 * steps_per_rev */
-    long long scale = 2LL * rt_geo_steps_per_rev;
+    long long ds, scale;
 
-    if (dl == 0 && dr == 0)
+    if (!odometry_used || (dl == 0 && dr == 0))
         return;
+    ds = (long long)(dl + dr) * rt_geo_circumference_um;    /* um * 2 * steps_per_rev */
+    scale = 2LL * rt_geo_steps_per_rev;
     total_left += dl;
     total_right += dr;
     theta = heading_of(total_right - total_left);
@@ -294,6 +307,11 @@ void rt_when(void *status, int condition)
 
     st->occurred = condition && !st->memory;
     st->memory = condition != 0;
+}
+
+int rt_occurred(void *status)
+{
+    return ((event_status *)status)->occurred != 0;
 }
 
 void rt_guard(void *status, int guard)

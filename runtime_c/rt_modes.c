@@ -12,6 +12,26 @@ int rt_current_mode;
 int rt_mode_entered_in_poll;
 int rt_mode_entry_pending;           /* its `on enter` events go first */
 int rt_mode_trace_pending;      /* enter_mode before mainloop */
+int rt_mode_arm_pending;        /* the current mode's table events wait to be armed */
+
+/* At the start of the poll after an entry: the current mode's table events
+ * are re-armed as at registration (their latch and memory too); those
+ * cancelled with cancel_event are gone for good. */
+void rt_mode_arm(void)
+{
+    int i, mode = rt_current_mode;
+
+    rt_mode_arm_pending = 0;
+    for (i = 0; i < rt_s_events; i++) {
+        const rt_event *e = &rt_prog->events[i];
+        if (e->mode == mode && mode != 0 && !BIT_GET(rt_ev_dead, i)) {
+            BIT_SET(rt_ev_armed, i);
+            BIT_CLEAR(rt_ev_latch, i);
+            if (e->memory != RT_NO_MEMORY)
+                rt_prog->memory[e->memory] = 0;
+        }
+    }
+}
 
 /* ---- extension: modes ---------------------------------------------------------- */
 
@@ -22,16 +42,14 @@ void enter_mode(int mode)
     if (mode <= 0)
         return;
     rt_current_mode = mode;
-    /* re-armed as at registration; cancel_event's are gone for good */
+    /* No event of any mode fires in the rest of this poll: the table's are
+     * disarmed now, and the new mode's armed at the next poll
+     * (rt_mode_arm), so that the poll's walk needs no mode test. */
     for (i = 0; i < rt_s_events; i++) {
-        const rt_event *e = &rt_prog->events[i];
-        if (e->mode == mode && !BIT_GET(rt_ev_dead, i)) {
-            BIT_SET(rt_ev_armed, i);
-            BIT_CLEAR(rt_ev_latch, i);
-            if (e->memory != RT_NO_MEMORY)
-                rt_prog->memory[e->memory] = 0;
-        }
+        if (rt_prog->events[i].mode != 0)
+            BIT_CLEAR(rt_ev_armed, i);
     }
+    rt_mode_arm_pending = 1;
     for (i = 0; i < rt_n_events; i++) {
         if (rt_event_ext[i].mode == mode && rt_events[i].event_function != NULL) {
             rt_events[i].valid_flag = 1;

@@ -60,5 +60,10 @@ unsigned long rt_platform_seed(void);
  * counted by a 1 ms e-puck agenda; 0 before.  Wraps to 0 after 2^31-1 ms
  * (24.8 days). */
 long rt_millis(void);
+/* Provided by the core: one millisecond more on that clock.  The core's
+ * 1 ms agenda calls it where the e-puck library runs agendas (the e-puck,
+ * the host); a platform whose library has none calls it itself (the
+ * e-puck2's epuck1x layer: platform_epuck2.c). */
+void rt_clock_tick(void);
 
 #endif /* RT_PLATFORM_H */

@@ -241,7 +241,9 @@ class _Builder:
         else:                               # `when COND`, `every D`, `after D`
             self.token("_" + node.trigger.upper())
             self.sep(" ")
+            self.open(_Indent())            # a line broken by a comment goes on indented
             self.expr(node.event.args[0].value)
+            self.close()
         if node.repeat:
             self.sep(" ")
             self.token("_REPEAT")
@@ -254,7 +256,9 @@ class _Builder:
             self.sep(" ")
             self.token("_IF")
             self.sep(" ")
+            self.open(_Indent())
             self.expr(node.guard)
+            self.close()
         self.open(_Indent())
         self.sep(LINE)
         self.token("_DO")

@@ -25,18 +25,43 @@ def c_int(value: int) -> str:
     return "RT_INT_MIN" if value == -32768 else str(value)
 
 
-def c_expr(e: Expr, top: bool = True) -> str:
-    """The C text of `e`; `top`: no parentheses around a comparison."""
+def c_expr(e: Expr, top: bool = True, readings: dict = None) -> str:
+    """The C text of `e`; `top`: no parentheses around a comparison;
+    `readings`: C names that hold readings already read (name -> C)."""
     op = e.op
     if op == "num":
         return c_int(e.value)
     if op == "var":
         return var_name(e.name)
     if op == "read":
+        if readings and e.name in readings:
+            return readings[e.name]
         return STANDARD_READINGS[e.name].c
     if op == "not":
-        return f"!{c_expr(e.args[0], False)}"
+        return f"!{c_expr(e.args[0], False, readings)}"
     if op in _C_OPS:
-        text = f"{c_expr(e.args[0], False)} {_C_OPS[op]} {c_expr(e.args[1], False)}"
+        text = (f"{c_expr(e.args[0], False, readings)} {_C_OPS[op]} "
+                f"{c_expr(e.args[1], False, readings)}")
         return text if top else f"({text})"
-    return f"{_CALLS[op]}({', '.join(c_expr(a) for a in e.args)})"
+    return f"{_CALLS[op]}({', '.join(c_expr(a, True, readings) for a in e.args)})"
+
+
+ODOMETRY = frozenset({"x", "y", "heading"})
+
+
+def readings_of(e: Expr) -> set:
+    """The names of the readings an expression reads."""
+    found = {e.name} if e.op == "read" else set()
+    for a in e.args:
+        found |= readings_of(a)
+    return found
+
+
+def proximity_read(e: Expr) -> set:
+    """The proximity sensors (0..7) an expression reads."""
+    found = set()
+    if e.op == "read" and e.name.startswith("ir") and e.name[2:].isdigit():
+        found.add(int(e.name[2:]))
+    for a in e.args:
+        found |= proximity_read(a)
+    return found

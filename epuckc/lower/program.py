@@ -25,15 +25,17 @@ translation unit and linked.
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import PurePath
 from typing import Optional
 
-from ..check.program import CheckedProgram, Expr, ResolvedCall
+from ..check.program import CheckedProgram, ResolvedCall
 from ..check.splice import splice
 from ..stdlib.table import STANDARD_ACTIONS, STANDARD_EVENTS
 from ..stdlib.units import round_nearest
-from .exprs import c_expr, c_int, var_name
+from .exprs import ODOMETRY, c_expr, c_int, proximity_read, readings_of, var_name
+from .model import (CAction, CCondition, CConditionWord, CEvent, CEventFunction, CExtern,
+                    CExternStruct, CFunction, CProgram, CSequence, CStruct, CVariable)
 
 # Every C name that epuckc makes up starts with this; see the module doc.
 PREFIX = "epk_"
@@ -55,134 +57,6 @@ def externs_header_name(program_name: str) -> str:
     """The header that declares a program's externs, for the user's C:
     `#include "<program>_externs.h"`."""
     return f"{program_name}_externs.h"
-
-
-# ---- the C-shaped program ------------------------------------------------------
-
-@dataclass
-class CStruct:
-    """A parameter struct: `static const TYPE NAME = INIT; /* COMMENT */`
-    (const: XC16 keeps it in program memory)."""
-    ctype: str
-    name: str
-    init: str
-    comment: str
-
-
-@dataclass
-class CFunction:
-    """A generated action: runs `statements` in order."""
-    name: str
-    comment: str
-    statements: list
-
-
-@dataclass
-class CEventFunction:
-    """A generated event function (a `when` condition, a guard):
-    `static void NAME(void *epk_param, void *epk_status)` running
-    `statements`."""
-    name: str
-    comment: str
-    statements: list
-
-
-@dataclass
-class CVariable:
-    """`static int NAME = INIT; /* COMMENT */`, traced as `label`."""
-    name: str
-    init: str
-    comment: str
-    label: str
-
-
-@dataclass
-class CSequence:
-    steps_name: str
-    name: str
-    entries: list          # "{function, &param}" initialisers
-    comment: str
-    names_name: str = ""   # its steps' texts for the host's trace (name_steps)
-    labels: list = field(default_factory=list)     # C strings, one a step
-    action_id: int = -1    # the action that runs it
-
-
-@dataclass
-class CAction:
-    """An entry of the action table: `{function, param}`; its id is its index."""
-    function: str
-    param: str             # "&name" or "NULL"
-    comment: str
-    action_label: str      # C string: its name in the host's trace
-
-
-@dataclass
-class CEvent:
-    """An entry of the event table; its id is its index."""
-    function: str          # "NULL": a compiled sensor condition
-    param: str
-    action: int            # index in the action table
-    flags: str             # "RT_REPEAT" or "0"
-    memory: str            # index in epk_event_memory, or "RT_NO_MEMORY"
-    comment: str
-    event_label: str
-    priority: int = 0      # the rule's priority
-    mode: int = 0          # its mode's number, 0: none
-
-
-@dataclass
-class CCondition:
-    """`if (condition) epk_c[word] |= bit;`, setting one event's bit."""
-    statement: str
-    comment: str
-
-
-@dataclass
-class CConditionWord:
-    """One word of the conditions function: `epk_c[index]`, its CConditions."""
-    index: int
-    terms: list
-
-
-@dataclass
-class CExternStruct:
-    name: str
-    fields: list           # (ctype, field name)
-
-
-@dataclass
-class CExtern:
-    """A prototype in the externs header."""
-    kind: str              # "action" | "event"
-    name: str
-    comment: str
-    param_doc: str         # what its first argument points to
-
-
-@dataclass
-class CProgram:
-    source_name: str       # for comments: already safe inside /* */
-    version: str
-    externs_header: Optional[str] = None       # its file name, when there are externs
-    header_guard: str = ""
-    extern_structs: list = field(default_factory=list)
-    externs: list = field(default_factory=list)
-    structs: list = field(default_factory=list)
-    variables: list = field(default_factory=list)     # CVariable
-    functions: list = field(default_factory=list)
-    event_functions: list = field(default_factory=list)   # CEventFunction
-    sequences: list = field(default_factory=list)
-    rule_ids: list = field(default_factory=list)     # (C name, event id) for `cancel RULE`
-    actions: list = field(default_factory=list)      # CAction
-    events: list = field(default_factory=list)       # CEvent
-    conditions: list = field(default_factory=list)   # CConditionWord
-    sensors: str = "0x00"                             # the IRs the conditions read
-    watched: list = field(default_factory=list)       # ... as sensor numbers
-    memory_slots: int = 0                             # longs of epk_event_memory
-    order: list = field(default_factory=list)   # lines of event ids by priority (ranked programs)
-    geometry: Optional[str] = None   # set_robot_geometry arguments, for a robot block
-    modes: list = field(default_factory=list)       # (id, C string of its name)
-    initial_mode: Optional[tuple] = None            # (id, name)
 
 
 # ---- C text helpers ------------------------------------------------------------
@@ -259,6 +133,11 @@ class _Lowerer:
         self.flat: dict = {}             # named action -> flattened steps
         self.rule_ids: dict = {}         # rule name -> C name of its event id
         self.sensors: set = set()        # the IRs the compiled conditions read
+        # a `when` condition (without a guard) is compiled with the sensors'
+        self.always = any(r.event.name == "when" and r.guard is None and r.event.kind == "standard"
+                          for r in program.rules)
+        self.when_reads: set = set()     # the proximity readings the `when` conditions read
+        self.odometry = False            # an expression reads x, y or heading
         self.mode_ids = {name: i for i, name in enumerate(program.modes, 1)}
         self.rule_modes = {r.name: r.mode for r in program.rules if r.name is not None}
 
@@ -302,10 +181,10 @@ class _Lowerer:
         if call.kind == "assign":
             info = self.program.variables[call.name]
             return _Primitive(None, "", f"rt_assign(&{var_name(call.name)}, {info.index}, "
-                                        f"{c_expr(call.values['value'])});", text)
+                                        f"{self.expr(call.values['value'])});", text)
         if call.dynamic:
             function, ctype, fields = STANDARD_ACTIONS[call.name].dynamic
-            values = {name: c_expr(v) for name, v in call.values.items()}
+            values = {name: self.expr(v) for name, v in call.values.items()}
             init = ", ".join(f.format(**values) for f in fields)
             return _Primitive(None, "", f"{{ {ctype} {PREFIX}arg = {{{init}}}; "
                                         f"{function}(&{PREFIX}arg); }}", text)
@@ -406,9 +285,17 @@ class _Lowerer:
                                             self.extern_init(info.params, ev.values), comment))
             return ev.name, when, True, None
         spec = STANDARD_EVENTS[ev.name]
+        if ev.name == "when" and rule.guard is None:
+            # a compiled condition, read at every poll (RT_CONDITIONS_ALWAYS);
+            # its proximity readings are read once, at the function's top
+            condition = ev.values["condition"]
+            used = proximity_read(condition)
+            self.when_reads |= used
+            return "NULL", "NULL", False, ("when", self.expr(condition, readings={
+                f"ir{n}": f"{PREFIX}r{n}" for n in used}))
         if ev.name == "when":
             self.out.event_functions.append(CEventFunction(
-                when, comment, [f"rt_when(epk_status, {c_expr(ev.values['condition'])});"]))
+                when, comment, [f"rt_when(epk_status, {self.expr(ev.values['condition'])});"]))
             return when, "NULL", True, None
         if spec.runtime_param is None:      # immediate, stop_motor, enter
             return spec.runtime, "NULL", spec.memory, None
@@ -446,7 +333,7 @@ class _Lowerer:
             return "event_sensor", when, True, None
         terms = [f"{PREFIX}ir{sensor} {op} {value}" for sensor, op, value in ev.conditions]
         self.sensors |= {sensor for sensor, _, _ in ev.conditions}
-        return "NULL", "NULL", False, " || ".join(terms)
+        return "NULL", "NULL", False, ("sensor", " || ".join(terms))
 
     # -- the whole program --
 
@@ -471,13 +358,20 @@ class _Lowerer:
         self.externs()
         self.variables()
         cancelled = self.cancelled_rules()
-        for index, rule in enumerate(self.program.rules):
+        # The events are numbered by priority, highest first, in file order
+        # within a priority: the order in which mainloop polls them, so that
+        # its walk takes the table as it is, sixteen events at a time.
+        rules = self.program.rules
+        order = sorted(range(len(rules)), key=lambda i: -(rules[i].priority or 0))
+        for event_id, i in enumerate(order):
+            rule = rules[i]
             if rule.name is not None and rule.name in cancelled:
                 self.rule_ids[rule.name] = f"{PREFIX}rule_{rule.name}"
-                out.rule_ids.append((f"{PREFIX}rule_{rule.name}", index))
+                out.rule_ids.append((f"{PREFIX}rule_{rule.name}", event_id))
+        out.rule_ids.sort(key=lambda pair: pair[1])
         registered: dict = {}          # rule_action_key -> action id
         conditions: dict = {}          # word -> [CCondition]
-        for index, rule in enumerate(self.program.rules, 1):
+        for index, rule in ((i + 1, rules[i]) for i in order):
             key = rule_action_key(index, rule)
             body_text = self.text_of(rule.node.body)
             if key not in registered:
@@ -502,7 +396,10 @@ class _Lowerer:
                 function, param = self.guarded(rule, index, function, param), "NULL"
             event_id = len(out.events)
             if condition is not None:
-                term = f"if ({condition}) {PREFIX}c[{event_id // 16}] |= 0x{1 << (event_id % 16):04x}u;"
+                what, text = condition
+                if what == "sensor" and self.always:
+                    text = f"{PREFIX}on && ({text})"    # sensor conditions hold while they are on
+                term = f"if ({text}) {PREFIX}c[{event_id // 16}] |= 0x{1 << (event_id % 16):04x}u;"
                 conditions.setdefault(event_id // 16, []).append(
                     CCondition(term, c_comment(f"event {event_id}: {self.where(rule.node)}")))
             slot = "RT_NO_MEMORY"
@@ -522,21 +419,45 @@ class _Lowerer:
                 priority=rule.priority or 0,
                 mode=self.mode_ids[rule.mode] if rule.mode is not None else 0))
         out.conditions = [CConditionWord(w, terms) for w, terms in sorted(conditions.items())]
-        if any(e.priority or e.mode for e in out.events):
-            # mainloop polls the table in this order (rt_program.order); with
-            # modes alone it is the ids' order, still one pass instead of three
-            ids = sorted(range(len(out.events)), key=lambda i: (-out.events[i].priority, i))
-            out.order = [", ".join(map(str, ids[i:i + 16])) for i in range(0, len(ids), 16)]
-        out.sensors = f"0x{sum(1 << n for n in self.sensors):02x}"
-        out.watched = sorted(self.sensors)
+        out.sensors = f"0x{sum(1 << n for n in self.sensors):02x}" + (
+            " | RT_CONDITIONS_ALWAYS" if self.always else "")
+        out.conditions_comment = [
+            "/* The rules' sensor conditions, from this poll's proximity readings",
+            " * epk_ir[0..7]: bit k % 16 of epk_c[k / 16] is event k's.  The runtime",
+            " * calls it at most once per poll, while the sensors are on. */"] \
+            if not self.always else [
+            "/* The rules' conditions: bit k % 16 of epk_c[k / 16] is event k's.  The",
+            " * runtime calls it once per poll; epk_ir[0..7] are this poll's",
+            " * proximity readings, or NULL while the sensors are off, when the",
+            " * sensor conditions are false (the `when` conditions hold anyway). */"]
+        readings = []
+        if self.when_reads:     # read once, with one call
+            mask = sum(1 << n for n in self.when_reads)
+            readings = [f"const int *{PREFIX}prox = rt_proximity(0x{mask:02x}u);"] + [
+                f"const int {PREFIX}r{n} = {PREFIX}prox[{n}];" for n in sorted(self.when_reads)]
+        if self.always and not self.sensors:     # `when` conditions only
+            out.condition_locals = [f"(void){PREFIX}ir;"] + readings
+        elif self.always:   # called with epk_ir NULL while the sensors are off
+            out.condition_locals = [f"const int {PREFIX}on = {PREFIX}ir != NULL;"] + [
+                f"const int {PREFIX}ir{n} = {PREFIX}on ? {PREFIX}ir[{n}] : 0;"
+                for n in sorted(self.sensors)] + readings
+        else:
+            out.condition_locals = [f"const int {PREFIX}ir{n} = {PREFIX}ir[{n}];"
+                                    for n in sorted(self.sensors)]
         out.modes = [(i, c_string(name)) for name, i in self.mode_ids.items()]
         if self.program.initial_mode is not None:
             out.initial_mode = (self.mode_ids[self.program.initial_mode], self.program.initial_mode)
+        out.odometry = self.odometry
         if self.program.robot_given:
             geo = self.program.geometry
             out.geometry = (f"{round_nearest(geo.wheel_circumference_mm * 1000)}L, "
                             f"{round_nearest(geo.axle_mm * 1000)}L, {geo.steps_per_rev}L")
         return out
+
+    def expr(self, e, **options) -> str:
+        """The C of an expression; notes whether the program reads the odometry."""
+        self.odometry = self.odometry or bool(readings_of(e) & ODOMETRY)
+        return c_expr(e, **options)
 
     def guarded(self, rule, index: int, function: str, param: str) -> str:
         """An event function that runs the rule's event, then its guard."""
@@ -545,7 +466,7 @@ class _Lowerer:
             name, c_comment(f"{self.where(rule.node)}: {self.text_of(rule.node.event)} if "
                             f"{self.text_of(rule.node.guard)}"),
             [f"{function}({'NULL' if param == 'NULL' else void_ref(param)}, epk_status);",
-             f"rt_guard(epk_status, {c_expr(rule.guard)});"]))
+             f"if (rt_occurred(epk_status)) rt_guard(epk_status, {self.expr(rule.guard)});"]))
         return name
 
     def variables(self):

@@ -96,3 +96,12 @@ def test_fmt_lays_out_the_language_and_is_idempotent():
         "every 20 ms do n = abs(-n) % 7\n"
         "after 1 s do wait(2 s) then exit_main\n")
     assert format_text(once) == once
+
+
+def test_fmt_keeps_comments_inside_expressions():
+    text = ("var n = 0  # count\nwhen n > 3 and  # many\n   ir0 > 9 do n = 0\n"
+            "every 20 ms do set_speed(left: 300 -  # base\n (ir0 + ir1) * 1 steps/s / 3, right: 300)\n")
+    once = format_text(text)
+    assert "when n > 3 and  # many\n    ir0 > 9\n" in once
+    assert "# base" in once and "# count" in once
+    assert format_text(once) == once

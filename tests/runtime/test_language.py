@@ -300,3 +300,22 @@ after 500 ms do exit_main
     # each entry re-arms the mode's `after`: 100 ms in a, 50 ms in b (+1 ms: the
     # mode's rules are polled from the poll after the entry)
     assert [t for t, _ in _sets(records, "n")] == [101, 253, 405]
+
+
+def test_when_needs_no_start_sensor_and_sensor_rules_still_do(tmp_path):
+    """Both are compiled conditions of one function; the sensor rule's is
+    false while the sensors are off, the `when` rule's is not."""
+    prog = _write(tmp_path, "gates.epk", """\
+var n = 0
+var m = 0
+when ir0 > 500 repeat do n += 1
+on sensor(ir0 > 500) repeat do m += 1
+after 300 ms do start_sensor
+after 600 ms do exit_main
+""")
+    scn = _write(tmp_path, "gates.scn", "0 ms ir0=0\n100 ms ir0=900\n200 ms ir0=0\n"
+                                        "400 ms ir0=900\n500 ms ir0=0\n")
+    records, _ = run_program(prog, tmp_path, "--scenario", scn)
+    assert [t for t, _ in _sets(records, "n")] == [100, 400]
+    assert [t for t, _ in _sets(records, "m")] == [400]
+    assert "RT_CONDITIONS_ALWAYS" in epuckc("compile", prog, "-o", "-").stdout

@@ -235,6 +235,22 @@ def test_bench_robot_runs():
     assert 0 < int(rows[2][1]) < 16000    # cycles per poll, 10 rules
 
 
+def test_bench_of_the_language_runs_and_a_variable_is_two_bytes():
+    """bench/robot_bench.py's `when` rules beside sensor rules and the
+    reference chain, and the RAM of variables: a variable is an int, two
+    bytes on a 16-bit target."""
+    for tool in ("valgrind", "avr-gcc", "avr-size"):
+        require_tool(tool)
+    res = subprocess.run([sys.executable, str(REPO / "bench" / "robot_bench.py"), "--only",
+                          "when,vars", "--sizes", "10,20"], capture_output=True, text=True)
+    assert res.returncode == 0, res.stdout + res.stderr
+    rows = [line.split() for line in res.stdout.splitlines() if line.startswith("    20 ")]
+    assert len(rows) == 2, res.stdout
+    sensor, when, levels, chain = map(float, rows[0][1:5])
+    assert 0 < chain < sensor and when > 0 and levels > 0
+    assert "marginal RAM per variable, 10 -> 20: 2.00 B" in res.stdout
+
+
 # ---- scenario files as users write them ---------------------------------------
 
 def _scenario_bytes(tmp_path, data: bytes):
@@ -309,6 +325,6 @@ def test_the_makefile_builds_the_runtime_the_compiler_builds():
     [core] = [line.split("=", 1)[1].split() for line in makefile.splitlines()
               if line.startswith("CORE =")]
     assert core == list(RUNTIME_CORE)
-    platform_files = {"platform_robot.c", "check16.c"}
+    platform_files = {"platform_robot.c", "platform_epuck2.c", "check16.c"}
     top_level = {p.name for p in RUNTIME.glob("*.c")} - platform_files
     assert top_level == set(RUNTIME_CORE), "a runtime source missing from RUNTIME_CORE"

@@ -331,3 +331,19 @@ def test_the_portable_coroutine_switch_gives_the_same_run(tmp_path):
         outputs.append((result.stdout, (d / "results").read_text(), traces))
     assert outputs[0] == outputs[1]
     assert outputs[0][1].count(" 3 ") == 10         # every robot ran to its time limit
+
+
+def test_odometry_readings_in_a_world(tmp_path):
+    """`x` and `heading` are the runtime's own dead reckoning from the wheels'
+    steps; in Enki (wheel noise off) they stop the robot where its body is."""
+    prog = tmp_path / "odo.epk"
+    prog.write_text("on immediate do set_speed(left: 300, right: 300)\n"
+                    "rule far: when x >= 200 mm do set_speed(left: -200, right: 200)\n"
+                    "rule turned: when heading >= 90 deg do stop_motor, exit_main\n")
+    records, _, _ = run(prog, tmp_path, "--world", world(tmp_path, "arena none\nnoise 0 %\n"))
+    end = final_pose(records)
+    assert end["kind"] == "exit"
+    start = next(r for r in records if r["kind"] == "event" and "on immediate" in r["name"])
+    assert 195 <= end["x_mm"] - start["x_mm"] <= 205
+    dh = (end["heading_deg"] - start["heading_deg"]) % 360
+    assert 88 <= dh <= 92

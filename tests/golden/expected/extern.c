@@ -40,7 +40,8 @@ static const rt_action epk_action_table[] = {
 };
 
 /* The events, {function, parameter, action id, flags, memory, priority,
- * mode}: an event's id is its index.  A NULL function is the rule's
+ * mode}: an event's id is its index, by priority, highest first, then in
+ * file order (the order mainloop polls them in).  A NULL function is the rule's
  * condition in epk_event_conditions; memory is the event's slot in
  * epk_event_memory (timers keep their last firing); mode 0: in no mode,
  * always armed. */

@@ -9,18 +9,18 @@
  */
 #include "utility.h"
 
+/* robot.epk:8: start_straight(-500, 5 cm) (-500 steps/s for 388 steps) */
+static const param_straight_steps epk_p1_r4 = {-500, 388};
+/* robot.epk:8: tap(600) */
+static const param_event_accel epk_when_r4 = {600};
+/* robot.epk:7: start_curve(0 mm, 90 deg, 300) (left wheel -300 steps/s, right 300 steps/s, 323 steps of the outer wheel) */
+static const param_curve_steps epk_p1_r3 = {-300, 300, 323};
 /* robot.epk:5: led_on(led0) */
 static const param_set_led epk_p1_r1 = {0, SET_LED_ON};
 /* robot.epk:5: start_straight(300, 50 cm) (300 steps/s for 3882 steps) */
 static const param_straight_steps epk_p2_r1 = {300, 3882};
 /* robot.epk:6: start_straight(300, 50 cm) (300 steps/s for 3882 steps) */
 static const param_straight_steps epk_p1_r2 = {300, 3882};
-/* robot.epk:7: start_curve(0 mm, 90 deg, 300) (left wheel -300 steps/s, right 300 steps/s, 323 steps of the outer wheel) */
-static const param_curve_steps epk_p1_r3 = {-300, 300, 323};
-/* robot.epk:8: start_straight(-500, 5 cm) (-500 steps/s for 388 steps) */
-static const param_straight_steps epk_p1_r4 = {-500, 388};
-/* robot.epk:8: tap(600) */
-static const param_event_accel epk_when_r4 = {600};
 /* mode rest */
 static const param_enter_mode epk_mode_rest = {2};
 /* robot.epk:9: timer(60 s) */
@@ -79,15 +79,15 @@ static void epk_event_conditions(const int *epk_ir, unsigned *epk_c)
     const int epk_ir7 = epk_ir[7];
 
     epk_c[0] = 0;
-    if (epk_ir0 > 500 || epk_ir7 > 500) epk_c[0] |= 0x0004u;   /* event 2: robot.epk:7 */
+    if (epk_ir0 > 500 || epk_ir7 > 500) epk_c[0] |= 0x0002u;   /* event 1: robot.epk:7 */
 }
 
 /* The actions, {function, parameter}: an action's id is its index. */
 static const rt_action epk_action_table[] = {
-    {epk_do_r1, NULL},   /* 0: robot.epk:5: start_sensor, set_timer, led_on(led0), start_straight(300, 50 cm) */
-    {straight_steps, &epk_p1_r2},   /* 1: robot.epk:6: start_straight(300, 50 cm) */
-    {curve_steps, &epk_p1_r3},   /* 2: robot.epk:7: start_curve(0 mm, 90 deg, 300) */
-    {straight_steps, &epk_p1_r4},   /* 3: robot.epk:8: start_straight(-500, 5 cm) */
+    {straight_steps, &epk_p1_r4},   /* 0: robot.epk:8: start_straight(-500, 5 cm) */
+    {curve_steps, &epk_p1_r3},   /* 1: robot.epk:7: start_curve(0 mm, 90 deg, 300) */
+    {epk_do_r1, NULL},   /* 2: robot.epk:5: start_sensor, set_timer, led_on(led0), start_straight(300, 50 cm) */
+    {straight_steps, &epk_p1_r2},   /* 3: robot.epk:6: start_straight(300, 50 cm) */
     {action_enter_mode, &epk_mode_rest},   /* 4: robot.epk:9: enter rest */
     {epk_do_r6, NULL},   /* 5: robot.epk:12: stop_motor, led_off(all), led_on(body), play_sound(wouaaaaaaaah) */
     {action_enter_mode, &epk_mode_explore},   /* 6: robot.epk:13: enter explore */
@@ -99,19 +99,20 @@ static const rt_action epk_action_table[] = {
 };
 
 /* The events, {function, parameter, action id, flags, memory, priority,
- * mode}: an event's id is its index.  A NULL function is the rule's
+ * mode}: an event's id is its index, by priority, highest first, then in
+ * file order (the order mainloop polls them in).  A NULL function is the rule's
  * condition in epk_event_conditions; memory is the event's slot in
  * epk_event_memory (timers keep their last firing); mode 0: in no mode,
  * always armed. */
 static const rt_event epk_event_table[] = {
-    /* 0: robot.epk:5: on enter do start_sensor, set_timer, led_on(led0), start_straight(300, 50 cm) (mode explore) */
-    {event_enter_mode, NULL, 0, 0, 0, 0, 1},
-    /* 1: robot.epk:6: rule wander: on stop_motor repeat do start_straight(300, 50 cm) (mode explore) */
-    {event_stop_motor, NULL, 1, RT_REPEAT, RT_NO_MEMORY, 0, 1},
-    /* 2: robot.epk:7: rule avoid: on sensor(ir0 > 500, ir7 > 500) repeat priority 1 do start_curve(0 mm, 90 deg, 300) (mode explore) */
-    {NULL, NULL, 2, RT_REPEAT, RT_NO_MEMORY, 1, 1},
-    /* 3: robot.epk:8: rule escape: on tap(600) repeat priority urgent do start_straight(-500, 5 cm) (mode explore) */
-    {event_tap, &epk_when_r4, 3, RT_REPEAT, 1, 3, 1},
+    /* 0: robot.epk:8: rule escape: on tap(600) repeat priority urgent do start_straight(-500, 5 cm) (mode explore) */
+    {event_tap, &epk_when_r4, 0, RT_REPEAT, 0, 3, 1},
+    /* 1: robot.epk:7: rule avoid: on sensor(ir0 > 500, ir7 > 500) repeat priority 1 do start_curve(0 mm, 90 deg, 300) (mode explore) */
+    {NULL, NULL, 1, RT_REPEAT, RT_NO_MEMORY, 1, 1},
+    /* 2: robot.epk:5: on enter do start_sensor, set_timer, led_on(led0), start_straight(300, 50 cm) (mode explore) */
+    {event_enter_mode, NULL, 2, 0, 1, 0, 1},
+    /* 3: robot.epk:6: rule wander: on stop_motor repeat do start_straight(300, 50 cm) (mode explore) */
+    {event_stop_motor, NULL, 3, RT_REPEAT, RT_NO_MEMORY, 0, 1},
     /* 4: robot.epk:9: on timer(60 s) do enter rest (mode explore) */
     {timer, &epk_when_r5, 4, 0, 2, 0, 1},
     /* 5: robot.epk:12: on enter do stop_motor, led_off(all), led_on(body), play_sound(wouaaaaaaaah) (mode rest) */
@@ -130,12 +131,6 @@ static const rt_event epk_event_table[] = {
     {event_selector, &epk_when_r12, 11, 0, 9, 0, 0},
 };
 
-/* The events by priority, highest first, in id order within a priority:
- * the order mainloop polls them in. */
-static const int epk_event_order[12] = {
-    3, 2, 0, 1, 4, 5, 6, 7, 8, 9, 10, 11
-};
-
 /* What changes while the program runs, the only part in RAM. */
 static unsigned epk_event_state[RT_STATE_WORDS(12, 12)];
 static long epk_event_memory[10];
@@ -143,7 +138,7 @@ static long epk_event_memory[10];
 static const rt_program epk_program = {
     epk_action_table, 12, epk_event_table, 12,
     epk_event_conditions, 0x81, epk_event_state, epk_event_memory,
-    epk_event_order
+    NULL
 };
 
 int main(void)
@@ -151,10 +146,10 @@ int main(void)
     (void)register_program(&epk_program);
 
     /* Names in the host harness's trace; without them on the robot (EPUCKRT_NO_NAMES). */
-    name_action(0, "start_sensor, set_timer, led_on(led0), start_straight(300, 50 cm)");
-    name_action(1, "start_straight(300, 50 cm)");
-    name_action(2, "start_curve(0 mm, 90 deg, 300)");
-    name_action(3, "start_straight(-500, 5 cm)");
+    name_action(0, "start_straight(-500, 5 cm)");
+    name_action(1, "start_curve(0 mm, 90 deg, 300)");
+    name_action(2, "start_sensor, set_timer, led_on(led0), start_straight(300, 50 cm)");
+    name_action(3, "start_straight(300, 50 cm)");
     name_action(4, "enter rest");
     name_action(5, "stop_motor, led_off(all), led_on(body), play_sound(wouaaaaaaaah)");
     name_action(6, "enter explore");
@@ -163,10 +158,10 @@ int main(void)
     name_action(9, "play_sound(haa)");
     name_action(10, "exit_main");
     name_action(11, "exit_main");
-    name_event(0, "robot.epk:5 on enter");
-    name_event(1, "robot.epk:6 rule wander: on stop_motor repeat");
-    name_event(2, "robot.epk:7 rule avoid: on sensor(ir0 > 500, ir7 > 500) repeat priority 1");
-    name_event(3, "robot.epk:8 rule escape: on tap(600) repeat priority 3");
+    name_event(0, "robot.epk:8 rule escape: on tap(600) repeat priority 3");
+    name_event(1, "robot.epk:7 rule avoid: on sensor(ir0 > 500, ir7 > 500) repeat priority 1");
+    name_event(2, "robot.epk:5 on enter");
+    name_event(3, "robot.epk:6 rule wander: on stop_motor repeat");
     name_event(4, "robot.epk:9 on timer(60 s)");
     name_event(5, "robot.epk:12 on enter");
     name_event(6, "robot.epk:13 on remote(5)");
