@@ -155,19 +155,23 @@ def _compile_parser(sub):
     _add_program_options(p)
     p.add_argument("-o", "--output", metavar="OUT.c",
                    help="the C file (default: FILE with .c); `-` is standard output")
-    p.add_argument("--target", choices=("host", "dspic"), default="host",
-                   help="the C is the same for both targets; accepted for symmetry with build")
+    p.add_argument("--target", choices=("host", "dspic", "epuck2"), default="host",
+                   help="the C is the same for every target; accepted for symmetry with build")
     p.set_defaults(run=cmd_compile)
 
 
 def _build_parser(sub):
-    p = sub.add_parser("build", help="build for the host harness or the e-puck",
+    p = sub.add_parser("build", help="build for the host harness, the e-puck or the e-puck2",
                        description="host: the harness executable, built with the system C compiler "
                                    "(CC honoured). dspic: a project directory with a Makefile for "
                                    "Microchip XC16, built when xc16-gcc is found (PATH or XC16_DIR); "
-                                   "exit status 3 when it is not.")
+                                   "epuck2: a project on GCtronic's e-puck2 firmware (--firmware or "
+                                   "EPUCK2_FIRMWARE), built with arm-none-eabi-gcc; "
+                                   "exit status 3 when a toolchain or the firmware is missing.")
     _add_program_options(p)
-    p.add_argument("--target", choices=("host", "dspic"), default="host")
+    p.add_argument("--target", choices=("host", "dspic", "epuck2"), default="host")
+    p.add_argument("--firmware", metavar="DIR",
+                   help="epuck2: the e-puck2_main-processor folder (default: $EPUCK2_FIRMWARE)")
     p.add_argument("-o", "--output", metavar="DIR",
                    help="output directory (default: build/NAME-TARGET)")
     p.set_defaults(run=cmd_build)

@@ -208,7 +208,8 @@ def _load_and_build(args) -> int:
     if program is None:
         return status
     try:
-        message = build(program, args.target, Path(args.output) if args.output else None)
+        message = build(program, args.target, Path(args.output) if args.output else None,
+                        getattr(args, "firmware", None))
     except BuildError as exc:
         _error(str(exc))
         return exc.status

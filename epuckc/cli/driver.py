@@ -77,13 +77,17 @@ def write_compiled(program: Program, out):
         write_atomic(out.parent / program.header_name, program.header_text)
 
 
-def build(program: Program, target: str, out_dir: Optional[Path]) -> str:
+def build(program: Program, target: str, out_dir: Optional[Path],
+          firmware: Optional[str] = None) -> str:
     """Build for a target; returns what to tell the user."""
     out_dir = out_dir or Path("build") / f"{program.name}-{target}"
     if target == "host":
         exe = build_host(program, out_dir)
         return f"built {exe}"
     from ..emit.program import render_template
+    if target == "epuck2":
+        from ..build.epuck2 import build_epuck2
+        return build_epuck2(program, out_dir, render_template, firmware)
     write_dspic_project(program, out_dir, render_template)
     xc16 = find_xc16()
     if xc16 is None:

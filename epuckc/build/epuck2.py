@@ -1,0 +1,118 @@
+"""`epuckc build --target epuck2`: a project for the e-puck2 (STM32F407,
+ChibiOS) on top of GCtronic's firmware e-puck2_main-processor, laid out as
+its Project_template, and `make` when arm-none-eabi-gcc and the firmware
+are there (docs/epuck2.md)."""
+from __future__ import annotations
+
+import os
+import shutil
+import stat
+import subprocess
+from pathlib import Path
+from typing import Optional
+
+from ..base.output import prepare_directory, write_atomic
+from ..base.resources import RUNTIME_CORE, RUNTIME_CORE_HEADERS, runtime_dir
+from .common import (DSPIC_RUNTIME, EXIT_NO_TOOLCHAIN, BuildError, Program, _capacity_defines,
+                     _write_generated, check_outputs)
+from .dspic import dspic_user_copies, dspic_user_headers
+
+# The runtime's files in an e-puck2 project (relative to runtime_c/): the
+# core, the ChibiOS platform layer, the system calls Debian's newlib wants.
+EPUCK2_SOURCES = [*RUNTIME_CORE, "platform_epuck2.c", "epuck2/newlib_stubs.c"]
+EPUCK2_FILES = EPUCK2_SOURCES + list(RUNTIME_CORE_HEADERS)
+ARM_GCC = "arm-none-eabi-gcc"
+# Where the e-puck2's library layer lacks what a runtime file calls, the
+# firmware's headers are found through this folder of it.
+EPUCK1X = "src/epuck1x"
+
+
+def find_firmware(given: Optional[str]) -> Optional[Path]:
+    """The firmware folder: --firmware, else $EPUCK2_FIRMWARE; None when
+    neither names a folder that holds the firmware's Makefile and its
+    epuck1x layer."""
+    folder = given or os.environ.get("EPUCK2_FIRMWARE")
+    if not folder:
+        return None
+    path = Path(folder).expanduser()
+    return path.resolve() if (path / "Makefile").is_file() and (path / EPUCK1X).is_dir() \
+        else None
+
+
+def write_epuck2_project(program: Program, out_dir: Path, template_render,
+                         firmware: Optional[Path]) -> None:
+    """A self-contained project inside out_dir: the program and its
+    externs header, program_main.c (the program with main renamed),
+    main.c/main.h (the firmware's start), the runtime in runtime/, copies of
+    the user's C in user/, and the Makefile. Unchanged files are not
+    rewritten, so `make` rebuilds only what changed."""
+    rt = runtime_dir()
+    copies = dspic_user_copies(program)
+    headers = dspic_user_headers(program)
+    generated = [f"{program.name}.c"] if program.generated else []
+    if program.generated and program.header_name:
+        generated.append(program.header_name)
+    runtime_files = [f"{DSPIC_RUNTIME}/{Path(rel).name}" for rel in EPUCK2_FILES]
+    own = ["main.c", "main.h", "program_main.c", "Makefile"]
+    targets = generated + runtime_files + [copy for _, copy in copies + headers] + own
+    check_outputs([out_dir / t for t in targets],
+                  program.inputs + [header for header, _ in headers], inside=out_dir)
+    out_dir = prepare_directory(out_dir)
+    if program.generated:
+        _write_generated(program, out_dir, only_if_changed=True)
+    for rel in EPUCK2_FILES:
+        write_atomic(out_dir / DSPIC_RUNTIME / Path(rel).name, (rt / rel).read_bytes(),
+                     only_if_changed=True)
+    for source, copy in copies + headers:
+        (out_dir / copy).parent.mkdir(parents=True, exist_ok=True)
+        write_atomic(out_dir / copy, source.read_bytes(),
+                     mode=stat.S_IMODE(source.stat().st_mode), only_if_changed=True)
+    defines = [d[2:] for d in _capacity_defines(program)] + ["EPUCKRT_EPUCK2",
+                                                              "EPUCKRT_NO_NAMES"]
+    context = dict(name=program.name, runtime=DSPIC_RUNTIME)
+    write_atomic(out_dir / "main.c", template_render("epuck2_main.c.j2", **context),
+                 only_if_changed=True)
+    write_atomic(out_dir / "main.h", template_render("epuck2_main.h.j2", **context),
+                 only_if_changed=True)
+    write_atomic(out_dir / "program_main.c", template_render("epuck2_program.c.j2", **context),
+                 only_if_changed=True)
+    write_atomic(out_dir / "Makefile", template_render(
+        "epuck2.mk.j2", firmware=str(firmware) if firmware else "",
+        runtime_sources=[f"{DSPIC_RUNTIME}/{Path(r).name}" for r in EPUCK2_SOURCES],
+        user_sources=[copy for _, copy in copies], defines=defines, **context),
+        only_if_changed=True)
+
+
+def build_epuck2(program: Program, out_dir: Path, template_render,
+                 firmware_option: Optional[str]) -> str:
+    """Write the project, then `make` it when arm-none-eabi-gcc and the
+    firmware are there; otherwise BuildError with the exact next command."""
+    firmware = find_firmware(firmware_option)
+    write_epuck2_project(program, out_dir, template_render, firmware)
+    gcc = shutil.which(ARM_GCC)
+    if gcc is None:
+        raise BuildError(
+            f"the project was written to {out_dir}, but it was not built: {ARM_GCC} was not "
+            "found on PATH.\nInstall it (Debian: apt-get install gcc-arm-none-eabi "
+            f"libnewlib-arm-none-eabi), then run: make -C {out_dir} "
+            "EPUCK2_FIRMWARE=/path/to/e-puck2_main-processor", status=EXIT_NO_TOOLCHAIN)
+    if firmware is None:
+        given = firmware_option or os.environ.get("EPUCK2_FIRMWARE")
+        why = (f"{given} is not the firmware's folder (it holds no Makefile and "
+               f"{EPUCK1X}/)" if given else "neither --firmware nor EPUCK2_FIRMWARE says where "
+               "the firmware is")
+        raise BuildError(
+            f"the project was written to {out_dir}, but it was not built: {why}.\n"
+            "Get it with: git clone --recursive "
+            "https://github.com/e-puck2/e-puck2_main-processor\n"
+            f"then run: make -C {out_dir} EPUCK2_FIRMWARE=/path/to/e-puck2_main-processor",
+            status=EXIT_NO_TOOLCHAIN)
+    make = shutil.which("make")
+    if make is None:
+        raise BuildError(f"`make` was not found; the project is in {out_dir}",
+                         status=EXIT_NO_TOOLCHAIN)
+    result = subprocess.run([make, "-C", str(out_dir), f"EPUCK2_FIRMWARE={firmware}"],
+                            capture_output=True, text=True)
+    if result.returncode != 0:
+        raise BuildError(f"make failed in {out_dir}:\n{(result.stdout + result.stderr).rstrip()}")
+    return f"built {out_dir / 'build' / (program.name + '.elf')} and .bin"

@@ -1,0 +1,121 @@
+"""`epuckc build --target epuck2`: the project on GCtronic's e-puck2 firmware
+(as its Project_template), the exit status and next command when the
+toolchain or the firmware is missing, and every example, the runtime and
+the ChibiOS platform layer compiled for the Cortex-M4 with the firmware's
+warning flags; the full build where the firmware is (EPUCK2_FIRMWARE)."""
+import os
+import subprocess
+from pathlib import Path
+
+import pytest
+
+from conftest import REPO, require_tool
+from epuckc.base.resources import RUNTIME_CORE
+from tests.support.programs import epuckc
+
+EXAMPLES = sorted((REPO / "examples").glob("*.epk"))
+RUNTIME = REPO / "runtime_c"
+# the firmware's Makefile: CWARN, the Cortex-M4 with its FPU; -Werror: no
+# warning from the project's own files
+ARM_FLAGS = ["-mcpu=cortex-m4", "-mthumb", "-mfloat-abi=hard", "-mfpu=fpv4-sp-d16",
+             "-std=gnu99", "-Os", "-Wall", "-Wextra", "-Wundef", "-Wstrict-prototypes",
+             "-Wno-implicit-fallthrough", "-Werror", "-DEPUCKRT_EPUCK2", "-DEPUCKRT_NO_NAMES"]
+API = [f"-I{RUNTIME / 'epuck2_api'}", f"-I{RUNTIME / 'epuck_api'}"]
+
+
+def _env_without(tool: str) -> dict:
+    """PATH without the folders that hold `tool`."""
+    env = dict(os.environ)
+    env["PATH"] = os.pathsep.join(p for p in env.get("PATH", "").split(os.pathsep)
+                                  if p and not (Path(p) / tool).exists())
+    env.pop("EPUCK2_FIRMWARE", None)
+    return env
+
+
+def test_project_is_the_firmwares_project_template(tmp_path):
+    out = tmp_path / "proj"
+    r = epuckc("build", "--target", "epuck2", REPO / "examples" / "braitenberg.epk", "-o", out,
+               env={"EPUCK2_FIRMWARE": ""})
+    assert r.returncode == 3, r.stderr
+    makefile = (out / "Makefile").read_text()
+    assert "GLOBAL_PATH = $(EPUCK2_FIRMWARE)" in makefile
+    assert "include $(GLOBAL_PATH)/Makefile" in makefile
+    assert "$(GLOBAL_PATH)/src/epuck1x" in makefile and "-DEPUCKRT_EPUCK2" in makefile
+    for name in [*RUNTIME_CORE, "platform_epuck2.c", "newlib_stubs.c"]:
+        assert f"./runtime/{name} \\" in makefile
+        assert (out / "runtime" / name).is_file()
+    assert "./program_main.c" in makefile and "./braitenberg.c" not in makefile
+    assert '#include "braitenberg.c"' in (out / "program_main.c").read_text()
+    main = (out / "main.c").read_text()
+    for call in ("halInit();", "chSysInit();", "mpu_init();", "messagebus_init(&bus",
+                 "parameter_namespace_declare(&parameter_root", "motors_init();",
+                 "proximity_start(", "epk_program_main();"):
+        assert call in main
+    assert "extern messagebus_t bus;" in (out / "main.h").read_text()
+    # the next command, and no traceback
+    assert "git clone --recursive https://github.com/e-puck2/e-puck2_main-processor" in r.stderr
+    assert f"make -C {out} EPUCK2_FIRMWARE=" in r.stderr and "Traceback" not in r.stderr
+
+
+def test_without_the_arm_toolchain_it_says_how_to_get_it(tmp_path):
+    r = epuckc("build", "--target", "epuck2", REPO / "examples" / "square.epk", "-o",
+               tmp_path / "p", env=_env_without("arm-none-eabi-gcc"))
+    assert r.returncode == 3
+    assert "apt-get install gcc-arm-none-eabi libnewlib-arm-none-eabi" in r.stderr
+
+
+def test_a_folder_that_is_not_the_firmware_is_named(tmp_path):
+    require_tool("arm-none-eabi-gcc")
+    r = epuckc("build", "--target", "epuck2", REPO / "examples" / "square.epk", "-o",
+               tmp_path / "p", "--firmware", tmp_path)
+    assert r.returncode == 3
+    assert f"{tmp_path} is not the firmware's folder" in r.stderr
+
+
+@pytest.mark.parametrize("example", EXAMPLES, ids=lambda p: p.stem)
+def test_every_example_compiles_for_the_cortex_m4(tmp_path, example):
+    """The generated C, through program_main.c (main renamed), with the
+    firmware's warnings as errors, against the project's API headers."""
+    gcc = require_tool("arm-none-eabi-gcc")
+    out = tmp_path / "proj"
+    r = epuckc("build", "--target", "epuck2", example, "-o", out, env={"EPUCK2_FIRMWARE": ""})
+    assert r.returncode == 3, r.stderr
+    sources = [out / "program_main.c"] + sorted((out / "user").glob("*.c"))
+    for source in sources:
+        subprocess.run([gcc, *ARM_FLAGS, f"-I{out}", f"-I{out / 'runtime'}", *API, "-c",
+                        str(source), "-o", str(tmp_path / "x.o")], check=True)
+
+
+def test_the_runtime_and_the_platform_layer_compile_for_the_cortex_m4(tmp_path):
+    gcc = require_tool("arm-none-eabi-gcc")
+    for source in [*(RUNTIME / n for n in RUNTIME_CORE), RUNTIME / "platform_epuck2.c",
+                   RUNTIME / "epuck2" / "newlib_stubs.c"]:
+        subprocess.run([gcc, *ARM_FLAGS, f"-I{RUNTIME}", *API, "-c", str(source), "-o",
+                        str(tmp_path / "x.o")], check=True)
+
+
+def test_the_platform_layer_sleeps_and_never_spins():
+    """Under ChibiOS a busy wait would starve the firmware's sensor and motor
+    threads: the poll waits in chThdSleepUntilWindowed, and the millisecond
+    clock is counted from the system time."""
+    text = (RUNTIME / "platform_epuck2.c").read_text()
+    idle = text[text.index("void rt_platform_idle(void)"):]
+    idle = idle[:idle.index("\n}\n")]
+    assert "chThdSleepUntilWindowed(" in idle and "rt_clock_tick()" in idle
+    assert "while (rt_millis() ==" not in idle
+
+
+def test_a_full_build_with_the_firmware(tmp_path):
+    """Needs the firmware tree with its submodules (ChibiOS): where
+    EPUCK2_FIRMWARE names it, every example links into an .elf."""
+    firmware = os.environ.get("EPUCK2_FIRMWARE")
+    if not firmware:
+        pytest.skip("EPUCK2_FIRMWARE is not set: the full e-puck2 link needs the firmware "
+                    "(git clone --recursive https://github.com/e-puck2/e-puck2_main-processor)")
+    require_tool("arm-none-eabi-gcc")
+    out = tmp_path / "bb"
+    r = epuckc("build", "--target", "epuck2", REPO / "examples" / "braitenberg.epk", "-o", out,
+               "--firmware", firmware)
+    assert r.returncode == 0, r.stderr
+    assert (out / "build" / "braitenberg.elf").is_file()
+    assert (out / "build" / "braitenberg.bin").is_file()
