@@ -1,0 +1,50 @@
+/*
+ * simavr_trace.c - runs an AVR program built with platform_trace.c under
+ * simavr (libsimavr) and prints what it writes to GPIOR0: its trace.
+ *
+ *     simavr_trace PROGRAM.elf MCU
+ *
+ * Exit status 0 when the program stopped (after its exit or time-limit
+ * line), 1 when it crashed or ran out of cycles.
+ */
+#include <stdio.h>
+
+#include <simavr/sim_avr.h>
+#include <simavr/sim_elf.h>
+#include <simavr/sim_io.h>
+
+#define GPIOR0_ADDR 0x3E        /* data address of GPIOR0 (I/O 0x1E) on the ATmega1284P */
+
+static void console(struct avr_t *avr, avr_io_addr_t addr, uint8_t value, void *param)
+{
+    (void)avr;
+    (void)addr;
+    (void)param;
+    putchar(value);
+}
+
+int main(int argc, char **argv)
+{
+    static elf_firmware_t fw;
+    avr_t *avr;
+    int state = cpu_Running;
+
+    if (argc != 3 || elf_read_firmware(argv[1], &fw) != 0) {
+        fprintf(stderr, "usage: simavr_trace PROGRAM.elf MCU\n");
+        return 2;
+    }
+    avr = avr_make_mcu_by_name(argv[2]);
+    if (avr == NULL) {
+        fprintf(stderr, "simavr_trace: simavr does not know %s\n", argv[2]);
+        return 2;
+    }
+    avr_init(avr);
+    avr->frequency = 16000000;
+    avr->log = 0;
+    avr_load_firmware(avr, &fw);
+    avr_register_io_write(avr, GPIOR0_ADDR, console, NULL);
+    while (state != cpu_Done && state != cpu_Crashed && avr->cycle < 20000000000ULL)
+        state = avr_run(avr);
+    fflush(stdout);
+    return state == cpu_Done ? 0 : 1;
+}
