@@ -105,17 +105,23 @@ def test_the_platform_layer_sleeps_and_never_spins():
     assert "while (rt_millis() ==" not in idle
 
 
-def test_a_full_build_with_the_firmware(tmp_path):
-    """Needs the firmware tree with its submodules (ChibiOS): where
-    EPUCK2_FIRMWARE names it, every example links into an .elf."""
+@pytest.mark.parametrize("example", EXAMPLES + ["every_feature"],
+                         ids=lambda p: getattr(p, "stem", p))
+def test_a_full_build_with_the_firmware(tmp_path, example):
+    """Needs the firmware tree with its submodules (ChibiOS, ...): where
+    EPUCK2_FIRMWARE names it, every example and the language's
+    every-feature program link into an .elf and a .bin."""
     firmware = os.environ.get("EPUCK2_FIRMWARE")
     if not firmware:
         pytest.skip("EPUCK2_FIRMWARE is not set: the full e-puck2 link needs the firmware "
                     "(git clone --recursive https://github.com/e-puck2/e-puck2_main-processor)")
     require_tool("arm-none-eabi-gcc")
-    out = tmp_path / "bb"
-    r = epuckc("build", "--target", "epuck2", REPO / "examples" / "braitenberg.epk", "-o", out,
-               "--firmware", firmware)
-    assert r.returncode == 0, r.stderr
-    assert (out / "build" / "braitenberg.elf").is_file()
-    assert (out / "build" / "braitenberg.bin").is_file()
+    if example == "every_feature":
+        from tests.runtime.test_language import EVERY_FEATURE
+        example = tmp_path / "every_feature.epk"
+        example.write_text(EVERY_FEATURE, encoding="utf-8")
+    out = tmp_path / "proj"
+    r = epuckc("build", "--target", "epuck2", example, "-o", out, "--firmware", firmware)
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert (out / "build" / f"{example.stem}.elf").is_file()
+    assert (out / "build" / f"{example.stem}.bin").is_file()
