@@ -699,7 +699,11 @@ static int poll_events(void)
 
     conditions_valid = 0;
     rt_prox_valid = 0;
-    rt_poll_count++;            /* the other readings are read anew (rt_lang.c) */
+    rt_poll_count++;
+    if (rt_sensors_starting) {  /* start_sensor of an earlier poll */
+        rt_sensors_starting = 0;
+        rt_sensors_on = 1;
+    }            /* the other readings are read anew (rt_lang.c) */
     if (rt_mode_arm_pending && rt_prog != NULL)
         rt_mode_arm();
     if (ranked)

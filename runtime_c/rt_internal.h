@@ -103,6 +103,7 @@ void rt_odometry(long dl, long dr);   /* the wheels' steps of this poll */
 
 /* rt_sensors.c: standard events, sensors and devices */
 extern int rt_sensors_on;
+extern int rt_sensors_starting;   /* start_sensor ran: on from the next poll */
 extern int rt_prox[8];
 extern unsigned rt_prox_valid;
 void rt_read_prox(unsigned mask);

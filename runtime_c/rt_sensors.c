@@ -10,8 +10,11 @@
 static int timer_running;
 static long timer_start;        /* rt_millis() at set_timer */
 
-/* Proximity polling (start_sensor / stop_sensor); off at start. */
+/* Proximity polling (start_sensor / stop_sensor); off at start.  The
+ * sensors started by start_sensor are read from the next poll on: no
+ * sensor event can occur in the poll that started them. */
 int rt_sensors_on;
+int rt_sensors_starting;
 
 /* The proximity readings, read once per poll: bit n of prox_valid says
  * prox[n] was read in this poll (cleared at the start of each poll). */
@@ -49,13 +52,15 @@ void action_reset_timer(void *param)
 void action_start_sensor(void *param)
 {
     (void)param;
-    rt_sensors_on = 1;
+    if (!rt_sensors_on)
+        rt_sensors_starting = 1;
 }
 
 void action_stop_sensor(void *param)
 {
     (void)param;
     rt_sensors_on = 0;
+    rt_sensors_starting = 0;
 }
 
 /* ---- standard events -------------------------------------------------------- */

@@ -105,8 +105,9 @@ def can_fire_together(a, b) -> bool:
         return True
     na, nb = ea.name, eb.name
     # (stop_motor and timer events cannot occur at the first poll, nor
-    # can `every` and `after`, which count from it)
-    later = ("stop_motor", "timer", "every", "after")
+    # can `every` and `after`, which count from it, nor a sensor event: the
+    # sensors are off at start, and read from the poll after start_sensor)
+    later = ("stop_motor", "timer", "every", "after", "sensor")
     if (nb in later and _at_first_poll_only(a)) or (na in later and _at_first_poll_only(b)):
         return False
     if na == "timer" and nb == "timer" and ma is None and mb is None:

@@ -197,7 +197,8 @@ ACTIONS = (
                       "`on immediate do set_timer` and `on timer(2 s) do ...`"),
     ActionSpec("reset_timer", (), "stops the timer", "reset_timer",
                misuse="it stops the timer; a time goes on a `timer(...)` event"),
-    ActionSpec("start_sensor", (), "starts polling the proximity sensors", "start_sensor",
+    ActionSpec("start_sensor", (), "starts polling the proximity sensors, from the next poll",
+               "start_sensor",
                misuse="it starts all eight sensors; the sensor and its threshold go on the rule "
                       "that waits for them: `on sensor(ir0 > 300) do ...`"),
     ActionSpec("stop_sensor", (), "stops it; sensor conditions are then false", "stop_sensor",

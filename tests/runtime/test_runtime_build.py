@@ -216,7 +216,7 @@ def test_scenario_time_formats(tmp_path):
     scn = "0 ir0=0\n100ms ir0=900\n0.2 s ir0=0\n0.3s ir0=900 IR7=1\n"
     r = run(exe, tmp_path, scenario=scn)
     assert r.returncode == 0, r.stderr
-    assert r.times("event", "sensor") == [1, 100, 200, 300]
+    assert r.times("event", "sensor") == [2, 100, 200, 300]   # read from the poll after start_sensor
 
 
 def test_bench_robot_runs():
@@ -269,7 +269,7 @@ def test_scenario_line_ends_bom_and_minutes_are_accepted(tmp_path, data):
     exe = build(tmp_path, PROGRAMS / "sensor_edge.c")
     r = run(exe, tmp_path, scenario=_scenario_bytes(tmp_path, data))
     assert r.returncode == 0, r.stderr
-    assert r.times("event", "sensor") == [1, 100, 200, 300]
+    assert r.times("event", "sensor") == [2, 100, 200, 300]   # read from the poll after start_sensor
 
 
 def test_scenario_in_minutes(tmp_path):
@@ -304,7 +304,7 @@ def test_scenario_of_80000_lines_loads_under_asan(tmp_path):
                     for t in range(80000))
     r = run(exe, tmp_path, scenario=lines, env={"EPUCK_QUIET": "1"})
     assert r.returncode == 0, r.stderr
-    assert r.times("event", "sensor") == [1, 100, 200, 300]
+    assert r.times("event", "sensor") == [2, 100, 200, 300]   # read from the poll after start_sensor
 
 
 def test_harness_names_the_options_typed_when_run_by_epuckc(tmp_path):

@@ -84,7 +84,7 @@ def test_sensor_rising_edges(tmp_path):
     assert r.returncode == 0, r.stderr
     events = [(t, i) for (t, k, n, i) in fired(r) if k == "event" and i in (1, 2, 3, 4)]
     assert events == [
-        (1, 3),     # below 500 from the first poll (sensors on since event 0)
+        (2, 3),     # below 500 from the second poll (started by event 0 at the first)
         (100, 1), (100, 2),     # rises at 100: repeat and one-shot
         (200, 3),   # falls: "below" rises
         (300, 1),   # rises again: only the repeating one
@@ -193,7 +193,7 @@ def test_quiet_holds_before_mainloop(tmp_path):
 
 def test_static_tables_by_hand(tmp_path):
     """register_program: refusals, ids after the tables, compiled conditions
-    (seen in the walk where an earlier event started the sensors), cancel and
+    (from the poll after an event started the sensors), cancel and
     set_event_repeat on table entries, two words of events, a dynamic event
     registered by a table action and polled in the same walk."""
     r = build_and_run(tmp_path, "static_table.c", env={"EPUCK_QUIET": "1"})
@@ -201,7 +201,8 @@ def test_static_tables_by_hand(tmp_path):
     assert r.stdout.splitlines() == ["refuse -1 -1 -1 -1 -1 -1", "register 0", "again -1",
                                      "ids 5", "more 19", "notes 5"]
     assert [(x["id"], x["t_ms"]) for x in r.records("event")] == [
-        (0, 1), (1, 1), (3, 1), (17, 1),    # 3 fires, its cancelled action runs nothing
+        (0, 1), (3, 1),                     # 3 fires, its cancelled action runs nothing
+        (1, 2), (17, 2),                    # the sensors are on from the poll after 0
         (1, 8), (17, 8),                    # rising edges again; 17 repeats now
         (2, 10), (19, 10),                  # 19 registered by 2's action, same walk
         (18, 30)]

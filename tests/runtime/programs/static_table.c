@@ -1,6 +1,6 @@
 /* Static registration written by hand: register_program's refusals, the
- * ids that follow the tables, compiled conditions (sensors started in the
- * same walk), cancel and set_event_repeat on table entries, a timer with
+ * ids that follow the tables, compiled conditions (sensors started: read from the
+ * next poll), cancel and set_event_repeat on table entries, a timer with
  * memory, more than sixteen events (two words of state), and an event
  * registered by a table action polled in the same walk.
  * Scenario static_table.scn: ir0 900 from the start, 0 at 5 ms, 900 at 8. */
