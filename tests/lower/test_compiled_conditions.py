@@ -70,21 +70,25 @@ def model(rules, changes) -> list:
     """(event id, t_ms) of every firing, by the semantics of docs/runtime.md:
     polls at 1, 2, ... ms walk the events in order; a sensor event occurs
     when `sensors on and some condition holds` becomes true (false before
-    its first poll); the timer starts at 1 ms, so `timer(T)` fires at T + 1."""
+    its first poll); start_sensor turns the sensors on from the next poll,
+    stop_sensor at once; the timer starts at 1 ms, so `timer(T)` fires at
+    T + 1."""
     readings = [0] * SENSORS
     pending = list(changes)
     armed = [True] * (len(rules) + 1)
     latch = [False] * (len(rules) + 1)
-    sensors_on = False
+    sensors_on = starting = False
     fired = []
     for t in range(1, END_MS):
         while pending and pending[0][0] <= t:
             _, n, v = pending.pop(0)
             readings[n] = v
+        if starting:
+            sensors_on, starting = True, False
         if armed[0]:
             fired.append((0, t))
             armed[0] = False
-            sensors_on = True
+            starting = not sensors_on
         for k, rule in enumerate(rules, 1):
             if not armed[k]:
                 continue
@@ -92,7 +96,10 @@ def model(rules, changes) -> list:
                 if t - 1 >= rule[1]:
                     fired.append((k, t))
                     armed[k] = False
-                    sensors_on = rule[2] == "start_sensor"
+                    if rule[2] == "start_sensor":
+                        starting = not sensors_on
+                    else:
+                        sensors_on = starting = False
                 continue
             cond = sensors_on and any(readings[n] > value if op == ">" else readings[n] < value
                                       for n, (op, value) in rule[1].items())
@@ -135,12 +142,13 @@ def test_compiled_conditions_follow_the_semantics(tmp_path, program):
 
 
 def test_model_sees_edges_and_mid_walk_stops(tmp_path):
-    """A fixed case, so that the model itself is checked: rule 3 is after
-    the timer that stops the sensors at 6 ms, rule 1 before it."""
+    """A fixed case, so that the model itself is checked: the sensors
+    started at 1 ms are read from 2 ms; rule 3 is after the timer that stops
+    the sensors at 6 ms, rule 1 before it."""
     rules = [("sensor", {0: (">", 500)}, True), ("timer", 5, "stop_sensor"),
              ("sensor", {0: (">", 500)}, True), ("sensor", {1: ("<", 10)}, False)]
     changes = [(0, 0, 900), (3, 0, 0), (4, 0, 900), (4, 1, 50)]
-    expected = [(0, 1), (1, 1), (3, 1), (4, 1), (1, 4), (3, 4), (2, 6)]
+    expected = [(0, 1), (1, 2), (3, 2), (4, 2), (1, 4), (3, 4), (2, 6)]
     assert model(rules, changes) == expected
     assert build_and_run(rule_file(rules), scenario(changes), tmp_path) == expected
 
