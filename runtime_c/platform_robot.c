@@ -6,11 +6,13 @@
  * e_init_motors, e_init_ad_scan(ALL_ADC)) and starts the 1 ms clock agenda,
  * so that the robot and the host harness share one code path.  What is left
  * here is waiting for the clock, and trace hooks that do nothing (there is
- * no trace on the robot).
+ * no trace on the robot).  The e-puck2 shares the hooks and the seed; its
+ * wait for the clock is platform_epuck2.c's (EPUCKRT_EPUCK2).
  */
 #include "rt_platform.h"
 #include "a_d/advance_ad_scan/e_prox.h"
 
+#ifndef EPUCKRT_EPUCK2
 void rt_platform_init(void)
 {
 }
@@ -23,6 +25,7 @@ void rt_platform_idle(void)
         /* busy wait; the agenda runs in the Timer2 interrupt */
     }
 }
+#endif
 
 void rt_trace_event(int event_id)
 {

@@ -18,8 +18,10 @@ from .common import (DSPIC_RUNTIME, EXIT_NO_TOOLCHAIN, BuildError, Program, _cap
 from .dspic import dspic_user_copies, dspic_user_headers
 
 # The runtime's files in an e-puck2 project (relative to runtime_c/): the
-# core, the ChibiOS platform layer, the system calls Debian's newlib wants.
-EPUCK2_SOURCES = [*RUNTIME_CORE, "platform_epuck2.c", "epuck2/newlib_stubs.c"]
+# core, the robot's platform layer (its hooks and seed) with the ChibiOS
+# wait for the clock, the system calls Debian's newlib wants.
+EPUCK2_SOURCES = [*RUNTIME_CORE, "platform_robot.c", "platform_epuck2.c",
+                  "epuck2/newlib_stubs.c"]
 EPUCK2_FILES = EPUCK2_SOURCES + list(RUNTIME_CORE_HEADERS)
 ARM_GCC = "arm-none-eabi-gcc"
 # Where the e-puck2's library layer lacks what a runtime file calls, the

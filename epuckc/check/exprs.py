@@ -296,7 +296,7 @@ class Exprs:
         if len(values) > 1:
             kinds = {v.kind for v in values if not v.bare}
             if len(kinds) > 1:
-                first, other = next(v for v in values if not v.bare), None
+                first = next(v for v in values if not v.bare)
                 other = next(v for v in values if not v.bare and v.kind != first.kind)
                 self._kind_clash(node, first.kind, other.kind,
                                  f"the arguments of {_code(name)} differ:", left=first,

@@ -33,8 +33,6 @@ class Variables:
         value = self._literal(stmt.value, allow_vars=False)
         if value is None:
             return
-        if value.kind == BOOL:
-            return
         self.vars[name] = VarInfo(name, value.kind, value.value, value.value, value.value,
                                   len(self.vars), stmt)
 

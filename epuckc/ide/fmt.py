@@ -193,16 +193,8 @@ class _Builder:
             self.open(_Indent())
             self.body(node.body)
             self.close()
-        elif isinstance(node, ast.VarDef):
-            self.token("_VAR")
-            self.sep(" ")
-            self.token("NAME")
-            self.sep(" ")
-            self.token("_EQUAL")
-            self.sep(" ")
-            self.value(node.value)
-        elif isinstance(node, ast.ConstDef):
-            self.token("_CONST")
+        elif isinstance(node, (ast.ConstDef, ast.VarDef)):
+            self.token("_CONST" if isinstance(node, ast.ConstDef) else "_VAR")
             self.sep(" ")
             self.token("NAME")
             self.sep(" ")

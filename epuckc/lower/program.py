@@ -306,34 +306,31 @@ class _Lowerer:
                                             comment))
             return spec.runtime, when, spec.memory, None
         if ev.name == "ambient":            # a function event: not the proximity sensors
-            thresholds = ["SENSOR_OFF"] * 8
-            below = 0
-            for sensor, op, value in ev.conditions:
-                thresholds[sensor] = str(value)
-                if op == "<":
-                    below |= 1 << sensor
-            self.out.structs.append(CStruct(spec.runtime_param, when,
-                                            f"{{{{{', '.join(thresholds)}}}, 0x{below:02x}}}",
-                                            comment))
+            self.sensor_struct(ev, spec, when, comment)
             return spec.runtime, when, spec.memory, None
         if ev.name == "timer":
             self.out.structs.append(CStruct(spec.runtime_param, when,
                                             f"{{{ev.values['time']}L}}", comment))
             return spec.runtime, when, spec.memory, None
         if rule.guard is not None:      # its function, which the guard wraps
-            thresholds = ["SENSOR_OFF"] * 8
-            below = 0
-            for sensor, op, value in ev.conditions:
-                thresholds[sensor] = str(value)
-                if op == "<":
-                    below |= 1 << sensor
-            self.out.structs.append(CStruct(spec.runtime_param, when,
-                                            f"{{{{{', '.join(thresholds)}}}, 0x{below:02x}}}",
-                                            comment))
+            self.sensor_struct(ev, spec, when, comment)
             return "event_sensor", when, True, None
         terms = [f"{PREFIX}ir{sensor} {op} {value}" for sensor, op, value in ev.conditions]
         self.sensors |= {sensor for sensor, _, _ in ev.conditions}
         return "NULL", "NULL", False, ("sensor", " || ".join(terms))
+
+    def sensor_struct(self, ev, spec, name: str, comment: str):
+        """The param_event_sensor of an event function on the sensors'
+        conditions: a threshold per sensor (or SENSOR_OFF), the `<` ones' bits."""
+        thresholds = ["SENSOR_OFF"] * 8
+        below = 0
+        for sensor, op, value in ev.conditions:
+            thresholds[sensor] = str(value)
+            if op == "<":
+                below |= 1 << sensor
+        self.out.structs.append(CStruct(spec.runtime_param, name,
+                                        f"{{{{{', '.join(thresholds)}}}, 0x{below:02x}}}",
+                                        comment))
 
     # -- the whole program --
 

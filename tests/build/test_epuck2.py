@@ -41,7 +41,7 @@ def test_project_is_the_firmwares_project_template(tmp_path):
     assert "GLOBAL_PATH = $(EPUCK2_FIRMWARE)" in makefile
     assert "include $(GLOBAL_PATH)/Makefile" in makefile
     assert "$(GLOBAL_PATH)/src/epuck1x" in makefile and "-DEPUCKRT_EPUCK2" in makefile
-    for name in [*RUNTIME_CORE, "platform_epuck2.c", "newlib_stubs.c"]:
+    for name in [*RUNTIME_CORE, "platform_robot.c", "platform_epuck2.c", "newlib_stubs.c"]:
         assert f"./runtime/{name} \\" in makefile
         assert (out / "runtime" / name).is_file()
     assert "./program_main.c" in makefile and "./braitenberg.c" not in makefile
@@ -88,8 +88,8 @@ def test_every_example_compiles_for_the_cortex_m4(tmp_path, example):
 
 def test_the_runtime_and_the_platform_layer_compile_for_the_cortex_m4(tmp_path):
     gcc = require_tool("arm-none-eabi-gcc")
-    for source in [*(RUNTIME / n for n in RUNTIME_CORE), RUNTIME / "platform_epuck2.c",
-                   RUNTIME / "epuck2" / "newlib_stubs.c"]:
+    for source in [*(RUNTIME / n for n in RUNTIME_CORE), RUNTIME / "platform_robot.c",
+                   RUNTIME / "platform_epuck2.c", RUNTIME / "epuck2" / "newlib_stubs.c"]:
         subprocess.run([gcc, *ARM_FLAGS, f"-I{RUNTIME}", *API, "-c", str(source), "-o",
                         str(tmp_path / "x.o")], check=True)
 
