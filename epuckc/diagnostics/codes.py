@@ -61,6 +61,7 @@ CODES = {
     "E052": "a changing value where a fixed one is needed",
     "E054": "unknown function",
     "E055": "`repeat` on `every` or `after`",
+    "E056": "expression nested too deeply",
     # warnings
     "W001": "timer rule that can never fire",
     "W002": "sensor rule that can never fire",

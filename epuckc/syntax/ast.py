@@ -22,9 +22,12 @@ _set = object.__setattr__
 
 
 class Node:
-    """The base of every node: its `_fields` are its `__slots__`."""
+    """The base of every node: its `_fields` are its `__slots__`. A
+    statement's class says what it is in words (`described`, "a variable"),
+    for messages about where it stands."""
     __slots__ = ()
     _fields: tuple = ()
+    described: str = ""
     # Generic walkers (`dataclasses.fields(node)`, `hasattr(node,
     # "__dataclass_fields__")`, `dataclasses.replace`) work as on the
     # dataclasses these nodes were; made on first use (see records.py).
@@ -59,17 +62,43 @@ class Node:
     def __delattr__(self, name):
         raise FrozenInstanceError(f"cannot delete field {name!r}")
 
+    # Equality and hashing walk the tree with a loop, not recursion, so that
+    # an expression as deep as syntax/limits.py allows costs no stack.
     def __eq__(self, other):
         if type(other) is not type(self):
             return NotImplemented
-        return all(getattr(self, f) == getattr(other, f) for f in self._fields)
+        todo = [(self, other)]
+        while todo:
+            a, b = todo.pop()
+            if type(a) is not type(b):
+                return False
+            if isinstance(a, Node):
+                todo.extend((getattr(a, f), getattr(b, f)) for f in a._fields)
+            elif type(a) is tuple:
+                if len(a) != len(b):
+                    return False
+                todo.extend(zip(a, b))
+            elif a != b:
+                return False
+        return True
 
     def __ne__(self, other):
         equal = self.__eq__(other)
         return equal if equal is NotImplemented else not equal
 
     def __hash__(self):
-        return hash((type(self).__name__,) + tuple(getattr(self, f) for f in self._fields))
+        flat, todo = [], [self]
+        while todo:
+            x = todo.pop()
+            if isinstance(x, Node):
+                flat.append(type(x).__name__)
+                todo.extend(getattr(x, f) for f in x._fields)
+            elif type(x) is tuple:
+                flat.append(len(x))
+                todo.extend(x)
+            else:
+                flat.append(x)
+        return hash(tuple(flat))
 
     def __repr__(self):
         inside = ", ".join(f"{f}={getattr(self, f)!r}" for f in self._fields)
@@ -247,12 +276,14 @@ class Setting(Node):
 
 
 class RobotBlock(Node):
+    described = "the robot block"
     __slots__ = ("settings", "span")
     settings: tuple
     span: Span
 
 
 class ConstDef(Node):
+    described = "a constant"
     __slots__ = ("name", "value", "span")
     name: Ident
     value: Value
@@ -261,6 +292,7 @@ class ConstDef(Node):
 
 class VarDef(Node):
     """`var NAME = VALUE`."""
+    described = "a variable"
     __slots__ = ("name", "value", "span")
     name: Ident
     value: Value
@@ -268,6 +300,7 @@ class VarDef(Node):
 
 
 class ActionDef(Node):
+    described = "an action"
     __slots__ = ("name", "body", "span")
     name: Ident
     body: ActionBody
@@ -282,6 +315,7 @@ class ParamDecl(Node):
 
 
 class ExternDef(Node):
+    described = "an extern"
     __slots__ = ("kind", "name", "params", "file", "file_span", "span")
     kind: str                 # "action" | "event"
     name: Ident
@@ -306,6 +340,7 @@ class Rule(Node):
     mode: Optional[Ident]               # the mode whose block holds it, or None
     guard: Optional[object]             # `if COND`, or None
     trigger: str                        # "on", "when", "every" or "after"
+    described = "a rule"
 
     def in_mode(self, mode: Ident) -> "Rule":
         """The same rule, inside the block of `mode`."""
@@ -316,6 +351,7 @@ class Rule(Node):
 class ModeDef(Node):
     """`[initial] mode NAME { ... }`. Its rules are Rule statements of their
     own (in file order, with `mode` set); `span` is the head `mode NAME {`."""
+    described = "a mode"
     __slots__ = ("name", "initial", "span")
     name: Ident
     initial: bool
@@ -338,6 +374,7 @@ class ModeClose(Node):
 class ModeEnd(Node):
     """The `}` that closes a mode block: kept in the statements so that they
     match the lexer's statement chunks one to one (the formatter needs it)."""
+    described = "the end of a mode"
     __slots__ = ("span",)
     span: Span
 

@@ -14,6 +14,7 @@ from . import ast
 from . import lalr
 from ..diagnostics import Collector, Note
 from .errors import syntax_error
+from .limits import MAX_DEPTH, too_deep
 from .lexer import KEYWORDS, STATEMENT_STARTS, iter_statements, iter_tokens
 from ..base.resources import grammar_path
 from ..base.source import SourceFile, Span
@@ -402,13 +403,26 @@ class ModePlacer:
                 self.modes.pop()
                 program.statements.append(ast.ModeEnd(statement.span))
             return
+        deep = too_deep(statement)
+        if deep is not None:
+            diags.error("E056", deep.span,
+                        f"this expression is nested more than {MAX_DEPTH} deep (operators, "
+                        f"calls and parentheses)",
+                        help="compute a part of it into a variable first (`part = ...`), "
+                             "then use the variable")
+            return
         if mode is not None and not isinstance(statement, ast.Rule):
-            what = {ast.ConstDef: "a constant", ast.ActionDef: "an action",
-                    ast.ExternDef: "an extern", ast.RobotBlock: "the robot block"}[type(statement)]
+            if isinstance(statement, ast.VarDef):
+                help = ("variables belong to the whole program and keep their value across "
+                        "modes: declare it before the mode; to start it afresh when the mode "
+                        f"is entered, assign it in the mode: `on enter do {statement.name.name}"
+                        " = ...`")
+            else:
+                help = ("only rules go in a mode; define it before the mode (names are "
+                        "visible everywhere)")
             diags.error("E001", statement.span,
-                        f"{what} cannot be defined inside mode `{mode.name.name}`",
-                        help="only rules go in a mode; define it before the mode (names are "
-                             "visible everywhere)",
+                        f"{statement.described} cannot be defined inside mode "
+                        f"`{mode.name.name}`", help=help,
                         notes=[Note(f"mode `{mode.name.name}` starts here", mode.span)])
         elif mode is not None:
             statement = statement.in_mode(mode.name)

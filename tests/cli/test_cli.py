@@ -252,7 +252,9 @@ def test_explanation_examples_are_right(code, tmp_path):
     codes_right = _codes(tmp_path / "right", right, make_c_files=True)
     assert code not in codes_right, right
     assert not any(c.startswith("E") for c in codes_right), (right, codes_right)
-    if code not in ("E035",):
+    # E035 cannot fire (see test_goldens.UNREACHABLE); E056's wrong example
+    # is 200 levels deep, shown with `...` (its golden case is the real one)
+    if code not in ("E035", "E056"):
         assert code in _codes(tmp_path / "wrong", wrong, make_c_files=False), wrong
 
 

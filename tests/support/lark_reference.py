@@ -11,6 +11,7 @@ driver shapes children and spans exactly as Lark does.
 from __future__ import annotations
 
 from lark import Lark, Token, Transformer
+from lark.visitors import Transformer_NonRecursive
 from lark.exceptions import UnexpectedInput, UnexpectedToken
 from lark.lexer import Lexer
 
@@ -85,7 +86,9 @@ def to_ast_transformer(transformer_class=Transformer):
     return type("ToAst", (transformer_class,), {"__default__": _default})()
 
 
-TO_AST = to_ast_transformer()
+# not recursive: the corpus holds expressions nested right up to and past
+# the depth limit (syntax/limits.py), deeper than Lark's recursive walk goes
+TO_AST = to_ast_transformer(Transformer_NonRecursive)
 
 
 def parse_with_lark(parser, chunk):
