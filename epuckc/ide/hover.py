@@ -19,6 +19,8 @@ from .navigate import ACTION, _inside, _text_of, occurrences, resolve, statement
 def _units_of(kind: str) -> str:
     if kind == INT:
         return "a plain number"
+    if kind not in KIND_UNITS:          # `condition`: a kind without units
+        return "true or false" if kind == "condition" else kind
     return f"{', '.join(KIND_UNITS[kind])}; a bare number is {NATURAL_UNIT[kind]}"
 
 
@@ -100,6 +102,8 @@ def on_robot(analysis: Analysis, value, param) -> Optional[str]:
     geometry"); None when the value is not valid there."""
     if param.kind == CHOICE:
         return None         # a name of the set: nothing to convert
+    if not isinstance(value, (ast.Number, ast.ConstRef)):
+        return None         # an expression: its hover gives its unit and interval
     checker = analysis.checker
     saved, saved_used = checker.diags, set(checker.const_used)
     checker.diags = Collector(checker.diags.source)
