@@ -55,6 +55,7 @@ class Checker(Names, Externs, RobotSettings, Values, Exprs, Variables, Calls, Ru
         self._flat_actions: dict = {}    # named action -> flattened steps (modes.flat_steps)
         self.vars: dict = {}             # name -> VarInfo
         self.vars_used: set = set()
+        self.vars_assigned: set = set()
         self.modes: dict = {}            # name -> ModeDef
         self.initial_mode: Optional[str] = None
 

@@ -34,6 +34,27 @@ def _kind_word(kind: str) -> str:
     return KIND_WORDS.get(kind, kind)
 
 
+_EXACT = dict(arith.BINARY, neg=arith.neg, abs=arith.absolute, clamp=arith.clamp)
+
+
+def _interval(e: Expr) -> str:
+    return str(e.lo) if e.lo == e.hi else f"{e.lo}..{e.hi}"
+
+
+def _same_value(a: Expr, b: Expr) -> bool:
+    """Whether two expressions always have the same value: the same tree
+    of operations over the same variables, readings and numbers, with no
+    `random` (each call draws anew). A loop, not recursion (limits.py)."""
+    pairs = [(a, b)]
+    while pairs:
+        x, y = pairs.pop()
+        if (x.op != y.op or x.value != y.value or x.name != y.name
+                or len(x.args) != len(y.args) or x.op == "random"):
+            return False
+        pairs.extend(zip(x.args, y.args))
+    return True
+
+
 class Exprs:
     """The checker's expressions and variables (a part of Checker)."""
 
@@ -78,9 +99,18 @@ class Exprs:
                         self.diags.items.append(d)
                 if value is None:
                     return None
-                if negated != node.negative:
-                    value = Expr("num", value.kind, -value.value, -value.value,
-                                 value=-value.value, node=node, bare=value.bare)
+                v = -value.value if negated else value.value
+                if not INT16_MIN <= v <= INT16_MAX:     # `const B = -A` with A = -32768
+                    self.diags.error("E034", node.span,
+                                     f"{_code(name)} is {v}, which does not fit a 16-bit int "
+                                     f"({INT16_MIN}..{INT16_MAX})",
+                                     help="expressions compute in 16-bit ints, as the e-puck "
+                                          "does")
+                    return None
+                if node.negative:
+                    v = arith.neg(v)    # the runtime's `-`: -(-32768) saturates to 32767
+                if v != value.value:
+                    value = Expr("num", value.kind, v, v, value=v, node=node, bare=value.bare)
                 return Expr("num", value.kind, value.lo, value.hi, value=value.value, node=node,
                             bare=value.bare)
             if not allow_vars:
@@ -232,7 +262,10 @@ class Exprs:
             pair = self._same_kind(a, b, node, "cannot compare")
             if pair is None:
                 return None
-            return self._fold(Expr(op, BOOL, 0, 1, pair, node=node))
+            decided = self._fold(Expr(op, BOOL, 0, 1, pair, node=node))
+            if decided.constant:
+                self._decided_comparison(decided, *pair)
+            return decided
         if op in ("+", "-"):
             pair = self._same_kind(a, b, node, "cannot add" if op == "+" else "cannot subtract")
             if pair is None:
@@ -257,6 +290,21 @@ class Exprs:
                 return None
         lo, hi = arith.interval(op, (a.lo, a.hi), (b.lo, b.hi))
         return self._fold(Expr(op, kind, lo, hi, (a, b), node=node, bare=a.bare and b.bare))
+
+    def _decided_comparison(self, e: Expr, a: Expr, b: Expr):
+        """W016: a comparison that is always true or always false, folded
+        (the C never compares a value with itself)."""
+        text, truth = self._text(e.node), "true" if e.value else "false"
+        if _same_value(a, b):
+            why = "it compares a value with itself"
+        elif a.constant and b.constant:
+            return      # two fixed values: written so on purpose (`when 1 == 1`)
+        else:
+            why = " and ".join(f"`{self._text(side.node)}` is {_interval(side)}"
+                               for side in (a, b) if not side.constant)
+        self.diags.warning("W016", e.node.span, f"`{text}` is always {truth}: {why}",
+                           help="compare with a value that can fall on either side, or drop "
+                                "the comparison")
 
     def _divisor(self, b: Expr, op: str) -> bool:
         if b.lo == b.hi == 0:
@@ -326,6 +374,9 @@ class Exprs:
         args = e.args
         if e.op in COMPARISONS:
             a, b = args
+            if _same_value(a, b):           # `v >= v`: decided whatever v is
+                v = int(arith.COMPARE[e.op](0, 0))
+                return Expr("num", BOOL, v, v, value=v, node=e.node)
             if a.hi < b.lo or a.lo > b.hi or (a.lo == a.hi == b.lo == b.hi):
                 corners = {arith.COMPARE[e.op](x, y) for x in (a.lo, a.hi) for y in (b.lo, b.hi)}
                 if len(corners) == 1:
@@ -343,9 +394,12 @@ class Exprs:
             else:
                 return e
             return Expr("num", BOOL, v, v, value=v, node=e.node)
-        if e.lo != e.hi or not all(a.op == "num" for a in args):
+        if not args or not all(a.op == "num" for a in args) or e.op == "random":
             return e
-        return Expr("num", e.kind, e.lo, e.hi, value=e.lo, node=e.node, bare=e.bare)
+        # the exact value, as the runtime computes it (an interval, as of
+        # `%`, may be wider than the one value of constant operands)
+        v = _EXACT[e.op](*(a.value for a in args))
+        return Expr("num", e.kind, v, v, value=v, node=e.node, bare=e.bare)
 
     # -- uses of expressions --
 

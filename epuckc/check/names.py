@@ -3,7 +3,7 @@ clashes with the standard names, named actions resolved once, unused names."""
 from __future__ import annotations
 
 from ..base.source import Span
-from ..diagnostics import Note
+from ..diagnostics import Fix, Note
 from ..stdlib.table import ACTION_ALIASES, EVENT_ALIASES, STANDARD_ACTIONS, STANDARD_EVENTS
 from ..syntax import ast
 from . import modes
@@ -125,6 +125,15 @@ class Names:
                 self.diags.warning("W015", info.node.name.span,
                                    f"variable {_code(name)} is never used",
                                    help="use it in an expression or an assignment, or remove it")
+            elif name not in self.vars_assigned:
+                keyword = info.node.span
+                self.diags.warning(
+                    "W017", info.node.name.span,
+                    f"variable {_code(name)} is never assigned: it is always "
+                    f"{self._text(info.node.value)}",
+                    help=Fix(Span(keyword.line, keyword.column, keyword.line, keyword.column + 3),
+                             "const", f"make it a constant: `const {name} = "
+                                      f"{self._text(info.node.value)}`, or assign it in a rule"))
         if not any(isinstance(s, ast.Rule) for s in self.program.statements):
             self.diags.warning("W006", Span(1, 1, 1, 1), "this program has no rules: it does nothing",
                                help="add a rule, e.g. `on immediate do start_straight(200, 10 cm)`")

@@ -49,10 +49,12 @@ class Rules:
                              else "`after` fires once; for a period write `every`")
             return None
         if rule.trigger == "when":
+            start = len(self.diags.items)
             condition = self._condition(arg)
             if condition is None:
                 return None
-            if condition.constant:
+            # a comparison inside that is always true or false has said so
+            if condition.constant and not any(d.code == "W016" for d in self.diags.items[start:]):
                 self.diags.warning("W016", arg.span,
                                    f"this condition is always "
                                    f"{'true' if condition.value else 'false'}",

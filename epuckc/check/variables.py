@@ -103,6 +103,7 @@ class Variables:
                                  f"declare it first: `var {name} = 0`")
             return None
         self.vars_used.add(name)
+        self.vars_assigned.add(name)
         value = self._assigned(call, info)
         if value is None:
             return None

@@ -79,6 +79,7 @@ CODES = {
     "W014": "a divisor that can be 0",
     "W015": "variable never used",
     "W016": "condition that never changes",
+    "W017": "variable never assigned",
 }
 
 _EXPLANATIONS = Path(__file__).resolve().parent / "explanations"

@@ -71,7 +71,7 @@ class _Capture:
     says all its own diagnostics; what is said twice is dropped when the
     steps are put together (IncrementalChecker._replay), as the whole
     file's check says it once."""
-    FACTS = ("called", "used_actions", "const_used", "vars_used")
+    FACTS = ("called", "used_actions", "const_used", "vars_used", "vars_assigned")
     FRESH = ("_const_memo", "_const_reported", "_const_diagnostics")
 
     def __init__(self, checker: Checker):

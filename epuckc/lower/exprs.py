@@ -49,6 +49,18 @@ def c_expr(e: Expr, top: bool = True, readings: dict = None) -> str:
 ODOMETRY = frozenset({"x", "y", "heading"})
 
 
+def variables_of(e: Expr) -> set:
+    """The names of the variables an expression's C reads (after folding:
+    a variable inside a comparison that the checker decided is not read)."""
+    found, todo = set(), [e]
+    while todo:
+        x = todo.pop()
+        if x.op == "var":
+            found.add(x.name)
+        todo.extend(x.args)
+    return found
+
+
 def readings_of(e: Expr) -> set:
     """The names of the readings an expression reads."""
     found = {e.name} if e.op == "read" else set()

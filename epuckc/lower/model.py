@@ -118,7 +118,8 @@ class CProgram:
     extern_structs: list = field(default_factory=list)
     externs: list = field(default_factory=list)
     structs: list = field(default_factory=list)
-    variables: list = field(default_factory=list)     # CVariable
+    variables: list = field(default_factory=list)     # CVariable, every one (the trace's)
+    declared_variables: list = field(default_factory=list)   # those the C declares
     functions: list = field(default_factory=list)
     event_functions: list = field(default_factory=list)   # CEventFunction
     sequences: list = field(default_factory=list)

@@ -33,7 +33,8 @@ from ..check.program import CheckedProgram, ResolvedCall
 from ..check.splice import splice
 from ..stdlib.table import STANDARD_ACTIONS, STANDARD_EVENTS
 from ..stdlib.units import round_nearest
-from .exprs import ODOMETRY, c_expr, c_int, proximity_read, readings_of, var_name
+from .exprs import (ODOMETRY, c_expr, c_int, proximity_read, readings_of, var_name,
+                    variables_of)
 from .model import (CAction, CCondition, CConditionWord, CEvent, CEventFunction, CExtern,
                     CExternStruct, CFunction, CProgram, CSequence, CStruct, CVariable)
 
@@ -138,6 +139,7 @@ class _Lowerer:
                           for r in program.rules)
         self.when_reads: set = set()     # the proximity readings the `when` conditions read
         self.odometry = False            # an expression reads x, y or heading
+        self.variables_in_c: set = set()   # the variables the C reads or assigns
         self.mode_ids = {name: i for i, name in enumerate(program.modes, 1)}
         self.rule_modes = {r.name: r.mode for r in program.rules if r.name is not None}
 
@@ -180,6 +182,7 @@ class _Lowerer:
                               f"action_enter_mode({void_ref(param)});", text)
         if call.kind == "assign":
             info = self.program.variables[call.name]
+            self.variables_in_c.add(call.name)
             return _Primitive(None, "", f"rt_assign(&{var_name(call.name)}, {info.index}, "
                                         f"{self.expr(call.values['value'])});", text)
         if call.dynamic:
@@ -353,7 +356,6 @@ class _Lowerer:
     def lower(self) -> CProgram:
         out = self.out
         self.externs()
-        self.variables()
         cancelled = self.cancelled_rules()
         # The events are numbered by priority, highest first, in file order
         # within a priority: the order in which mainloop polls them, so that
@@ -441,6 +443,7 @@ class _Lowerer:
         else:
             out.condition_locals = [f"const int {PREFIX}ir{n} = {PREFIX}ir[{n}];"
                                     for n in sorted(self.sensors)]
+        self.variables()        # last: they are declared where the C uses them
         out.modes = [(i, c_string(name)) for name, i in self.mode_ids.items()]
         if self.program.initial_mode is not None:
             out.initial_mode = (self.mode_ids[self.program.initial_mode], self.program.initial_mode)
@@ -454,6 +457,7 @@ class _Lowerer:
     def expr(self, e, **options) -> str:
         """The C of an expression; notes whether the program reads the odometry."""
         self.odometry = self.odometry or bool(readings_of(e) & ODOMETRY)
+        self.variables_in_c |= variables_of(e)
         return c_expr(e, **options)
 
     def guarded(self, rule, index: int, function: str, param: str) -> str:
@@ -467,11 +471,16 @@ class _Lowerer:
         return name
 
     def variables(self):
+        """Every variable, for the trace's names; declared in the C only
+        where the C reads or assigns it (once everything else is lowered),
+        so that -Werror never meets a variable defined but not used."""
         for info in self.program.variables.values():
-            self.out.variables.append(CVariable(
-                var_name(info.name), c_int(info.init),
-                c_comment(f"{self.where(info.node)}: var {info.name}: "
-                          f"{info.lo}..{info.hi}"), c_string(info.name)))
+            variable = CVariable(var_name(info.name), c_int(info.init),
+                                 c_comment(f"{self.where(info.node)}: var {info.name}: "
+                                           f"{info.lo}..{info.hi}"), c_string(info.name))
+            self.out.variables.append(variable)
+            if info.name in self.variables_in_c:
+                self.out.declared_variables.append(variable)
 
     def cancelled_rules(self) -> set:
         """The rules that some `cancel` names, found in one pass."""
