@@ -1,18 +1,25 @@
 #!/usr/bin/env python3
-"""A long campaign of the property of tests/emit/test_property.py: random
-programs with hostile names; every one the checker accepts must compile with
-gcc and 16-bit avr-gcc under -std=c99 -Wall -Wextra -Werror -pedantic and run
-clean under ASan/UBSan on the host harness.
+"""A long campaign of the fuzz properties of tests/emit/test_property.py
+(programs with hostile names) and tests/emit/test_language_fuzz.py (the
+whole language: variables, expressions, `when`, guards, every/after/wait,
+modes, deep and long expressions).
 
-    python3 bench/fuzz_campaign.py [--count N] [--seed S]
+    python3 bench/fuzz_campaign.py [--generator language|hostile] [--count N]
+        [--seed S] [--jobs J] [--run-every K]
 
-Prints how many programs were generated, accepted (built and ran clean) and
-rejected; stops at the first failure and prints it (exit status 1). An
-interrupt (Ctrl-C, or `kill PID`) ends the campaign with the counts so far.
-The last count goes in docs/performance.md."""
+For every input: `check`, `compile` and the language server's analysis run
+in process (an exception is an internal error). Every accepted program is
+compiled with gcc and 16-bit avr-gcc under -std=c99 -Wall -Wextra -Werror
+-pedantic; one accepted program in K (default 1: all) is also linked with
+ASan/UBSan and run on the host harness. J processes share the inputs (each
+its own seed, S + j). Prints the counts; stops at the first failure and
+prints it (exit status 1). An interrupt (Ctrl-C, or `kill PID`) ends the
+campaign with the counts so far. The last count goes in
+docs/performance.md."""
 from __future__ import annotations
 
 import argparse
+import multiprocessing
 import shutil
 import signal
 import sys
@@ -27,53 +34,104 @@ sys.path.insert(0, str(REPO))
 from hypothesis import HealthCheck, given, seed, settings  # noqa: E402
 
 from tests.support.hostile import Outcome, check_one, programs, runtime_objects  # noqa: E402
+from tests.support.language import language_programs  # noqa: E402
+
+GENERATORS = {"hostile": programs, "language": language_programs}
 
 
-def main() -> int:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--count", type=int, default=3000, help="programs to generate")
-    parser.add_argument("--seed", type=int, default=0)
-    args = parser.parse_args()
+def front_end(text: str):
+    """check + compile + the language server's analysis; an exception is
+    an internal error."""
+    from epuckc.check.frontend import check_file
+    from epuckc.diagnostics import Report
+    from epuckc.emit.program import emit_program
+    from epuckc.ide.incremental import Analyzer
+    report = Report()
+    result = check_file(Path("fuzz.epk"), report, shown_name="fuzz.epk", text=text)
+    if result.checked is not None:
+        emit_program(result.checked, result.source.text, "fuzz")
+    Analyzer("fuzz.epk").analyse(text)
+    return result.checked is not None
+
+
+def worker(job: tuple) -> tuple:
+    """One process's share: (counts, failure text or None)."""
+    generator, count, worker_seed, run_every = job
     cc, avr = shutil.which("cc"), shutil.which("avr-gcc")
-    if not cc or not avr:
-        print("needs cc and avr-gcc", file=sys.stderr)
-        return 2
     counts: Counter = Counter()
-    started = time.monotonic()
+    failure = None
 
     def interrupted(signum, frame):
         raise KeyboardInterrupt
-    signal.signal(signal.SIGTERM, interrupted)      # `kill PID` reports too
+    signal.signal(signal.SIGTERM, interrupted)
     with tempfile.TemporaryDirectory(prefix="epuckc-fuzz-") as tmp:
         tmp = Path(tmp)
         runtime = runtime_objects(tmp, cc)
 
-        @seed(args.seed)
-        @settings(max_examples=args.count, deadline=None, database=None,
+        @seed(worker_seed)
+        @settings(max_examples=count, deadline=None, database=None,
                   suppress_health_check=list(HealthCheck))
-        @given(programs())
+        @given(GENERATORS[generator]())
         def campaign(program):
-            n = sum(counts.values())
-            work = tmp / str(n)
-            counts[check_one(program, work, cc, avr, runtime)] += 1
+            counts["inputs"] += 1
+            try:
+                accepted = front_end(program.text)
+            except Exception as exc:        # noqa: BLE001 - that is the finding
+                counts["internal errors"] += 1
+                raise AssertionError(f"internal error {type(exc).__name__}: {exc}\n"
+                                     f"--- input ---\n{program.text}") from exc
+            if not accepted:
+                counts[Outcome.REJECTED] += 1
+                return
+            work = tmp / str(counts["inputs"])
+            run = counts["accepted"] % run_every == 0
+            counts["accepted"] += 1
+            counts[check_one(program, work, cc, avr, runtime, run=run)] += 1
             shutil.rmtree(work, ignore_errors=True)
-            if (n + 1) % 100 == 0:
-                print(f"  {n + 1} programs, {counts[Outcome.BUILT]} built", file=sys.stderr)
 
-        stopped = ""
         try:
             campaign()
         except AssertionError as exc:
-            print(f"FAILED after {sum(counts.values())} programs:\n{exc}")
-            return 1
-        except KeyboardInterrupt:       # Ctrl-C or kill: report what was done
-            stopped = " (interrupted)"
-    total = sum(counts.values())
-    print(f"{total} programs generated{stopped} in {time.monotonic() - started:.0f} s: "
-          f"{counts[Outcome.BUILT]} accepted, built with gcc and avr-gcc (-Werror) and run "
-          f"clean under ASan/UBSan; {counts[Outcome.REJECTED]} rejected by the checker; "
-          f"0 failures")
-    return 0
+            failure = str(exc)
+        except KeyboardInterrupt:
+            failure = None
+    return counts, failure
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--generator", choices=sorted(GENERATORS), default="language")
+    parser.add_argument("--count", type=int, default=3000, help="inputs to generate")
+    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--jobs", type=int, default=1)
+    parser.add_argument("--run-every", type=int, default=1,
+                        help="link with ASan/UBSan and run one accepted program in K")
+    args = parser.parse_args()
+    if not shutil.which("cc") or not shutil.which("avr-gcc"):
+        print("needs cc and avr-gcc", file=sys.stderr)
+        return 2
+    started = time.monotonic()
+    share = [args.count // args.jobs + (j < args.count % args.jobs) for j in range(args.jobs)]
+    jobs = [(args.generator, n, args.seed + j, args.run_every) for j, n in enumerate(share)]
+    try:
+        with multiprocessing.Pool(args.jobs) as pool:
+            results = pool.map(worker, jobs)
+    except KeyboardInterrupt:
+        print("interrupted", file=sys.stderr)
+        return 130
+    total: Counter = Counter()
+    for counts, _ in results:
+        total.update(counts)
+    failures = [f for _, f in results if f]
+    print(f"{total['inputs']} {args.generator} inputs (seeds {args.seed}..{args.seed + args.jobs - 1})"
+          f" in {time.monotonic() - started:.0f} s: {total['internal errors']} internal errors; "
+          f"{total[Outcome.REJECTED]} rejected by the checker; {total['accepted']} accepted, "
+          f"every one compiled with gcc and avr-gcc (-Werror), "
+          f"{total[Outcome.BUILT]} of them also run clean under ASan/UBSan; "
+          f"{len(failures)} failures")
+    for failure in failures:
+        print(f"FAILED:\n{failure}")
+    return 1 if failures else 0
 
 
 if __name__ == "__main__":

@@ -6,6 +6,7 @@ CI (EPUCKC_REQUIRE_ALL_TOOLS=1), where a missing tool is a failure, because
 .ci/run installs every tool the tests need.
 """
 import os
+import random
 import shutil
 from pathlib import Path
 
@@ -61,3 +62,20 @@ def pytest_collection_modifyitems(config, items):
     if dropped:
         config.hook.pytest_deselected(items=dropped)
         items[:] = [item for item in items if item not in dropped]
+
+
+# The fuzz tests (tests/emit/test_language_fuzz.py) run a fixed seed and a
+# new one each run; the new one is printed at the end, to run it again:
+# EPUCKC_FUZZ_SEED=N python3 -m pytest tests/emit/test_language_fuzz.py
+# (kept in the environment, so that every import of this module agrees)
+os.environ.setdefault("EPUCKC_FUZZ_SEED", str(random.SystemRandom().randrange(2 ** 32)))
+FUZZ_SEED = int(os.environ["EPUCKC_FUZZ_SEED"])
+FUZZ_FIXED_SEED = 20261125
+
+
+def pytest_terminal_summary(terminalreporter):
+    ran = [r for key in ("passed", "failed") for r in terminalreporter.stats.get(key, [])
+           if "test_language_fuzz" in getattr(r, "nodeid", "")]
+    if ran:
+        terminalreporter.write_line(f"fuzz: fixed seed {FUZZ_FIXED_SEED} and new seed {FUZZ_SEED}"
+                                    f" (to run it again: EPUCKC_FUZZ_SEED={FUZZ_SEED})")

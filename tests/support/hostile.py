@@ -190,6 +190,7 @@ def extern_c(program, header: str) -> str:
 class Outcome:
     REJECTED = "rejected by the checker"
     BUILT = "accepted, built and ran clean"
+    COMPILED = "accepted, compiled with gcc and avr-gcc"
 
 
 def runtime_objects(folder: Path, cc: str) -> list:
@@ -205,8 +206,10 @@ def runtime_objects(folder: Path, cc: str) -> list:
     return objects
 
 
-def check_one(program: Program, work: Path, cc: str, avr: str, runtime: list) -> str:
-    """Check a program; if accepted, build it both ways and run it. Raises
+def check_one(program: Program, work: Path, cc: str, avr: str, runtime: list,
+              run: bool = True) -> str:
+    """Check a program; if accepted, build it both ways and run it (with
+    `run` False: compile it with gcc, without linking or running). Raises
     AssertionError with the evidence when an accepted program fails."""
     from epuckc.diagnostics import Report
     from epuckc.cli.driver import _program_name
@@ -238,6 +241,9 @@ def check_one(program: Program, work: Path, cc: str, avr: str, runtime: list) ->
     includes = [f"-I{work}", f"-I{RUNTIME}"]
     compile_with([avr, "-mmcu=atmega128", *STRICT, "-Os", *includes, "-c", *map(str, sources)],
                  "avr-gcc (16-bit int)")
+    if not run:
+        compile_with([cc, *STRICT, *includes, "-c", *map(str, sources)], "gcc")
+        return Outcome.COMPILED
     exe = work / "prog"
     compile_with([cc, *STRICT, *SANITIZE, *includes, *map(str, sources), *map(str, runtime),
                   "-o", str(exe), "-lm"], "gcc with ASan/UBSan")
