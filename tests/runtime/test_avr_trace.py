@@ -118,3 +118,42 @@ def test_the_16_bit_build_gives_the_hosts_trace(harness, tmp_path, program):
     # the mode set before mainloop is traced at its start on the host
     assert avr == host
     assert avr and avr[-1][0] in "XT"
+
+
+def _generated_programs(count: int) -> list:
+    """`count` programs of the language fuzzer (fixed seed) that the
+    checker accepts, spread over its examples (the first are the smallest,
+    and the following ones near each other)."""
+    from hypothesis import HealthCheck, given, seed, settings
+    from conftest import FUZZ_FIXED_SEED
+    from epuckc.check.frontend import check_file
+    from epuckc.diagnostics import Report
+    from tests.support.language import language_programs
+    found, seen = [], [0]
+
+    @seed(FUZZ_FIXED_SEED)
+    @settings(max_examples=400, deadline=None, database=None,
+              suppress_health_check=list(HealthCheck))
+    @given(language_programs())
+    def collect(program):
+        seen[0] += 1
+        if seen[0] % 25 == 0 and len(found) < count and check_file(Path("g.epk"), Report(), shown_name="g.epk",
+                                             text=program.text).checked is not None:
+            found.append(program.text)
+
+    collect()
+    return found
+
+
+GENERATED = 4
+
+
+@pytest.mark.parametrize("index", range(GENERATED))
+def test_generated_programs_give_the_hosts_trace_on_16_bits(harness, tmp_path, index):
+    """A sample of the fuzzer's accepted programs (tests/emit/
+    test_language_fuzz.py): the 16-bit build runs as the host's does."""
+    programs = _generated_programs(GENERATED)
+    path = tmp_path / f"generated{index}.epk"
+    path.write_text(programs[index], encoding="utf-8")
+    avr = _avr_trace(harness, path, tmp_path)
+    assert avr == _host_trace(path, tmp_path), programs[index]

@@ -1,4 +1,5 @@
-"""Random programs of the whole language: variables of every kind and
+"""Random programs of the whole language (rare branches are taken on the
+largest draw, since Hypothesis leans towards the smallest): variables of every kind and
 constants (the 16-bit edges included), expressions of every operator and
 function over numbers, constants, variables and readings, `when` rules,
 guards, `every`/`after`, `wait` in sequences, `set_speed`, `random`,
@@ -86,7 +87,7 @@ def language_programs(draw) -> Program:
         if depth <= 0 or form <= 2:
             kind = draw(st.sampled_from(KINDS))
             left = number(kind, depth - 1)
-            right = left if draw(st.integers(0, 9)) == 0 else number(kind, depth - 1)
+            right = left if draw(st.integers(0, 9)) == 9 else number(kind, depth - 1)
             return f"{left} {draw(st.sampled_from(COMPARE))} {right}"
         if form == 3:
             return f"not ({condition(depth - 1)})"
@@ -104,7 +105,7 @@ def language_programs(draw) -> Program:
         return leaf(kind) + "".join(f" + {leaf(kind)}" for _ in range(n))
 
     def expression(kind):
-        if draw(st.integers(0, 79)) == 0:
+        if draw(st.integers(0, 79)) == 79:
             return deep(kind)
         return number(kind, draw(st.integers(0, 4)))
 
@@ -112,7 +113,7 @@ def language_programs(draw) -> Program:
         form = draw(st.integers(0, 9))
         if form <= 3 and variables:
             name = draw(st.sampled_from(sorted(variables)))
-            kind = variables[name] if draw(st.integers(0, 19)) else draw(st.sampled_from(KINDS))
+            kind = variables[name] if draw(st.integers(0, 19)) < 19 else draw(st.sampled_from(KINDS))
             return f"{name} {draw(st.sampled_from(['=', '=', '+=', '-=']))} {expression(kind)}"
         if form <= 5:
             return f"set_speed({expression('speed')}, {expression('speed')})"
@@ -126,7 +127,7 @@ def language_programs(draw) -> Program:
         steps = []
         for _ in range(draw(st.integers(1, 3))):
             calls = [action() for _ in range(draw(st.integers(1, 3)))]
-            if allow_wait and draw(st.integers(0, 3)) == 0:
+            if allow_wait and draw(st.integers(0, 3)) == 3:
                 calls.append(f"wait({draw(st.sampled_from(['10 ms', '100 ms', '1 s']))})")
             steps.append(", ".join(calls))
         return " then ".join(steps)
@@ -136,7 +137,7 @@ def language_programs(draw) -> Program:
     def rule(in_mode):
         form = draw(st.integers(0, 6))
         tail = draw(st.sampled_from(["", "", " priority 1", " priority 2"]))
-        guard = f" if {condition(draw(st.integers(0, 2)))}" if draw(st.integers(0, 3)) == 0 \
+        guard = f" if {condition(draw(st.integers(0, 2)))}" if draw(st.integers(0, 3)) == 3 \
             else ""
         if form <= 1:
             head = f"when {condition(draw(st.integers(0, 3)))}"
@@ -152,7 +153,7 @@ def language_programs(draw) -> Program:
             repeat = " repeat" if event != "immediate" and draw(st.booleans()) else ""
             head = f"on {event}{repeat}"
         actions = body()
-        if modes and draw(st.integers(0, 4)) == 0:
+        if modes and draw(st.integers(0, 4)) == 4:
             actions += f", enter {draw(st.sampled_from(modes))}"
         return f"{head}{tail}{guard} do {actions}"
 
@@ -160,7 +161,7 @@ def language_programs(draw) -> Program:
         lines.append(rule(False))
     for k, mode in enumerate(modes):
         lines.append(("initial " if k == 0 else "") + f"mode {mode} {{")
-        if draw(st.integers(0, 9)) == 0:
+        if draw(st.integers(0, 9)) == 9:
             lines.append(f"    var local{k} = 0")        # not allowed: E001, never a crash
         for _ in range(draw(st.integers(1, 3))):
             lines.append("    " + rule(True))
