@@ -5,9 +5,10 @@ and cylinders (from the trace's `world` record, when the run had a world),
 a scale bar, each robot's path through its poses (the `pose` records and
 the pose of every other record), a marker where a rule fired, labelled with
 the rule's name (or its event), the modes entered, LEDs switched and the
-first contact, and the robot at its final pose with its name. Below, a
-timeline: one row per rule (and for modes, LEDs and contacts), a tick at
-each firing, time in seconds. Labels are laid out so that none covers
+first contact, and the robot at its final pose with its name and LEDs.
+Below, a timeline: bands of who holds the motors and when the robot is
+still, one row per rule (and for modes, LEDs and contacts), a tick at each
+firing, time in seconds. Labels are laid out so that none covers
 another or a robot's name and none leaves the picture (a label with no
 free place is left to the marker's tooltip); tests/sim/test_plot_layout.py
 measures that in a browser.
@@ -17,8 +18,11 @@ The drawing is made of named pieces that tests and tools can find again:
 `g.robot-run` (`data-robot`) with `polyline.path`, `circle.firing`
 (`data-t-ms`, `data-label`: the rule's `file:line`; `text.firing-label`),
 `polygon.mode-change`, `circle.led-change`, `path.contact`,
-`g.final-pose`; `g#timeline` with `g.timeline-row` (`data-label`: a rule's
-`file:line`, or `mode`, `led`, `contact`) holding `line.tick` (`data-t-ms`).
+`g.final-pose` (with the LEDs' `g.leds`: leds.py); `g#timeline` with the
+bands of who holds the motors and when the robot is still
+(`g.timeline-band`: timeline.py) and `g.timeline-row` (`data-label`: a
+rule's `file:line`, or `mode`, `led`, `contact`) holding `line.tick`
+(`data-t-ms`).
 """
 from __future__ import annotations
 

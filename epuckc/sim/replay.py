@@ -78,6 +78,8 @@ window.addEventListener("error", e => {{ document.body.dataset.errors += e.messa
     svg.appendChild(g);
     return {{ poses: r.poses, leds: r.leds, g: g, body: body, front: front, ring: ring }};
   }});
+  // the LEDs at the final pose are the end's: the moving robots show them at the cursor
+  svg.querySelectorAll(".final-pose .leds").forEach(e => e.setAttribute("display", "none"));
   function light(e, on, colour) {{
     e.dataset.on = on ? "1" : "0"; e.setAttribute("fill", on ? colour : "none");
   }}
