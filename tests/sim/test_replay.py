@@ -8,13 +8,14 @@ import html
 import json
 import re
 import subprocess
+import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import pytest
 
 from epuckc.sim.replay import replay_html
 from tests.conftest import require_enki, require_tool
-from tests.support.world import EXAMPLES, LED_PROGRAM, epuckc
+from tests.support.world import EXAMPLES, LED_PROGRAM, by_class, epuckc
 
 
 def browse(page: Path, tmp_path: Path, play: bool, budget_ms: int = 0, at_ms=None) -> str:
@@ -145,3 +146,38 @@ def test_the_variables_panel_lists_every_declared_variable_from_0_s(counting, tm
     assert panel(browse(page, tmp_path, play=False, at_ms=t)) == [
         f"{name} = {values[name]}" for name, _ in declared]
     assert values != dict(declared)
+
+
+def test_a_robot_pushing_a_wall_is_still_and_each_robot_lists_its_own_variables(tmp_path):
+    """A robot that drives into a wall and pushes it to the end of the run
+    (its wheels turning) gets a still band from about its first contact to
+    the end; in a world whose robots run different programs, the panel
+    lists each robot's own variables from 0 s."""
+    require_enki()
+    (tmp_path / "push.epk").write_text("var pushes = 1\n"
+                                       "on immediate do pushes += 1, start_straight(300 steps/s, 1 m)\n")
+    (tmp_path / "idle.epk").write_text("var idle = 7\nvar spare = -1\n"
+                                       "after 5 s do idle = 8, spare = 0\n")
+    (tmp_path / "w.world").write_text("arena 40 cm x 40 cm\nrobot a at 20 cm, 20 cm\n"
+                                      "robot b at 10 cm, 30 cm heading 90 deg program idle.epk\n")
+    out, trace = tmp_path / "w.html", tmp_path / "t.jsonl"
+    result = epuckc("run", tmp_path / "push.epk", "--world", tmp_path / "w.world",
+                    "--time-limit", "8s", "--html", out, "--trace", trace, cwd=tmp_path)
+    assert result.returncode == 3, result.stderr
+    records = [json.loads(x) for x in trace.read_text().splitlines()]
+    [contact] = [r for r in records if r["kind"] == "contacts" and r["robot"] == "a"]
+    end = max(r["t_ms"] for r in records if "t_ms" in r)
+    assert 0 < contact["first_ms"] < end - 3000
+    text = out.read_text()
+    picture = ET.fromstring(text[text.index("<svg"):text.index("</svg>") + 6])
+    spans = {r.get("data-robot"): (int(r.get("data-from-ms")), int(r.get("data-to-ms")))
+             for r in by_class(picture, "still")}
+    assert len(spans) == len(by_class(picture, "still")) == 2       # one band each
+    assert spans["b"] == (0, end)                   # b never moves
+    first, last = spans["a"]
+    # the last 5 mm before the wall take 130 ms at 38.6 mm/s
+    assert contact["first_ms"] - 300 <= first <= contact["first_ms"] + 50 and last == end
+    dom = browse(out, tmp_path, play=False, at_ms=0)
+    items = [html.unescape(i) for i in re.findall(
+        r"<li>(.*?)</li>", re.search(r'<ul id="vars">(.*?)</ul>', dom).group(1))]
+    assert items == ["a: pushes = 1", "b: idle = 7", "b: spare = -1"]
