@@ -21,11 +21,12 @@ def add_run_options(p: argparse.ArgumentParser, duration):
                    help="run in an Enki world (arena, obstacles, several robots; docs/world.md) "
                         "instead of replaying a scenario")
     p.add_argument("--svg", metavar="OUT.svg",
-                   help="also draw the run: world, paths, rule firings, a timeline")
+                   help="also draw the run: world, paths, rule firings, the robots' LEDs at the "
+                        "end, a timeline with who holds the motors and when the robot is still")
     p.add_argument("--html", metavar="OUT.html",
-                   help="also write a page that replays the run (robots moving, play/pause, a "
-                        "time slider, the rules fired and the variables at the cursor); it "
-                        "needs no network")
+                   help="also write a page that replays the run (robots moving with their LEDs, "
+                        "play/pause, a time slider, the rules fired and the variables at the "
+                        "cursor); it needs no network")
     p.add_argument("--pose-interval", type=duration, metavar="DURATION",
                    help=f"add a pose record to the trace every DURATION (default with --svg "
                         f"or --html: "
