@@ -736,6 +736,7 @@ void mainloop(void)
         rt_mode_trace_pending = 0;
         rt_trace_mode(rt_current_mode);
     }
+    rt_motors_retrace();            /* a motion that main started */
     rt_last_left = e_get_steps_left();
     rt_last_right = e_get_steps_right();
     for (;;) {
@@ -754,6 +755,7 @@ void mainloop(void)
     /* exit_main: stop at once */
     rt_motion.active = 0;
     rt_wheels(0, 0);
+    rt_motors_changed();
     rt_seq = NULL;
     rt_seq_waiting = 0;
     rt_seq_delay = 0;

@@ -64,6 +64,12 @@ void rt_trace_set(int id, int value)
     (void)value;
 }
 
+void rt_trace_motors(int active, int owner_event_id)
+{
+    (void)active;
+    (void)owner_event_id;
+}
+
 void rt_name_var(int id, const char *name)
 {
     (void)id;

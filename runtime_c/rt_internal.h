@@ -81,6 +81,11 @@ extern unsigned long rt_poll_count;   /* polls so far: readings are read once in
 
 /* rt_motion.c: motion and the sequencer */
 extern struct rt_motion rt_motion;
+/* Traces who holds the motors when that changed since it last did (after
+ * any change of rt_motion.active or .owner); rt_motors_retrace traces it
+ * again at mainloop's start (a trace opens there). */
+void rt_motors_changed(void);
+void rt_motors_retrace(void);
 extern int rt_last_left;   /* raw counters at the previous poll */
 extern int rt_last_right;
 extern int rt_seen_moving;

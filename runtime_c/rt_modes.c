@@ -82,6 +82,7 @@ void enter_mode(int mode)
         rt_motion.active = 0;
         rt_seen_moving = 0;
         rt_wheels(0, 0);
+        rt_motors_changed();
     }
 }
 

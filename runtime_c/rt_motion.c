@@ -11,6 +11,8 @@ struct rt_motion rt_motion = { 0, 0, 0, 0, 0, -1, 0 };
 int rt_last_left;           /* raw counters at the previous poll */
 int rt_last_right;
 static unsigned motion_starts;  /* incremented at every motion start */
+static int traced_active;       /* who holds the motors, as last traced */
+static int traced_owner = -1;
 
 /* stop_motor event latch: see event_stop_motor. */
 int rt_seen_moving;
@@ -57,6 +59,26 @@ static long wheel_delta(int now, int last)
 {
     unsigned d = ((unsigned)now - (unsigned)last) & 0xFFFFu;
     return d >= 0x8000u ? (long)d - 0x10000L : (long)d;
+}
+
+/* ---- who holds the motors, for the trace ---------------------------------- */
+
+void rt_motors_changed(void)
+{
+    int active = rt_motion.active != 0;
+    int owner = active ? rt_motion.owner : -1;
+
+    if (active == traced_active && owner == traced_owner)
+        return;
+    traced_active = active;
+    traced_owner = owner;
+    rt_trace_motors(active, owner);
+}
+
+void rt_motors_retrace(void)
+{
+    if (traced_active)
+        rt_trace_motors(traced_active, traced_owner);
 }
 
 /* ---- motion control -------------------------------------------------------- */
@@ -118,6 +140,7 @@ static void motion_begin(int left, int right, long target, int watch)
     rt_last_right = e_get_steps_right();
     rt_seen_moving = 1;
     motion_starts++;
+    rt_motors_changed();
 }
 
 /* Phase (2) of a poll: measure the wheels, end the motion at its target. */
@@ -147,6 +170,7 @@ void rt_motion_update(void)
     if (progress >= rt_motion.target) {
         rt_motion.active = 0;
         rt_wheels(0, 0);
+        rt_motors_changed();
     }
 }
 
@@ -291,6 +315,7 @@ void action_stop_motor(void *param)
     sequence_outside_command();
     rt_motion.active = 0;
     rt_wheels(0, 0);
+    rt_motors_changed();
 }
 
 /* ---- sequencer -------------------------------------------------------------- */

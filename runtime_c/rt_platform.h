@@ -36,6 +36,10 @@ void rt_trace_suppressed(int event_id, int priority, int owner_event_id,
 void rt_trace_mode(int mode);
 /* Extension (the rule language): variable `id` changed to `value`. */
 void rt_trace_set(int id, int value);
+/* Extension (pictures of a run): who holds the motors changed.  active 0:
+ * no motion runs (the motors are free); else the motion in progress belongs
+ * to owner_event_id's action (-1: started outside any event, by main). */
+void rt_trace_motors(int active, int owner_event_id);
 
 /* Registration and names, for the trace.  The core calls rt_new_action /
  * rt_new_event at each registration (the host names standard functions

@@ -61,5 +61,6 @@ void rt_trace_suppressed(int event_id, int priority, int owner_event_id,
 void rt_trace_mode(int mode) { (void)mode; }
 void rt_name_mode(int mode, const char *name) { (void)mode; (void)name; }
 void rt_trace_set(int id, int value) { (void)id; (void)value; }
+void rt_trace_motors(int active, int owner_event_id) { (void)active; (void)owner_event_id; }
 void rt_name_var(int id, const char *name) { (void)id; (void)name; }
 unsigned long rt_platform_seed(void) { return 1UL; }

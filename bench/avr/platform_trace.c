@@ -128,6 +128,9 @@ void rt_trace_set(int id, int value)
     line('S', 2, id, value, 0);
 }
 
+/* who holds the motors: not compared with the host's trace */
+void rt_trace_motors(int active, int owner_event_id) { (void)active; (void)owner_event_id; }
+
 void rt_new_action(int action_id, action_func f) { (void)action_id; (void)f; }
 void rt_new_event(int event_id, event_func f) { (void)event_id; (void)f; }
 void rt_geometry(long wheel_circumference_um, long axle_um, long steps_per_rev)

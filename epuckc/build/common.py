@@ -82,6 +82,8 @@ class Program:
     names them, joined to its folder: gcc's messages then name the user's
     own file). Hand-written: `source_path` is compiled where it is.
     `inputs` are every file the command reads: nothing is written over them.
+    `variables`: a rule file's declared variables, (name, initial value as
+    the runtime holds it) in declared order, for the replay of a run.
     """
     name: str
     c_text: str
@@ -94,6 +96,7 @@ class Program:
     header_text: Optional[str] = None
     source_path: Optional[Path] = None
     inputs: list = field(default_factory=list)
+    variables: list = field(default_factory=list)
 
     def user_sources(self) -> list:
         """The C files of the user's that are compiled on their own."""

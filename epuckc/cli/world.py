@@ -21,11 +21,12 @@ def add_run_options(p: argparse.ArgumentParser, duration):
                    help="run in an Enki world (arena, obstacles, several robots; docs/world.md) "
                         "instead of replaying a scenario")
     p.add_argument("--svg", metavar="OUT.svg",
-                   help="also draw the run: world, paths, rule firings, a timeline")
+                   help="also draw the run: world, paths, rule firings, the robots' LEDs at the "
+                        "end, a timeline with who holds the motors and when the robot is still")
     p.add_argument("--html", metavar="OUT.html",
-                   help="also write a page that replays the run (robots moving, play/pause, a "
-                        "time slider, the rules fired and the variables at the cursor); it "
-                        "needs no network")
+                   help="also write a page that replays the run (robots moving with their LEDs, "
+                        "play/pause, a time slider, the rules fired and the variables at the "
+                        "cursor); it needs no network")
     p.add_argument("--pose-interval", type=duration, metavar="DURATION",
                    help=f"add a pose record to the trace every DURATION (default with --svg "
                         f"or --html: "
@@ -66,13 +67,25 @@ def run(args, program, load_program_file, run_host) -> int:
         except WorldError as exc:
             print(exc, file=sys.stderr)
             return EXIT_USAGE
+    loaded = {}
+
+    def load(path):
+        """A robot's own program, loaded once (its variables are the replay's)."""
+        if path not in loaded:
+            loaded[path] = load_program_file(path)
+        return loaded[path]
+
+    if world is None:
+        variables = {"": program.variables}
     with tempfile.TemporaryDirectory(prefix="epuckc-run-") as tmp:
         trace = Path(args.trace) if args.trace else (Path(tmp) / "trace.jsonl" if pictures else None)
         try:
             if world is not None:
                 from ..sim.enki import run_world
-                status = run_world(world, program, load_program_file, args.time_limit,
+                status = run_world(world, program, load, args.time_limit,
                                    trace.resolve() if trace else None, pose_ms)
+                variables = {r.name: (program if r.program is None else load(r.program)).variables
+                             for r in world.robots}
             else:
                 status = run_host(program, scenario=args.scenario, time_limit_ms=args.time_limit,
                                   trace=str(trace) if trace else None, pose_ms=pose_ms)
@@ -82,7 +95,7 @@ def run(args, program, load_program_file, run_host) -> int:
         for out, draw in ((args.svg, "svg"), (args.html, "html")):
             if out:
                 plot_status = _plot(trace, Path(out), title=picture_title(args.file, world),
-                                    form=draw)
+                                    form=draw, variables=variables)
                 if plot_status:
                     return plot_status
     return status
@@ -104,8 +117,9 @@ def picture_title(program: str, world) -> str:
     return "; ".join(f"{name}: {', '.join(robots)}" for name, robots in by_program.items())
 
 
-def _plot(trace: Path, out: Path, title: str, form: str = "svg") -> int:
-    """Draw a trace as an SVG picture, or as the page that replays it."""
+def _plot(trace: Path, out: Path, title: str, form: str = "svg", variables=None) -> int:
+    """Draw a trace as an SVG picture, or as the page that replays it
+    (`variables`: each robot's declared ones, replay_html's)."""
     from ..base.output import write_atomic
     from ..sim.plot import PlotError, plot_trace
     from ..sim.replay import replay_html
@@ -118,8 +132,10 @@ def _plot(trace: Path, out: Path, title: str, form: str = "svg") -> int:
         _error(f"cannot read {trace}: {getattr(exc, 'strerror', None) or exc}")
         return EXIT_USAGE
     try:
-        draw = plot_trace if form == "svg" else replay_html
-        svg = draw(text, title=title, source=str(trace))
+        if form == "svg":
+            svg = plot_trace(text, title=title, source=str(trace))
+        else:
+            svg = replay_html(text, title=title, source=str(trace), variables=variables)
     except PlotError as exc:
         _error(str(exc))
         return EXIT_USAGE

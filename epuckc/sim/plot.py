@@ -5,9 +5,10 @@ and cylinders (from the trace's `world` record, when the run had a world),
 a scale bar, each robot's path through its poses (the `pose` records and
 the pose of every other record), a marker where a rule fired, labelled with
 the rule's name (or its event), the modes entered, LEDs switched and the
-first contact, and the robot at its final pose with its name. Below, a
-timeline: one row per rule (and for modes, LEDs and contacts), a tick at
-each firing, time in seconds. Labels are laid out so that none covers
+first contact, and the robot at its final pose with its name and LEDs.
+Below, a timeline: bands of who holds the motors and when the robot is
+still, one row per rule (and for modes, LEDs and contacts), a tick at each
+firing, time in seconds. Labels are laid out so that none covers
 another or a robot's name and none leaves the picture (a label with no
 free place is left to the marker's tooltip); tests/sim/test_plot_layout.py
 measures that in a browser.
@@ -17,8 +18,11 @@ The drawing is made of named pieces that tests and tools can find again:
 `g.robot-run` (`data-robot`) with `polyline.path`, `circle.firing`
 (`data-t-ms`, `data-label`: the rule's `file:line`; `text.firing-label`),
 `polygon.mode-change`, `circle.led-change`, `path.contact`,
-`g.final-pose`; `g#timeline` with `g.timeline-row` (`data-label`: a rule's
-`file:line`, or `mode`, `led`, `contact`) holding `line.tick` (`data-t-ms`).
+`g.final-pose` (with the LEDs' `g.leds`: leds.py); `g#timeline` with the
+bands of who holds the motors and when the robot is still
+(`g.timeline-band`: timeline.py) and `g.timeline-row` (`data-label`: a
+rule's `file:line`, or `mode`, `led`, `contact`) holding `line.tick`
+(`data-t-ms`).
 """
 from __future__ import annotations
 
@@ -29,6 +33,9 @@ from dataclasses import dataclass, field
 from typing import Optional
 
 import svgwrite
+
+from . import leds as leds_mod
+from . import timeline as bands
 
 MAP_WIDTH_PX = 640.0
 MAP_MAX_HEIGHT_PX = 520.0
@@ -72,6 +79,8 @@ class RobotRun:
     poses: list = field(default_factory=list)       # (t_ms, x, y, heading)
     firings: list = field(default_factory=list)
     marks: list = field(default_factory=list)
+    leds: list = field(default_factory=list)        # (t_ms, ring, body, front): leds.py
+    holds: list = field(default_factory=list)       # (t_ms, rule label or None, name)
 
 
 SHOWN_CHARS = 24        # a label on the map; the timeline and the tooltip say it all
@@ -136,7 +145,12 @@ def parse_trace(text: str, source: str = "trace"):
             run.marks.append(Mark("mode", t, f"mode {rec.get('name', '')}", x, y))
         elif rec["kind"] == "led":
             state = "on" if rec.get("state") else "off"
-            run.marks.append(Mark("led", t, f"{rec.get('name', 'LED')} {state}", x, y))
+            run.leds.append(leds_mod.led_state(rec))
+            run.marks.append(Mark("led", t, f"{rec.get('name', 'LED')} {state} (ring "
+                                  f"{run.leds[-1][1]})", x, y))
+        elif rec["kind"] == "motors":
+            owner = str(rec.get("name", ""))
+            run.holds.append((t, None if owner == "free" else rule_label(owner), owner))
     if not runs:
         raise PlotError(f"{source}: the trace has no record with a pose")
     for robot, first_ms, rec in contacts:
@@ -256,7 +270,8 @@ def plot_trace(text: str, title: str = "", source: str = "trace") -> str:
         rows.append(kind)
         row_titles[kind] = words
     timeline_top = top + map_h + 36.0
-    timeline_h = max(len(rows), 1) * ROW_PX
+    n_bands = len(bands.band_rows(runs))
+    timeline_h = (max(len(rows), 1) + n_bands) * ROW_PX
     width = max(MARGIN_PX * 2 + map_w, MARGIN_PX * 2 + LABEL_COLUMN_PX + 360.0)
     height = timeline_top + timeline_h + 40.0
     dwg = svgwrite.Drawing(size=(f"{_r(width)}", f"{_r(height)}"), debug=False)
@@ -397,6 +412,8 @@ def plot_trace(text: str, title: str = "", source: str = "trace") -> str:
         hy = cy - max(rr, 3.0) * math.sin(math.radians(fh))
         fin.add(dwg.line(start=(cx, cy), end=(_r(hx), _r(hy)), stroke="#000", stroke_width=1.5,
                          class_="heading"))
+        fin.add(leds_mod.draw_leds(dwg, cx, cy, max(rr, 3.0), fh,
+                                   leds_mod.state_at(run.leds, run.poses[-1][0])))
         if run.name:
             box = name_boxes[run.name]
             fin.add(dwg.text(run.name, insert=(box[0], _r(box[1] + 10)), font_family="sans-serif",
@@ -416,8 +433,10 @@ def plot_trace(text: str, title: str = "", source: str = "trace") -> str:
 
     tl.add(dwg.text("rules fired over time", insert=(MARGIN_PX, _r(timeline_top - 12)),
                     font_family="sans-serif", font_size=11, class_="timeline-title"))
+    bands.draw_bands(dwg, tl, runs, end_ms, rows, bands.rule_colours(runs, rows), timeline_top,
+                     ROW_PX, MARGIN_PX, tx, [COLOURS[i % len(COLOURS)] for i in range(len(runs))])
     for row, label in enumerate(rows):
-        y = timeline_top + row * ROW_PX
+        y = timeline_top + (row + n_bands) * ROW_PX
         rowg = dwg.g(class_="timeline-row")
         rowg["data-label"] = label
         text = row_titles[label]

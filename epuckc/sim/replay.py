@@ -2,7 +2,10 @@
 that replays a run: the picture of plot.py (arena, obstacles, paths,
 timeline) with every robot moving along its path, play/pause, a time
 slider, and at the cursor the rules that fired last and the variables'
-values (`set` records, when the trace has them).
+values (every declared variable from 0 s with its initial value, when the
+run passes them, then the trace's `set` records); each robot's LEDs (ring,
+body, front: leds.py) lit as they were at the cursor. `#t=MS` after the
+page's address opens it at that moment, `#play` plays it.
 
 The page carries the trace's poses, firings and variable changes as JSON
 and a small script; the picture's map frame and timeline axis come from
@@ -14,7 +17,10 @@ from __future__ import annotations
 
 import html
 import json
+import re
+from typing import Optional
 
+from .leds import BODY_ON, FRONT_ON, OFF_STROKE, RING_ON, local_geometry
 from .plot import COLOURS, DEFAULT_ROBOT_RADIUS_MM, parse_trace, plot_trace
 
 _PAGE = """<!doctype html>
@@ -55,9 +61,28 @@ window.addEventListener("error", e => {{ document.body.dataset.errors += e.messa
     c.setAttribute("stroke", "#000");
     const h = document.createElementNS(NS, "line");
     h.setAttribute("x2", Math.max(run.radius * scale, 3)); h.setAttribute("stroke", "#000");
-    g.appendChild(c); g.appendChild(h); svg.appendChild(g);
-    return {{ poses: r.poses, g: g }};
+    g.appendChild(c); g.appendChild(h);
+    // the LEDs, where leds.py places them in the robot's frame
+    const geo = run.leds, dot = (x, y, rad, cls) => {{
+      const e = document.createElementNS(NS, "circle");
+      e.setAttribute("cx", x); e.setAttribute("cy", y); e.setAttribute("r", rad);
+      e.setAttribute("class", cls); e.setAttribute("stroke", "{off_stroke}");
+      e.setAttribute("stroke-width", "0.5"); g.appendChild(e); return e;
+    }};
+    const body = dot(0, 0, geo.body_r, "led body-led");
+    body.setAttribute("fill", "none"); body.setAttribute("stroke-width", geo.body_w);
+    const front = dot(geo.front[0], geo.front[1], geo.front_r, "led front-led");
+    const ring = geo.ring.map(([x, y], i) => {{
+      const e = dot(x, y, geo.led_r, "led ring-led"); e.dataset.led = i; return e;
+    }});
+    svg.appendChild(g);
+    return {{ poses: r.poses, leds: r.leds, g: g, body: body, front: front, ring: ring }};
   }});
+  // the LEDs at the final pose are the end's: the moving robots show them at the cursor
+  svg.querySelectorAll(".final-pose .leds").forEach(e => e.setAttribute("display", "none"));
+  function light(e, on, colour) {{
+    e.dataset.on = on ? "1" : "0"; e.setAttribute("fill", on ? colour : "none");
+  }}
   const cursor = document.createElementNS(NS, "line");
   cursor.setAttribute("id", "cursor"); cursor.setAttribute("stroke", "#c00");
   cursor.setAttribute("y1", tTop - 4); cursor.setAttribute("y2", tBottom + 4);
@@ -74,6 +99,13 @@ window.addEventListener("error", e => {{ document.body.dataset.errors += e.messa
       const [, x, y, heading] = poseAt(r.poses, t);
       const [cx, cy] = px(x, y);
       r.g.setAttribute("transform", `translate(${{cx.toFixed(1)}} ${{cy.toFixed(1)}}) rotate(${{(-heading).toFixed(1)}})`);
+      const [ledT, ring, body, front] = r.leds.length && r.leds[0][0] <= t ? poseAt(r.leds, t)
+        : [0, "00000000", 0, 0];
+      r.g.dataset.ledsT = ledT;
+      r.ring.forEach((e, i) => light(e, ring[i] === "1", "{ring_on}"));
+      light(r.front, front, "{front_on}");
+      r.body.dataset.on = body ? "1" : "0";
+      r.body.setAttribute("stroke", body ? "{body_on}" : "none");
     }}
     const cx = tLeft + (tRight - tLeft) * Math.min(t, span) / span;
     cursor.setAttribute("x1", cx.toFixed(1)); cursor.setAttribute("x2", cx.toFixed(1));
@@ -109,7 +141,10 @@ window.addEventListener("error", e => {{ document.body.dataset.errors += e.messa
     if (playing) {{ playing = false; button.textContent = "play"; }} else play();
   }});
   slider.addEventListener("input", () => show(Number(slider.value)));
-  show(0);
+  // #t=MS shows that moment, #play plays from the start
+  const at = /^#t=([0-9]+)$/.exec(location.hash);
+  if (at) slider.value = Math.min(Number(at[1]), run.end);
+  show(Number(slider.value));
   if (location.hash === "#play") play();
 }})();
 </script></body></html>
@@ -120,15 +155,20 @@ window.addEventListener("error", e => {{ document.body.dataset.errors += e.messa
 SPEED = 10.0
 
 
-def replay_html(text: str, title: str = "", source: str = "trace") -> str:
-    """The replay page of a trace (deterministic)."""
+def replay_html(text: str, title: str = "", source: str = "trace",
+                variables: Optional[dict] = None) -> str:
+    """The replay page of a trace (deterministic). `variables`: each
+    robot's declared variables by its name ("" without a world), as
+    (name, initial value) in declared order: the panel lists them from 0 s."""
     world, runs, end_ms = parse_trace(text, source)
     robots, firings, sets = [], [], []
     for i, run in enumerate(runs):
         robots.append({"name": run.name, "colour": COLOURS[i % len(COLOURS)],
                        "poses": [[t, round(x, 1), round(y, 1), round(h, 1)]
-                                 for t, x, y, h in run.poses]})
+                                 for t, x, y, h in run.poses],
+                       "leds": [list(state) for state in run.leds]})
         firings += [[f.t_ms, run.name, f.shown] for f in run.firings]
+        sets += [[0, run.name, name, value] for name, value in (variables or {}).get(run.name, ())]
     for line in text.splitlines():
         if '"set"' in line:
             rec = json.loads(line)
@@ -136,11 +176,14 @@ def replay_html(text: str, title: str = "", source: str = "trace") -> str:
                 sets.append([int(rec["t_ms"]), str(rec.get("robot", "")), str(rec["var"]),
                              rec["value"]])
     firings.sort(key=lambda f: f[0])
-    sets.sort(key=lambda s: s[0])
-    data = {"robots": robots, "firings": firings, "sets": sets, "end": end_ms, "speed": SPEED,
-            "radius": float((world or {}).get("robot_radius_mm", DEFAULT_ROBOT_RADIUS_MM))}
-    payload = json.dumps(data, separators=(",", ":")).replace("</", "<\\/")
+    sets.sort(key=lambda s: s[0])       # stable: the declared values first
+    radius = float((world or {}).get("robot_radius_mm", DEFAULT_ROBOT_RADIUS_MM))
     svg = plot_trace(text, title=title, source=source)
+    scale = float(re.search(r'data-frame="\S+ \S+ (\S+) ', svg).group(1))
+    data = {"robots": robots, "firings": firings, "sets": sets, "end": end_ms, "speed": SPEED,
+            "radius": radius, "leds": local_geometry(max(radius * scale, 3.0))}
+    payload = json.dumps(data, separators=(",", ":")).replace("</", "<\\/")
     svg = svg[svg.index("<svg"):]
     return _PAGE.format(title=html.escape(title or "epuckc replay"), end=end_ms, svg=svg,
-                        data=payload)
+                        data=payload, ring_on=RING_ON, front_on=FRONT_ON, body_on=BODY_ON,
+                        off_stroke=OFF_STROKE)

@@ -90,30 +90,18 @@ static const struct {
     action_func f;
     const char *name;
 } std_action_names[] = {
-    { action_start_straight, "action_start_straight" },
-    { action_start_curve, "action_start_curve" },
-    { action_stop_motor, "action_stop_motor" },
-    { action_set_timer, "action_set_timer" },
-    { action_reset_timer, "action_reset_timer" },
-    { action_start_sensor, "action_start_sensor" },
-    { action_stop_sensor, "action_stop_sensor" },
-    { action_exit_main, "action_exit_main" },
-    { action_run_sequence, "action_run_sequence" },
-    { action_straight_steps, "action_straight_steps" },
-    { action_curve_steps, "action_curve_steps" },
-    { start_straight, "start_straight" },
-    { start_curve, "start_curve" },
-    { stop_motor, "stop_motor" },
-    { set_timer, "set_timer" },
-    { reset_timer, "reset_timer" },
-    { start_sensor, "start_sensor" },
-    { stop_sensor, "stop_sensor" },
-    { exit_main, "exit_main" },
-    { run_sequence, "run_sequence" },
-    { straight_steps, "straight_steps" },
-    { curve_steps, "curve_steps" },
-    { action_enter_mode, "action_enter_mode" },
-    { action_set_led, "action_set_led" },
+    { action_start_straight, "action_start_straight" }, { action_start_curve, "action_start_curve" },
+    { action_stop_motor, "action_stop_motor" }, { action_set_timer, "action_set_timer" },
+    { action_reset_timer, "action_reset_timer" }, { action_start_sensor, "action_start_sensor" },
+    { action_stop_sensor, "action_stop_sensor" }, { action_exit_main, "action_exit_main" },
+    { action_run_sequence, "action_run_sequence" }, { action_straight_steps, "action_straight_steps" },
+    { action_curve_steps, "action_curve_steps" }, { start_straight, "start_straight" },
+    { start_curve, "start_curve" }, { stop_motor, "stop_motor" },
+    { set_timer, "set_timer" }, { reset_timer, "reset_timer" },
+    { start_sensor, "start_sensor" }, { stop_sensor, "stop_sensor" },
+    { exit_main, "exit_main" }, { run_sequence, "run_sequence" },
+    { straight_steps, "straight_steps" }, { curve_steps, "curve_steps" },
+    { action_enter_mode, "action_enter_mode" }, { action_set_led, "action_set_led" },
     { action_play_sound, "action_play_sound" },
 };
 
@@ -762,6 +750,16 @@ void rt_trace_set(int id, int value)
     }
     if (!is_quiet())
         printf("[%6ld ms] set       %s = %d\n", now_ms, name, value);
+}
+
+/* who holds the motors changed: a "motors" record (JSON only, like pose),
+ * name the owner event's, "main" for a motion main started, "free" */
+void rt_trace_motors(int active, int owner_event_id)
+{
+    char buf[32];
+    record("motors", !active ? "free" : owner_event_id < 0 ? "main"
+           : get_name(&event_names, owner_event_id, "event", buf, sizeof buf),
+           active ? owner_event_id : -1, -1, 0);
 }
 
 /* The seed of `random`: EPUCK_SEED (`epuckc run --seed N`), 1 without it. */

@@ -35,9 +35,13 @@ def test_paper_figure_2_verbatim(tmp_path):
     assert r.returncode == 0, r.stderr
     seq = [(x["kind"], x["name"]) for x in r.trace]
     assert seq == [("event", "immediate"), ("action", "start_straight"),
+                   ("motors", "immediate"), ("motors", "free"),
                    ("event", "event_stop_motor"), ("action", "exit_main"),
                    ("exit", "exit_main")]
-    assert 3000 <= r.trace[2]["t_ms"] <= 3200
+    # the motors are immediate's from its start_straight to the motion's end,
+    # and the stop_motor event fires in the poll that ended it
+    assert r.trace[2]["t_ms"] == r.trace[1]["t_ms"]
+    assert 3000 <= r.trace[3]["t_ms"] == r.trace[4]["t_ms"] <= 3200
     assert abs(r.trace[-1]["x_mm"] - 100.0) < 0.5
     assert "event_stop_motor" in r.stdout and "exit at" in r.stdout
 

@@ -1,13 +1,14 @@
 """Pictures of a run (epuckc/sim/plot.py): the SVG is parsed and what it shows
 is checked against the trace it was drawn from."""
 import json
+import math
 import re
 
 import pytest
 
 from epuckc.sim.plot import PlotError, plot_trace
 
-from tests.support.world import EXAMPLES, by_class, epuckc, run, svg
+from tests.support.world import EXAMPLES, LED_PROGRAM, by_class, epuckc, run, svg
 
 POINT = re.compile(r"(-?[\d.]+),(-?[\d.]+)")
 
@@ -160,3 +161,113 @@ def test_a_rule_of_continuous_control_is_one_band_not_thousands_of_marks(tmp_pat
     assert band.get("data-count") == str(sum(1 for r in records if r["kind"] == "event"
                                              and "every" in r["name"]))
     assert not [t for t in by_class(root, "tick") if t.get("data-t-ms") != "1001"]
+
+
+# -- seeing why (issue 24): the LEDs, who holds the motors, when the robot is still
+
+
+def led_elements(group):
+    """{'ring': '01100000', 'body': '1', 'front': '0'} of a drawn robot."""
+    ring = sorted(by_class(group, "ring-led"), key=lambda e: int(e.get("data-led")))
+    [body], [front] = by_class(group, "body-led"), by_class(group, "front-led")
+    return {"ring": "".join(e.get("data-on") for e in ring), "body": body.get("data-on"),
+            "front": front.get("data-on")}
+
+
+def test_the_final_pose_shows_the_leds_as_the_trace_left_them(tmp_path):
+    prog = tmp_path / "count.epk"
+    prog.write_text(LED_PROGRAM)
+    picture = tmp_path / "count.svg"
+    records, _, _ = run(prog, tmp_path, "--svg", picture)
+    last = [r for r in records if r["kind"] == "led"][-1]
+    [final] = by_class(svg(picture), "final-pose")
+    assert led_elements(final) == {"ring": last["ring"], "body": str(last["body"]),
+                                   "front": str(last["front"])}
+    assert last["ring"] != "00000000" and last["body"] == 1     # something to see
+    # led0 at the front, then clockwise seen from above (led2 on the right)
+    heading = float(final.get("data-heading-deg"))
+    assert heading == pytest.approx(120, abs=2)
+    [disc] = [c for c in final if c.tag.endswith("circle")][:1]
+    cx, cy = float(disc.get("cx")), float(disc.get("cy"))
+    for led in by_class(final, "ring-led"):
+        i = int(led.get("data-led"))
+        angle = math.degrees(math.atan2(cy - float(led.get("cy")), float(led.get("cx")) - cx))
+        assert (angle - (heading - 45 * i) + 180) % 360 - 180 == pytest.approx(0, abs=2)
+    lit = [e for e in by_class(final, "ring-led") if e.get("data-on") == "1"]
+    assert lit and all(e.get("fill") != "none" for e in lit)
+
+
+def hold_spans(root):
+    return [(int(r.get("data-from-ms")), int(r.get("data-to-ms")), r.get("data-label"))
+            for r in by_class(root, "hold")]
+
+
+def test_the_motors_band_follows_the_rule_that_holds_them(tmp_path):
+    prog = tmp_path / "hold.epk"
+    prog.write_text("on immediate do start_straight(300 steps/s, 5 cm)\n"
+                    "after 3 s do start_curve(radius: 0 mm, degrees: 90 deg, speed: 300 steps/s)\n"
+                    "after 5 s do exit_main\n")
+    picture = tmp_path / "hold.svg"
+    records, _, _ = run(prog, tmp_path, "--svg", picture, "--pose-interval", "10ms")
+    spans = hold_spans(svg(picture))
+    events = [r for r in records if r["kind"] == "event"]
+    assert [(a, label) for a, _, label in spans] == [(e["t_ms"], e["name"].split()[0])
+                                                     for e in events[:2]]
+    posed = [r for r in records if "left_steps" in r]
+    for (a, b, _), next_start in zip(spans, [spans[1][0], records[-1]["t_ms"]]):
+        # the motion ran until the band's end; from there the wheels stood
+        during = [r["right_steps"] for r in posed if a <= r["t_ms"] <= b]
+        after = [r["right_steps"] for r in posed if b <= r["t_ms"] <= next_start]
+        assert len(set(during)) > 10 and len(set(after)) == 1
+        assert b < next_start
+    # a key in the rule's colour beside each rule's row
+    root = svg(picture)
+    keys = {k.get("data-label"): k.get("fill") for k in by_class(root, "hold-key")}
+    assert keys == {label: r.get("fill") for r in by_class(root, "hold")
+                    for label in [r.get("data-label")]}
+    assert len(set(keys.values())) == 2
+
+
+def test_a_suppressed_command_meets_the_band_of_the_rule_that_held_the_motors(tmp_path):
+    picture = tmp_path / "explorer.svg"
+    records, _, _ = run(EXAMPLES / "explorer.epk", tmp_path, "--svg", picture,
+                        "--scenario", EXAMPLES / "explorer.scn")
+    spans = hold_spans(svg(picture))
+    refused = [r for r in records if r["kind"] == "suppressed"]
+    assert refused
+    for r in refused:
+        [holder] = [label for a, b, label in spans if a <= r["t_ms"] < b]
+        assert holder == r["owner_name"].split()[0]
+
+
+def still_spans(root):
+    return [(int(r.get("data-from-ms")), int(r.get("data-to-ms"))) for r in by_class(root, "still")]
+
+
+def test_the_still_band_covers_the_time_the_robot_stood(tmp_path):
+    prog = tmp_path / "pause.epk"
+    prog.write_text("on immediate do start_straight(300 steps/s, 5 cm)\n"
+                    "after 4 s do start_straight(300 steps/s, 5 cm)\n"
+                    "after 8 s do exit_main\n")
+    picture = tmp_path / "pause.svg"
+    records, _, _ = run(prog, tmp_path, "--svg", picture, "--pose-interval", "10ms")
+    poses = [r for r in records if r["kind"] == "pose"]
+    go = [r["t_ms"] for r in records if r["kind"] == "event"][1]
+    # the wheels stood from the first pose of the first motion's last steps ...
+    first_end = max(r["right_steps"] for r in poses if r["t_ms"] < go)
+    stop = min(r["t_ms"] for r in poses if r["right_steps"] == first_end)
+    final = records[-1]
+    second_stop = min(r["t_ms"] for r in poses if r["right_steps"] == final["right_steps"])
+    assert stop < go - 2000 and second_stop < final["t_ms"] - 2000
+    # ... at 38.6 mm/s the last 5 mm take 130 ms: the band starts a little
+    # before the stop and ends a little after the start
+    [(a1, b1), (a2, b2)] = still_spans(svg(picture))
+    assert stop - 300 <= a1 <= stop and go <= b1 <= go + 300
+    assert second_stop - 300 <= a2 <= second_stop and b2 == final["t_ms"]
+
+
+@pytest.mark.parametrize("mm_per_s, still", [(4.0, True), (6.0, False)])
+def test_still_means_less_than_5_mm_in_any_second(mm_per_s, still):
+    from epuckc.sim.timeline import still_intervals
+    poses = [(t, mm_per_s * t / 1000, 0.0, 0.0) for t in range(0, 5001, 100)]
+    assert still_intervals(poses, 5000) == ([(0, 5000)] if still else [])

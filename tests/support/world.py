@@ -12,6 +12,18 @@ REPO = Path(__file__).resolve().parents[2]
 EXAMPLES = REPO / "examples"
 SVG = "{http://www.w3.org/2000/svg}"
 
+# LEDs switched at known times, three variables (pictures of a run)
+LED_PROGRAM = """# a count shown on the ring LEDs
+var count = 0
+var speed = 300 steps/s
+var shown = -4
+on immediate do led_on(front), start_curve(radius: 0 mm, degrees: 120 deg, speed: speed)
+after 1 s do count += 1, led_on(led0)
+after 2 s do count += 1, led_on(led1), led_on(body)
+after 3 s do count += 1, led_on(led2), led_off(front), led_toggle(led0)
+after 4 s do shown = count, exit_main
+"""
+
 
 def epuckc(*args, cwd=None, env=None):
     """Run the CLI as a user does, in a subprocess."""
