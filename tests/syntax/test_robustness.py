@@ -256,3 +256,42 @@ def test_capitalised_keywords_are_names_where_a_name_fits():
     that, also first on a line inside a statement."""
     report = check_text("action Robot = stop_motor\non immediate do\n    Robot\n")
     assert codes(report) == []
+
+
+# One of each statement kind, as written inside a mode block.
+IN_MODE = {
+    "RobotBlock": "robot { axle: 53 mm }",
+    "ConstDef": "const K = 1",
+    "VarDef": "var count = 0",
+    "ActionDef": "action go = stop_motor",
+    "ExternDef": 'extern action spin() from "spin.c"',
+    "Rule": "every 1 s do led_toggle(body)",
+    "ModeDef": "mode inner {",
+    "ModeEnd": "}",
+}
+
+
+def test_every_statement_kind_has_an_answer_inside_a_mode():
+    """Inside a mode, each kind of statement is a rule of the mode or a
+    coded error (E001) that says what it is, never a crash; outside, the
+    same text is accepted. A new statement kind needs a sample here."""
+    import typing
+    from epuckc.syntax import ast
+    kinds = {cls.__name__ for cls in typing.get_args(ast.Statement)}
+    assert kinds == set(IN_MODE), "a statement kind without a sample in IN_MODE"
+    for kind, text in IN_MODE.items():
+        cls = getattr(ast, kind)
+        assert cls.described, kind
+        program = f"mode m {{\n    {text}\n}}\non immediate do enter m\n"
+        if kind == "ModeDef":
+            program = "mode m {\n    mode inner {\n    }\n}\non immediate do enter m\n"
+        elif kind == "ModeEnd":     # the `}` that closes the mode
+            program = "mode m {\n    every 1 s do stop_motor\n}\non immediate do enter m\n"
+        got = codes(check_text(program))
+        if kind in ("Rule", "ModeEnd"):
+            assert not [c for c in got if c.startswith("E")], (kind, got)
+        else:
+            assert "E001" in got, (kind, got)
+            report = check_text(program)
+            said = "starts inside mode" if kind == "ModeDef" else cls.described
+            assert any(said in d.message for d in report.diagnostics), kind
