@@ -18,6 +18,7 @@ from . import arbitration, modes
 from .calls import Calls
 from .exprs import Exprs
 from .variables import Variables
+from .ranges import Ranges
 from .externs import Externs
 from .names import Names
 from .program import CheckedProgram
@@ -26,7 +27,7 @@ from .rules import Rules
 from .values import Values
 
 
-class Checker(Names, Externs, RobotSettings, Values, Exprs, Variables, Calls, Rules):
+class Checker(Names, Externs, RobotSettings, Values, Exprs, Variables, Ranges, Calls, Rules):
     """The checker's state and its order of work; each concern's methods live in
     the mixin of its module (names.py, externs.py, robot.py, values.py,
     calls.py, rules.py), the whole-program analyses in modes.py and

@@ -1,6 +1,5 @@
-"""Variables: their declarations, the intervals of their values (from every
-assignment of the program, iterated to a fixed point and widened where
-they keep growing), and assignments."""
+"""Variables: their declarations and assignments (the intervals of their
+values are ranges.py's)."""
 from __future__ import annotations
 
 from typing import Optional
@@ -12,9 +11,6 @@ from ..syntax import ast
 from .exprs import _kind_word
 from .messages import _code, did_you_mean
 from .program import BOOL, Expr, ResolvedCall, VarInfo
-
-# passes of the variables' intervals before the growing ones are widened
-RANGE_PASSES = 4
 
 
 class Variables:
@@ -35,45 +31,6 @@ class Variables:
             return
         self.vars[name] = VarInfo(name, value.kind, value.value, value.value, value.value,
                                   len(self.vars), stmt)
-
-    def _var_ranges(self):
-        """Each variable's interval: its initial value joined with what
-        every assignment of the program can give it."""
-        if not self.vars:
-            return
-        assigns = []
-        for stmt in self.program.statements:
-            bodies = []
-            if isinstance(stmt, ast.Rule):
-                bodies.append(stmt.body)
-            elif isinstance(stmt, ast.ActionDef):
-                bodies.append(stmt.body)
-            for body in bodies:
-                assigns += [c for step in body.steps for c in step.calls
-                            if isinstance(c, ast.Assign) and c.target.name in self.vars]
-        if not assigns:
-            return
-        saved = self.diags
-        self.diags = Collector(saved.source)
-        try:
-            for attempt in range(RANGE_PASSES + 1):
-                changed = False
-                for call in assigns:
-                    info = self.vars[call.target.name]
-                    value = self._assigned(call, info)
-                    if value is None or value.kind == BOOL:
-                        continue
-                    lo, hi = min(info.lo, value.lo), max(info.hi, value.hi)
-                    if (lo, hi) != (info.lo, info.hi):
-                        if attempt == RANGE_PASSES:       # still growing: widen
-                            lo = INT16_MIN if lo < info.lo else lo
-                            hi = INT16_MAX if hi > info.hi else hi
-                        info.lo, info.hi = lo, hi
-                        changed = True
-                if not changed:
-                    break
-        finally:
-            self.diags = saved
 
     def _assigned(self, call: ast.Assign, info: VarInfo) -> Optional[Expr]:
         """The value an assignment gives its variable (`x += e` is x + e)."""

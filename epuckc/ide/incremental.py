@@ -44,6 +44,7 @@ from typing import Optional
 from ..base.source import SourceFile, Span
 from ..check.checker import Checker
 from ..check.program import CheckedProgram
+from ..check.ranges import RangeMemo
 from ..diagnostics import Collector, Diagnostic
 from ..syntax import ast
 from ..syntax.lexer import MAX_LEXICAL_ERRORS
@@ -59,6 +60,7 @@ class _Memo:
         self.env = None
         self.actions = None     # the result of resolving the named actions
         self.rules: dict = {}   # id(rule node) -> what the rule came to (see _rule)
+        self.ranges = RangeMemo()   # the variables' intervals by component (check/ranges.py)
 
 
 class _Capture:
@@ -171,6 +173,7 @@ class IncrementalChecker(Checker):
     def __init__(self, program, diags, memo: _Memo, **options):
         super().__init__(program, diags, **options)
         self.memo = memo
+        self.range_memo = memo.ranges
         self._known: Optional[set] = None
         self._env_now = None
 

@@ -1,0 +1,214 @@
+"""The intervals of the variables, one strongly connected component of
+their dependency graph at a time, and only where something changed.
+
+A variable's interval is the union of its initial value and of every value
+an assignment can give it. An assignment `v = e` makes v depend on the
+variables e reads (and `v += e` on v itself); those dependencies form a
+graph whose strongly connected components (Tarjan, without recursion) are
+solved in dependency order: the components a component reads are final
+before it is iterated, so each one is a small fixpoint of its own
+assignments (in file order, RANGE_PASSES passes, then the bounds still
+growing are widened to the 16-bit range), and a chain of variables is
+exact however long it is.
+
+The result of a component depends only on its assignments, its members'
+declarations and the final intervals it reads (plus the constants and the
+geometry, which every value may use). With a memo (the language server's,
+ide/incremental.py), a component whose inputs are unchanged is not
+evaluated again: an edit costs the components it reaches, not the program.
+"""
+from __future__ import annotations
+
+from ..diagnostics import Collector
+from ..stdlib.units import INT16_MAX, INT16_MIN
+from ..syntax import ast
+from .messages import _shown
+from .program import BOOL
+
+# passes of a component's assignments before the growing bounds are widened
+RANGE_PASSES = 4
+
+
+class RangeMemo:
+    """What one document's intervals were computed from, kept between two
+    analyses: the environment (geometry and constants), each assignment's
+    reads, and each component's inputs and result."""
+    def __init__(self):
+        self.env = None
+        self.reads: dict = {}       # id(Assign) -> (Assign, names it reads, its text)
+        self.components: dict = {}  # members -> (inputs, {name: (lo, hi)})
+
+
+def _names_read(value) -> frozenset:
+    """The names an expression reads: variables, constants and readings (a
+    loop: expressions may be deep)."""
+    found, todo = set(), [value]
+    while todo:
+        node = todo.pop()
+        cls = node.__class__
+        if cls is ast.ConstRef:
+            found.add(node.name.name)
+        elif cls is ast.BinOp:
+            todo += (node.left, node.right)
+        elif cls is ast.UnaryOp:
+            todo.append(node.operand)
+        elif cls is ast.Paren:
+            todo.append(node.expr)
+        elif cls is ast.FuncCall:
+            todo += [a.value for a in node.args or () if hasattr(a, "value")]
+    return frozenset(found)
+
+
+def components(graph: dict) -> list:
+    """The strongly connected components of `graph` (node -> the nodes it
+    depends on), each a tuple in the order of `graph`, dependencies first.
+    Tarjan's algorithm with an explicit stack."""
+    order = {n: i for i, n in enumerate(graph)}
+    index, low, on_stack, stack, out = {}, {}, set(), [], []
+    counter = 0
+    for root in graph:
+        if root in index:
+            continue
+        work = [(root, iter(graph[root]))]
+        index[root] = low[root] = counter
+        counter += 1
+        stack.append(root)
+        on_stack.add(root)
+        while work:
+            node, edges = work[-1]
+            pushed = False
+            for nxt in edges:
+                if nxt not in index:
+                    index[nxt] = low[nxt] = counter
+                    counter += 1
+                    stack.append(nxt)
+                    on_stack.add(nxt)
+                    work.append((nxt, iter(graph[nxt])))
+                    pushed = True
+                    break
+                if nxt in on_stack:
+                    low[node] = min(low[node], index[nxt])
+            if pushed:
+                continue
+            work.pop()
+            if work:
+                parent = work[-1][0]
+                low[parent] = min(low[parent], low[node])
+            if low[node] == index[node]:
+                members = []
+                while True:
+                    m = stack.pop()
+                    on_stack.discard(m)
+                    members.append(m)
+                    if m == node:
+                        break
+                out.append(tuple(sorted(members, key=order.__getitem__)))
+    return out
+
+
+class Ranges:
+    """The checker's variables' intervals (a part of Checker; the
+    expressions are exprs.py's, the assignments variables.py's)."""
+
+    range_memo = None       # a RangeMemo where the language server keeps one
+
+    def _var_ranges(self):
+        """Each variable's interval, component by component."""
+        if not self.vars:
+            return
+        assigns: dict = {name: [] for name in self.vars}
+        place: dict = {}        # id(Assign) -> its place in the file
+        for stmt in self.program.statements:
+            body = stmt.body if isinstance(stmt, (ast.Rule, ast.ActionDef)) else None
+            if body is None:
+                continue
+            for step in body.steps:
+                for c in step.calls:
+                    if isinstance(c, ast.Assign) and c.target.name in self.vars:
+                        assigns[c.target.name].append(c)
+                        place[id(c)] = len(place)
+        if not any(assigns.values()):
+            return
+        memo = self.range_memo
+        if memo is not None:
+            env = (self.geo, tuple(self.consts.items()))
+            if memo.env != env:
+                memo.env, memo.components = env, {}
+            memo.env = env
+        reads = {}      # id(Assign) -> the variables it reads
+        texts = {}      # id(Assign) -> its text (with a memo)
+        graph = {}
+        variables = self.vars.keys()
+        for name, calls in assigns.items():
+            needs = set()
+            for call in calls:
+                known = memo.reads.get(id(call)) if memo is not None else None
+                if known is None or known[0] is not call:
+                    # (its text: what its value depends on of itself, where a
+                    # statement parsed again has new nodes and new spans)
+                    known = (call, _names_read(call.value),
+                             (call.op, _shown(call.value)) if memo is not None else None)
+                    if memo is not None:
+                        memo.reads[id(call)] = known
+                texts[id(call)] = known[2]
+                names = known[1] & variables
+                if call.op != "=":
+                    names |= {name}
+                reads[id(call)] = names
+                needs |= names
+            graph[name] = sorted(needs)
+        live = {}
+        for members in components(graph):
+            calls = sorted((c for m in members for c in assigns[m]),
+                           key=lambda c: place[id(c)])      # in file order
+            if not calls:
+                continue
+            inside = set(members)
+            outside = sorted({n for c in calls for n in reads[id(c)]} - inside)
+            inputs = (tuple(texts[id(c)] for c in calls) if memo is not None else None,
+                      tuple((m, self.vars[m].kind, self.vars[m].init) for m in members),
+                      tuple((n, self.vars[n].kind, self.vars[n].lo, self.vars[n].hi)
+                            for n in outside))
+            known = memo.components.get(members) if memo is not None else None
+            if known is not None and known[0] == inputs:
+                result = known[1]
+            else:
+                result = self._solve(calls)
+                if memo is not None:
+                    memo.components[members] = (inputs, result)
+            for m, (lo, hi) in result.items():
+                info = self.vars[m]
+                info.lo, info.hi = lo, hi
+            live[members] = True
+        if memo is not None:
+            if len(memo.components) > 2 * len(live) + 100:
+                memo.components = {k: v for k, v in memo.components.items() if k in live}
+            if len(memo.reads) > 2 * len(reads) + 100:
+                memo.reads = {k: v for k, v in memo.reads.items() if k in reads}
+
+    def _solve(self, calls: list) -> dict:
+        """A component's fixpoint: its assignments in file order until no
+        interval grows, widening what still grows after RANGE_PASSES."""
+        saved = self.diags
+        self.diags = Collector(saved.source)
+        try:
+            for attempt in range(RANGE_PASSES + 1):
+                changed = False
+                for call in calls:
+                    info = self.vars[call.target.name]
+                    value = self._assigned(call, info)
+                    if value is None or value.kind == BOOL:
+                        continue
+                    lo, hi = min(info.lo, value.lo), max(info.hi, value.hi)
+                    if (lo, hi) != (info.lo, info.hi):
+                        if attempt == RANGE_PASSES:       # still growing: widen
+                            lo = INT16_MIN if lo < info.lo else lo
+                            hi = INT16_MAX if hi > info.hi else hi
+                        info.lo, info.hi = lo, hi
+                        changed = True
+                if not changed:
+                    break
+        finally:
+            self.diags = saved
+        return {name: (self.vars[name].lo, self.vars[name].hi)
+                for name in dict.fromkeys(c.target.name for c in calls)}
