@@ -345,7 +345,8 @@ class Exprs:
             return Expr("num", BOOL, v, v, value=v, node=e.node)
         if e.lo != e.hi or not all(a.op == "num" for a in args):
             return e
-        return Expr("num", e.kind, e.lo, e.hi, value=e.lo, node=e.node, bare=e.bare)
+        # (its operands stay: overflow.py looks for an operation that saturated)
+        return Expr("num", e.kind, e.lo, e.hi, args, value=e.lo, node=e.node, bare=e.bare)
 
     # -- uses of expressions --
 
@@ -354,6 +355,7 @@ class Exprs:
         e = self._expr(node)
         if e is None or not self._is_bool(e, "a rule's condition"):
             return None
+        self._overflow(e)
         return e
 
     def _dynamic_arg(self, value, p, call_name: str) -> Optional[Expr]:
@@ -368,6 +370,7 @@ class Exprs:
                              f"`{self._text(value)}` is {_kind_word(e.kind)}",
                              help=self._kind_help(p.kind, p.name))
             return None
+        self._overflow(e, top=p.kind != SPEED)      # a speed's own range is W013's
         if p.kind == SPEED:
             top = self.geo.max_speed
             if e.hi > top or e.lo < -top:

@@ -15,6 +15,10 @@ from .program import BOOL, Expr, ResolvedCall, VarInfo
 
 # passes of the variables' intervals before the growing ones are widened
 RANGE_PASSES = 4
+# rules that run at most once are joined once each, up to this many assignments
+ONCE_MAX = 16
+# passes that give back what widening took where the assignments bound it
+NARROW_PASSES = 2
 
 
 class Variables:
@@ -41,7 +45,7 @@ class Variables:
         every assignment of the program can give it."""
         if not self.vars:
             return
-        assigns = []
+        assigns, once = [], []          # (the rules that run at most once: `once`)
         for stmt in self.program.statements:
             bodies = []
             if isinstance(stmt, ast.Rule):
@@ -49,31 +53,76 @@ class Variables:
             elif isinstance(stmt, ast.ActionDef):
                 bodies.append(stmt.body)
             for body in bodies:
-                assigns += [c for step in body.steps for c in step.calls
-                            if isinstance(c, ast.Assign) and c.target.name in self.vars]
-        if not assigns:
+                found = [c for step in body.steps for c in step.calls
+                         if isinstance(c, ast.Assign) and c.target.name in self.vars]
+                runs_once = isinstance(stmt, ast.Rule) and not stmt.repeat \
+                    and stmt.mode is None and stmt.trigger != "every"
+                (once if runs_once else assigns).extend(found)
+        if len(once) > ONCE_MAX:
+            assigns, once = assigns + once, []
+        if not assigns and not once:
             return
         saved = self.diags
         self.diags = Collector(saved.source)
         try:
-            for attempt in range(RANGE_PASSES + 1):
-                changed = False
-                for call in assigns:
-                    info = self.vars[call.target.name]
-                    value = self._assigned(call, info)
-                    if value is None or value.kind == BOOL:
-                        continue
-                    lo, hi = min(info.lo, value.lo), max(info.hi, value.hi)
-                    if (lo, hi) != (info.lo, info.hi):
-                        if attempt == RANGE_PASSES:       # still growing: widen
-                            lo = INT16_MIN if lo < info.lo else lo
-                            hi = INT16_MAX if hi > info.hi else hi
-                        info.lo, info.hi = lo, hi
-                        changed = True
-                if not changed:
+            self._join_assigned(assigns)
+            # each of `once` runs at most once, in any order among the others
+            for _ in once:
+                if not self._join_assigned(once, widen=False):
                     break
+                self._join_assigned(assigns)
+            self._narrow_ranges(assigns + once)
         finally:
             self.diags = saved
+
+    def _narrow_ranges(self, assigns):
+        """Gives back what widening took where the assignments bound it
+        (`n = min(n + 1, 1000)`): every value a variable takes is its initial
+        value or one an assignment gives from values within the intervals,
+        so each interval may be met with the hull of those."""
+        for _ in range(NARROW_PASSES):
+            hulls = {name: (info.init, info.init) for name, info in self.vars.items()}
+            for call in assigns:
+                info = self.vars[call.target.name]
+                value = self._assigned(call, info)
+                if value is None or value.kind == BOOL:
+                    return              # not every value is known: keep the intervals
+                lo, hi = hulls[info.name]
+                hulls[info.name] = (min(lo, value.lo), max(hi, value.hi))
+            changed = False
+            for name, (lo, hi) in hulls.items():
+                info = self.vars[name]
+                met = (max(info.lo, lo), min(info.hi, hi))
+                if met != (info.lo, info.hi):
+                    info.lo, info.hi = met
+                    changed = True
+            if not changed:
+                return
+
+    def _join_assigned(self, assigns, widen: bool = True) -> bool:
+        """Joins what `assigns` can give into their variables' intervals,
+        repeated to a fixed point (widened where they keep growing); with
+        widen False, once. Whether an interval grew."""
+        grew = False
+        attempt = 0
+        while True:                     # each widening takes a bound to an end: it stops
+            changed = False
+            for call in assigns:
+                info = self.vars[call.target.name]
+                value = self._assigned(call, info)
+                if value is None or value.kind == BOOL:
+                    continue
+                lo, hi = min(info.lo, value.lo), max(info.hi, value.hi)
+                if (lo, hi) != (info.lo, info.hi):
+                    if widen and attempt >= RANGE_PASSES:       # still growing: widen
+                        lo = INT16_MIN if lo < info.lo else lo
+                        hi = INT16_MAX if hi > info.hi else hi
+                    info.lo, info.hi = lo, hi
+                    changed = grew = True
+            attempt += 1
+            if not changed or not widen:
+                break
+        return grew
 
     def _assigned(self, call: ast.Assign, info: VarInfo) -> Optional[Expr]:
         """The value an assignment gives its variable (`x += e` is x + e)."""
@@ -106,6 +155,7 @@ class Variables:
         value = self._assigned(call, info)
         if value is None:
             return None
+        self._overflow(value)
         if value.kind != info.kind:
             self._kind_clash(call, info.kind, value.kind,
                              f"variable {_code(name)} is {_kind_word(info.kind)} (from its "

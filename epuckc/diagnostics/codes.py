@@ -78,6 +78,7 @@ CODES = {
     "W014": "a divisor that can be 0",
     "W015": "variable never used",
     "W016": "condition that never changes",
+    "W020": "an operation that can leave the 16-bit range and saturate",
 }
 
 _EXPLANATIONS = Path(__file__).resolve().parent / "explanations"
