@@ -133,6 +133,20 @@ def _clause_bounds(clause, base) -> Optional[dict]:
     return bounds
 
 
+def clauses(f: tuple) -> Optional[list]:
+    """The disjunctive form of `f` (None: too large), for
+    satisfiable_together."""
+    return _clauses(f)
+
+
+def satisfiable_together(a: Optional[list], b: Optional[list], base: dict) -> bool:
+    """Whether the conjunction of two formulas given by their clauses can
+    hold (True when either was too large)."""
+    if a is None or b is None or len(a) * len(b) > MAX_CLAUSES:
+        return True
+    return any(_clause_bounds(x + y, base) is not None for x in a for y in b)
+
+
 def satisfiable(f: tuple, base: dict) -> bool:
     """Whether some values (each name within its `base` interval) make `f`
     true; True when the question is too large to answer."""
