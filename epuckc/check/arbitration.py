@@ -232,7 +232,8 @@ class _Rules:
         flat = {id(r): [c for step in flat_steps(checker, r.body) for c in step]
                 for r in every_rule}
         self.condition = {id(r): condition_of(r) for r in rules}
-        self.memo_names, self.memo_clauses, self.memo_alone = {}, {}, {}
+        self.memo_names, self.memo_boxes, self.memo_alone = {}, {}, {}
+        self.memo_timing: dict = {}
         self.writes = {id(r): {c.name for c in flat[id(r)] if c.kind == "assign"}
                        for r in every_rule}
         self.base = {name: (info.lo, info.hi) for name, info in checker.vars.items()}
@@ -304,7 +305,7 @@ class _Rules:
         if unstable:
             both = cond.conjoin(cond.without(fa, unstable), cond.without(fb, unstable))
             return cond.satisfiable(both, self.base)
-        return cond.satisfiable_together(self._clauses(fa), self._clauses(fb), self.base)
+        return cond.satisfiable_together(self._boxes(fa), self._boxes(fb))
 
     # Each rule's formula is asked the same questions for every pair: the
     # answers are kept (by the formula's id: self.condition keeps it alive).
@@ -318,8 +319,8 @@ class _Rules:
     def _names(self, f: tuple) -> set:
         return self._memo(self.memo_names, f, cond.names_of)
 
-    def _clauses(self, f: tuple):
-        return self._memo(self.memo_clauses, f, cond.clauses)
+    def _boxes(self, f: tuple):
+        return self._memo(self.memo_boxes, f, lambda g: cond.boxes(g, self.base))
 
     def _alone(self, f: tuple) -> bool:
         return self._memo(self.memo_alone, f, lambda g: cond.satisfiable(g, self.base))
@@ -342,8 +343,58 @@ def _stops_and_goes_on(step) -> bool:
     return False
 
 
+def _racing_pairs(group: list, facts: _Rules) -> list:
+    """The pairs of `group` (rules of one priority, in file order) that can
+    fire together: can_fire_together over every pair, with what it reads of
+    each rule computed once (a file of a thousand racing rules has half a
+    million pairs)."""
+    shapes: dict = {}
+    info = []
+    for r in group:
+        f = facts.condition[id(r)]
+        reads_vars = f is not cond.TRUE and bool(facts._names(f) & facts.variables)
+        info.append((shapes.setdefault(_timing_shape(r), len(shapes)), f is cond.TRUE,
+                     None if f is cond.TRUE else facts._boxes(f), reads_vars,
+                     f is cond.TRUE or facts._alone(f)))
+    timing = {}
+    meet = cond.boxes_meet
+    found = []
+    for i, a in enumerate(group):
+        sa, ta, ba, va, ala = info[i]
+        for j in range(i + 1, len(group)):
+            sb, tb, bb, vb, alb = info[j]
+            t = timing.get((sa, sb))
+            if t is None:
+                t = timing[sa, sb] = timing_allows(a, group[j], facts.entry_stops)
+            if not t:
+                continue
+            if ta or tb:
+                ok = alb if ta else ala
+            elif va or vb:
+                ok = facts.conditions_allow(a, group[j])
+            else:
+                ok = ba is None or bb is None or meet(ba, bb)
+            if ok:
+                found.append((a, group[j]))
+    return found
+
+
 def can_fire_together(a, b, facts: _Rules) -> bool:
-    return timing_allows(a, b, facts.entry_stops) and facts.conditions_allow(a, b)
+    """a before b in the file."""
+    key = (_timing_shape(a), _timing_shape(b))
+    timing = facts.memo_timing.get(key)
+    if timing is None:
+        timing = facts.memo_timing[key] = timing_allows(a, b, facts.entry_stops)
+    return timing and facts.conditions_allow(a, b)
+
+
+def _timing_shape(rule) -> tuple:
+    """What timing_allows reads of a rule: rules of one shape are alike."""
+    event = rule.event
+    values = tuple(sorted(event.values.items())) if event.name in (
+        "timer", "every", "after") and event.kind == "standard" else ()
+    return (rule.mode, event.kind, event.name, rule.repeat, values,
+            event.name == "enter" and _sets_timer_first(rule))
 
 
 def check_program(checker, out) -> None:
@@ -360,10 +411,7 @@ def check_program(checker, out) -> None:
         by_priority.setdefault(r.priority, []).append(r)
     pairs = []
     for group in by_priority.values():
-        for i, first in enumerate(group):
-            for j in range(i + 1, len(group)):      # (no slice: a copy per rule)
-                if can_fire_together(first, group[j], facts):
-                    pairs.append((first, group[j]))
+        pairs += _racing_pairs(group, facts)
     pairs.sort(key=lambda p: (facts.index[id(p[0])], facts.index[id(p[1])]))
     for loser, winner in pairs[:MAX_REPORTS]:
         if facts.key(winner) < facts.key(loser):

@@ -133,18 +133,59 @@ def _clause_bounds(clause, base) -> Optional[dict]:
     return bounds
 
 
-def clauses(f: tuple) -> Optional[list]:
-    """The disjunctive form of `f` (None: too large), for
-    satisfiable_together."""
-    return _clauses(f)
+def boxes(f: tuple, base: dict) -> Optional[list]:
+    """The values where `f` holds, as boxes: per clause of its disjunctive
+    form that some values satisfy, each name's interval and the values
+    `!=` excludes from it, (bounds, excluded); None when too large."""
+    found = _clauses(f)
+    if found is None:
+        return None
+    out = []
+    for clause in found:
+        bounds = _clause_bounds(clause, base)
+        if bounds is not None:
+            excluded = {}
+            for _, name, op, v in clause:
+                if op == "!=":
+                    excluded.setdefault(name, set()).add(v)
+            out.append((bounds, excluded))
+    return out
 
 
-def satisfiable_together(a: Optional[list], b: Optional[list], base: dict) -> bool:
-    """Whether the conjunction of two formulas given by their clauses can
-    hold (True when either was too large)."""
-    if a is None or b is None or len(a) * len(b) > MAX_CLAUSES:
+def _meet(x: tuple, y: tuple) -> bool:
+    """Whether two boxes share a value."""
+    (bx, ex), (by, ey) = x, y
+    if len(by) < len(bx):
+        bx, by = by, bx
+    for name, (lo, hi) in bx.items():
+        other = by.get(name)
+        if other is None:
+            continue
+        lo, hi = max(lo, other[0]), min(hi, other[1])
+        if lo > hi:
+            return False
+        points = ex.get(name, set()) | ey.get(name, set())
+        if points and hi - lo + 1 <= len(points) and \
+                sum(lo <= p <= hi for p in points) == hi - lo + 1:
+            return False
+    return True
+
+
+def boxes_meet(a: list, b: list) -> bool:
+    """Whether some box of `a` and some box of `b` share a value."""
+    for x in a:
+        for y in b:
+            if _meet(x, y):
+                return True
+    return False
+
+
+def satisfiable_together(a: Optional[list], b: Optional[list]) -> bool:
+    """Whether two formulas, given by their boxes, can hold together (True
+    when either was too large to tell)."""
+    if a is None or b is None:
         return True
-    return any(_clause_bounds(x + y, base) is not None for x in a for y in b)
+    return any(_meet(x, y) for x in a for y in b)
 
 
 def satisfiable(f: tuple, base: dict) -> bool:
