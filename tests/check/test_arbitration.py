@@ -211,3 +211,35 @@ def test_a_variable_counts_where_no_action_changes_it_between_the_two_conditions
     early = (f"when v == 0 priority 1 do {MOVE}\n"
              f"every 1 s priority 1 if v == 1 do {MOVE}\n")
     assert _w009("var v = 0\n" + early + flip.format(0)) == []
+
+
+def test_the_pair_loop_decides_as_can_fire_together():
+    """_racing_pairs, W009's fast loop over every pair, gives what
+    can_fire_together gives pair by pair (on the examples and the cases)."""
+    from pathlib import Path
+
+    from epuckc.check import arbitration
+    from epuckc.check.checker import Checker
+    root = Path(__file__).resolve().parents[2]
+    files = sorted((root / "examples").glob("*.epk")) + sorted(
+        (root / "tests" / "check" / "cases").glob("W0*.epk"))
+    compared = 0
+    for path in files:
+        source = SourceFile(path.name, path.read_text(encoding="utf-8"))
+        diags = Collector(source)
+        checker = Checker(parse(source, diags), diags)
+        out = checker.check()
+        rules = out.rules
+        if len(rules) < 2:
+            continue
+        facts = arbitration._Rules(checker, rules, rules)
+        by_priority: dict = {}
+        for r in rules:
+            by_priority.setdefault(r.priority, []).append(r)
+        for group in by_priority.values():
+            fast = arbitration._racing_pairs(group, facts)
+            slow = [(a, b) for i, a in enumerate(group) for b in group[i + 1:]
+                    if arbitration.can_fire_together(a, b, facts)]
+            assert [(id(a), id(b)) for a, b in fast] == [(id(a), id(b)) for a, b in slow], path
+            compared += len(group) * (len(group) - 1) // 2
+    assert compared > 100
