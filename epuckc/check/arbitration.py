@@ -16,8 +16,8 @@ same poll (the reasoning must never drop a pair that can meet):
   only, where no `stop_motor`, `timer`, `sensor`, `every` or `after` event
   can occur; `timer` rules outside modes whose firings (one-shot at T,
   repeat at the multiples of T, of one timer) never meet, and likewise
-  `every` and `after` rules outside modes (their own timers, armed at the
-  first poll); in one mode, its `on enter` rules and its one-shot
+  `every` and `after` rules both outside modes or both of one mode (their
+  own timers, armed at the first poll, or at the mode's entry); in one mode, its `on enter` rules and its one-shot
   `immediate` rules fire in the first poll after an entry, where its
   `every` and `after` rules are (re-)armed and fire one period later at the
   soonest; in one mode, an `on enter` whose first step runs `set_timer`
@@ -135,8 +135,10 @@ def timing_allows(a, b, entry_stops: bool = True) -> bool:
     if na == "timer" and nb == "timer" and ma is None and mb is None:
         return _timer_meets(a, b)
     own = ("every", "after")
-    if na in own and nb in own and ma is None and mb is None:
-        # both timers start at the first poll: they meet as one timer's would
+    if na in own and nb in own and ma == mb:
+        # both timers start at the same poll (the first one, or their mode's
+        # entry, when every rule of the mode is armed): they meet as one
+        # timer's would
         return _periods_meet(ea.values, na == "every", eb.values, nb == "every")
     if ma is not None and ma == mb:
         for first, second in ((a, b), (b, a)):

@@ -14,6 +14,7 @@ fires both, and, when the first rule assigns nothing, only then."""
 from __future__ import annotations
 
 import itertools
+import re
 
 from hypothesis import given, settings
 from hypothesis import strategies as st
@@ -243,3 +244,33 @@ def test_the_pair_loop_decides_as_can_fire_together():
             assert [(id(a), id(b)) for a, b in fast] == [(id(a), id(b)) for a, b in slow], path
             compared += len(group) * (len(group) - 1) // 2
     assert compared > 100
+
+
+def test_the_runtime_agrees_on_a_mode_s_own_timers(tmp_path):
+    """Run against the runtime: a mode entered again and again, its `on
+    enter`, one-shot `immediate`, `every` and `after` rules. The pairs W009
+    leaves out never fire in one poll; the one it reports does (`on enter`
+    and `on immediate`, both at each entry)."""
+    from tests.support.programs import events, run_program
+    program = tmp_path / "timers.epk"
+    program.write_text(
+        "initial mode m {\n"
+        "    on enter do start_straight(100, 1 mm)\n"
+        "    every 3 ms do start_straight(100, 2 mm)\n"
+        "    after 2 ms do start_straight(100, 3 mm)\n"
+        "    on immediate do start_straight(100, 4 mm)\n"
+        "    after 7 ms priority 1 do enter m\n"
+        "}\n"
+        "after 60 ms priority 9 do exit_main\n")
+    warned = _codes(program.read_text())
+    reported = {tuple(sorted(re.findall(r"\(line (\d)\)", d.message)[:2])) for d in warned}
+    assert reported == {("2", "5")}
+    records, _ = run_program(program, tmp_path)
+    fired: dict = {}
+    for r in events(records, "timers.epk:"):
+        line = r["name"].split(":")[1].split()[0]
+        fired.setdefault(line, set()).add(r["t_ms"])
+    assert len(fired["6"]) >= 5                      # entered again and again
+    for a, b in itertools.combinations(["2", "3", "4", "5"], 2):
+        together = fired[a] & fired[b]
+        assert bool(together) == ((a, b) in reported), (a, b, together)
