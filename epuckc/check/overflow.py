@@ -162,11 +162,35 @@ class Overflow:
             where = f"it saturates at {edge}"
         operands = ", ".join(f"`{_text_of(a)}` is {_range(a.lo, a.hi, a.kind)}" for a in e.args
                              if not isinstance(a.node, ast.Number))
+        witness = _witness(e, op, hi if hi > INT16_MAX else lo) if lo != hi else ""
         self.diags.warning(
             "W020", e.node.span,
             f"`{text}` can be {_range(lo, hi, e.kind)}, outside the 16-bit range "
-            f"({INT16_MIN}..{INT16_MAX}): {where}" + (f" ({operands})" if operands else ""),
+            f"({INT16_MIN}..{INT16_MAX}){witness}: {where}"
+            + (f" ({operands})" if operands else ""),
             help=_fix(e, op, interval))
+
+
+def _witness(e: Expr, op: str, extreme: int) -> str:
+    """`, e.g. 16 * 4095 = 65520`: operand values that give the extreme."""
+    if len(e.args) != 2 or op not in ("+", "-", "*", "/"):
+        return ""
+    a, b = e.args
+    for x in (a.lo, a.hi):
+        for y in (b.lo, b.hi, -1, 1):
+            if not b.lo <= y <= b.hi or (op == "/" and y == 0):
+                continue
+            got = exact(op, (_Point(x), _Point(y)))
+            if got[0] == extreme:
+                shown = f"({y})" if y < 0 else str(y)
+                return f", e.g. {x} {op} {shown} = {extreme}"
+    return ""
+
+
+class _Point:
+    """An operand of one value, for exact()."""
+    def __init__(self, v: int):
+        self.lo = self.hi = v
 
 
 def _text_of(e: Expr) -> str:
