@@ -21,7 +21,8 @@ a 1,000-rule file only the edited statement is lexed, parsed and checked:
    mid-line is padded with spaces). Inserting a line above a statement
    therefore changes nothing in its AST, nor in what the checker found
    about it; virtual lines are turned into real ones only for what is
-   shown (`Analysis.real`). Lines below VLINE are real lines.
+   shown (`Analysis.real`, and `Analysis.real_words` for the lines a
+   message names). Lines below VLINE are real lines.
 4. **Checking**: the declarations (names, the robot block) and the
    whole-program checks (rules that can never fire, unused names,
    capacity) run every time, over all statements: they are cheap loops.
