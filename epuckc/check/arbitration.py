@@ -2,45 +2,57 @@
 that can fire in the same poll and both command the motors.
 
 Within a poll the runtime runs the actions of the events that occurred
-highest priority first, then in file order (docs/runtime.md). Between two
-rules of one priority nothing arbitrates: both run, and the motor command
-of the later one replaces the earlier one's, silently. That is the bug
-priorities exist to prevent, so the checker names both rules and the one
-that wins.
+highest priority first, then in file order (docs/runtime.md); the poll
+after a mode's entry starts with its `on enter` rules. Between two rules
+of one priority nothing arbitrates: both run, and the motor command of the
+later one replaces the earlier one's, silently. That is the bug priorities
+exist to prevent, so the checker names both rules and the one that wins.
 
-"Can fire in the same poll" is decided from the events alone, and errs on
-the side of warning; two rules are known not to, when:
+Two rules are reported unless it is certain that they cannot fire in the
+same poll (the reasoning must never drop a pair that can meet):
 - they belong to two different modes (one mode is current at a time, and
   after `enter` no mode's rule fires in the rest of that poll);
-- one is a one-shot `immediate` outside any mode (it fires at the first
-  poll only) and the other waits for a `stop_motor` or a `timer`, which
-  cannot occur at the first poll (nothing ran before it);
-- both are `timer` rules outside modes whose firings (one-shot: at T;
-  repeat: at every multiple of T, of one and the same timer) never meet;
-- in one mode, its `on enter` rule (first poll after the entry) and a
-  `stop_motor` rule: entering stops the motion of the mode left without a
-  `stop_motor` event, so one could only come from a motion of a rule outside
-  the mode ending at that very poll -- a deliberate blind spot, since the
-  pattern `on enter do ... start_straight` + `on stop_motor repeat` is
-  the usual way to write a behaviour;
-- in one mode, an `on enter` rule whose first step runs `set_timer` and a
-  later `timer` rule: polled after the timer restarted in the same poll,
-  the timer rule cannot fire there.
+- timing: a one-shot `immediate` outside modes fires at the first poll
+  only, where no `stop_motor`, `timer`, `sensor`, `every` or `after` event
+  can occur; `timer` rules outside modes whose firings (one-shot at T,
+  repeat at the multiples of T, of one timer) never meet, and likewise
+  `every` and `after` rules both outside modes or both of one mode (their
+  own timers, armed at the first poll, or at the mode's entry); in one mode, its `on enter` rules and its one-shot
+  `immediate` rules fire in the first poll after an entry, where its
+  `every` and `after` rules are (re-)armed and fire one period later at the
+  soonest; in one mode, an `on enter` whose first step runs `set_timer`
+  and a later `timer` rule (polled after the timer restarted);
+- in one mode, its `on enter` and a `stop_motor` rule, when nothing can end
+  a motion at an entry: entering stops the motion of the mode left without
+  an event, so only a motion of a rule outside modes (or an extern action),
+  or a `stop_motor`/`set_speed` run before an `enter` in the same poll,
+  could give one;
+- conditions: the event's condition (a `when` condition; a `sensor`
+  event's `irN > T` list, any of which) and the guard of each rule are read
+  as comparisons of variables and readings with numbers
+  (check/conditions.py); if no values satisfy both rules' together, they
+  cannot both fire. The readings are read once per poll; a variable counts
+  only if no rule whose action can run in the poll before the later of
+  the two is evaluated assigns it.
 A rule "commands the motors" when its action, through the named actions it
-uses, calls `start_straight`, `start_curve` or `stop_motor`; extern
-actions are not looked into.
+uses, calls a motor action (`start_straight`, `start_curve`, `stop_motor`,
+`set_speed`); extern actions are not looked into.
 """
 from __future__ import annotations
 
 from ..diagnostics import Note
-from ..stdlib.table import MOTION_ACTIONS, MOTOR_ACTIONS
+from ..stdlib.table import MOTION_ACTIONS, MOTOR_ACTIONS, STANDARD_READINGS
 from ..syntax import ast
+from . import conditions as cond
 from .messages import _shown
 from .modes import flat_steps
 
-# Beyond this many reports the rest are summed up in one: a file of
-# thousands of racing rules needs one fix, not thousands of warnings.
-MAX_REPORTS = 5
+# Pairs reported one by one; the rest are listed, every one, in one more
+# warning: a file of hundreds of racing rules needs one fix, not thousands
+# of warnings, but each pair is named.
+MAX_REPORTS = 10
+# Motor actions that can end a motion without starting one.
+_STOPPING = MOTOR_ACTIONS - MOTION_ACTIONS
 
 
 def _code(text: str) -> str:
@@ -96,7 +108,17 @@ def _at_first_poll_only(rule) -> bool:
     return rule.event.name == "immediate" and not rule.repeat and rule.mode is None
 
 
-def can_fire_together(a, b) -> bool:
+def _at_entry_only(rule) -> bool:
+    """A rule of a mode that fires only in the first poll after its entry:
+    `on enter`, or a one-shot `immediate` (both re-armed by each entry)."""
+    return rule.mode is not None and rule.event.kind == "standard" and (
+        rule.event.name == "enter" or (rule.event.name == "immediate" and not rule.repeat))
+
+
+def timing_allows(a, b, entry_stops: bool = True) -> bool:
+    """Whether the events of a and b (their modes and timing) allow them to
+    fire in the same poll; `entry_stops`: nothing can give a `stop_motor`
+    event in the poll after a mode's entry."""
     ma, mb = a.mode, b.mode
     if ma is not None and mb is not None and ma != mb:
         return False
@@ -113,14 +135,18 @@ def can_fire_together(a, b) -> bool:
     if na == "timer" and nb == "timer" and ma is None and mb is None:
         return _timer_meets(a, b)
     own = ("every", "after")
-    if na in own and nb in own and ma is None and mb is None:
-        # both timers start at the first poll: they meet as one timer's would
+    if na in own and nb in own and ma == mb:
+        # both timers start at the same poll (the first one, or their mode's
+        # entry, when every rule of the mode is armed): they meet as one
+        # timer's would
         return _periods_meet(ea.values, na == "every", eb.values, nb == "every")
     if ma is not None and ma == mb:
         for first, second in ((a, b), (b, a)):
+            if _at_entry_only(first) and second.event.name in own:
+                return False            # armed at the entry, fires a period later
             if first.event.name != "enter":
                 continue
-            if second.event.name == "stop_motor":
+            if second.event.name == "stop_motor" and entry_stops:
                 return False
             if second.event.name == "timer" and second is b and _sets_timer_first(first):
                 return False
@@ -133,13 +159,39 @@ def _sets_timer_first(rule) -> bool:
         if rule.body else False
 
 
+def condition_of(rule) -> tuple:
+    """What must hold when the rule fires: its event's condition and its
+    guard, as a formula (check/conditions.py)."""
+    parts = []
+    event = rule.event
+    if event.kind == "standard" and event.name == "when":
+        parts.append(cond.formula(event.values["condition"]))
+    elif event.kind == "standard" and event.name == "sensor" and event.conditions:
+        parts.append(("or", tuple(("atom", f"ir{index}", op, threshold)
+                                  for index, op, threshold in event.conditions)))
+    if rule.guard is not None:
+        parts.append(cond.formula(rule.guard))
+    return cond.conjoin(*parts) if parts else cond.TRUE
+
+
 def describe(rule) -> str:
-    """rule `avoid`, or the rule `on sensor(ir0 > 300)`: words that do not
-    depend on the layout (the note gives the position)."""
+    """rule `avoid`, or `on enter if y > 0` (line 12): a rule without a
+    name is its head as written, and its line."""
     if rule.name is not None:
         return f"rule {_code(rule.name)}"
-    head = "on " if rule.node.trigger == "on" else ""
-    return f"the rule {_code(head + event_text(rule.event.node))}"
+    return f"{_code(head_text(rule))} (line {rule.node.span.line})"
+
+
+def head_text(rule) -> str:
+    """`on sensor(ir0 > 500) repeat if n < 3`: a rule's head, in the
+    formatter's layout."""
+    node = rule.node
+    text = ("on " if node.trigger == "on" else "") + event_text(node.event)
+    if node.repeat:
+        text += " repeat"
+    if node.guard is not None:
+        text += f" if {_shown(node.guard)}"
+    return text
 
 
 def event_text(call) -> str:
@@ -173,38 +225,277 @@ def _events_that_never_occur(checker) -> set:
     return never
 
 
+class _Rules:
+    """What the pair checks need of each rule, computed once."""
+
+    def __init__(self, checker, rules, every_rule):
+        self.rules = every_rule         # (any rule may write a variable a guard reads)
+        self.index = {id(r): i for i, r in enumerate(every_rule)}
+        flat = {id(r): [c for step in flat_steps(checker, r.body) for c in step]
+                for r in every_rule}
+        self.condition = {id(r): condition_of(r) for r in rules}
+        self.memo_names, self.memo_boxes, self.memo_alone = {}, {}, {}
+        self.memo_timing: dict = {}
+        self.writes = {id(r): {c.name for c in flat[id(r)] if c.kind == "assign"}
+                       for r in every_rule}
+        self.base = {name: (info.lo, info.hi) for name, info in checker.vars.items()}
+        self.base.update((name, (r.lo, r.hi)) for name, r in STANDARD_READINGS.items())
+        self.variables = set(checker.vars)
+        # the variables written by the rules before each place of the walk
+        ordered = self.ordered = sorted(every_rule, key=self.key)
+        self.place = {id(r): i for i, r in enumerate(ordered)}
+        self.before, written = [], frozenset()
+        for r in ordered:
+            self.before.append(written)
+            if self.writes[id(r)]:
+                written = written | self.writes[id(r)]
+        self.entry_stops = self._entry_stops(checker, every_rule)
+
+    @staticmethod
+    def _entry_stops(checker, every_rule) -> bool:
+        """Whether no `stop_motor` event can occur in the poll after a
+        mode's entry (see the module's doc)."""
+        if any(e.kind == "action" for e in checker.externs.values()):
+            return False
+        enters, stops, entry_moves = False, [], set()
+        for r in every_rule:
+            steps = flat_steps(checker, r.body)
+            calls = [c for step in steps for c in step]
+            if r.mode is None and any(c.kind == "standard" and c.name in MOTION_ACTIONS
+                                      for c in calls):
+                return False            # its motion goes on across an entry
+            enters = enters or any(c.kind == "enter" for c in calls)
+            if _is_enter(r) and steps and any(c.kind == "standard" and c.name in MOTION_ACTIONS
+                                              for c in steps[0]):
+                entry_moves.add(r.mode)
+            # a stop not followed by exit_main in its step: the wheels stopped
+            # between two polls, which an entry in that poll does not undo
+            if any(_stops_and_goes_on(step) for step in steps):
+                stops.append(r)
+        # An `on enter` that stops runs where nothing moves (the motion of the
+        # mode left was stopped), unless an `on enter` of its mode started one.
+        stops = [r for r in stops if not _is_enter(r) or r.mode in entry_moves]
+        return not (enters and stops)
+
+    def key(self, rule) -> tuple:
+        """The rule's place in a poll's walk: a mode's `on enter` rules
+        first, then by priority, highest first, then in file order."""
+        first = rule.event.kind == "standard" and rule.event.name == "enter"
+        return (0 if first else 1, 0 if first else -rule.priority, self.index[id(rule)])
+
+    def changing(self, a, b) -> set:
+        """The variables that can change in a poll between the evaluations
+        of a's and b's conditions: by the actions from the first one's on,
+        before the later one's turn (a `when` condition without a guard is
+        compiled with the others and may be evaluated early in the poll:
+        then every action before the later one's turn counts)."""
+        first, later = sorted((self.place[id(a)], self.place[id(b)]))
+        if _early(a) or _early(b):
+            return self.before[later]
+        found = set()                   # from the first one's action on
+        for r in self.ordered[first:later]:
+            found |= self.writes[id(r)]
+        return found
+
+    def conditions_allow(self, a, b) -> bool:
+        fa, fb = self.condition[id(a)], self.condition[id(b)]
+        if fa is cond.TRUE or fb is cond.TRUE:
+            # (one condition that always may hold: the other alone decides)
+            return fa is cond.TRUE and fb is cond.TRUE or self._alone(fa if fb is cond.TRUE else fb)
+        read = (self._names(fa) | self._names(fb)) & self.variables
+        unstable = self.changing(a, b) & read if read else ()
+        if unstable:
+            both = cond.conjoin(cond.without(fa, unstable), cond.without(fb, unstable))
+            return cond.satisfiable(both, self.base)
+        return cond.satisfiable_together(self._boxes(fa), self._boxes(fb))
+
+    # Each rule's formula is asked the same questions for every pair: the
+    # answers are kept (by the formula's id: self.condition keeps it alive).
+
+    def _memo(self, memo: dict, f: tuple, compute):
+        found = memo.get(id(f))
+        if found is None:
+            found = memo[id(f)] = (compute(f),)
+        return found[0]
+
+    def _names(self, f: tuple) -> set:
+        return self._memo(self.memo_names, f, cond.names_of)
+
+    def _boxes(self, f: tuple):
+        return self._memo(self.memo_boxes, f, lambda g: cond.boxes(g, self.base))
+
+    def _alone(self, f: tuple) -> bool:
+        return self._memo(self.memo_alone, f, lambda g: cond.satisfiable(g, self.base))
+
+
+def _early(rule) -> bool:
+    """A `when` rule without a guard: its condition is compiled, and
+    evaluated with the others at the first of them in the poll."""
+    return rule.event.kind == "standard" and rule.event.name == "when" and rule.guard is None
+
+
+def _is_enter(rule) -> bool:
+    return rule.event.kind == "standard" and rule.event.name == "enter"
+
+
+def _stops_and_goes_on(step) -> bool:
+    for i, call in enumerate(step):
+        if call.kind == "standard" and call.name in _STOPPING:
+            return not any(c.kind == "standard" and c.name == "exit_main" for c in step[i:])
+    return False
+
+
+def _racing_pairs(group: list, facts: _Rules) -> list:
+    """The pairs of `group` (rules of one priority, in file order) that can
+    fire together: can_fire_together over every pair, with what it reads of
+    each rule computed once (a file of a thousand racing rules has half a
+    million pairs)."""
+    shapes: dict = {}
+    info = []
+    for r in group:
+        f = facts.condition[id(r)]
+        reads_vars = f is not cond.TRUE and bool(facts._names(f) & facts.variables)
+        info.append((shapes.setdefault(_timing_shape(r), len(shapes)), f is cond.TRUE,
+                     None if f is cond.TRUE else facts._boxes(f), reads_vars,
+                     f is cond.TRUE or facts._alone(f)))
+    timing = {}
+    meet = cond.boxes_meet
+    found = []
+    for i, a in enumerate(group):
+        sa, ta, ba, va, ala = info[i]
+        for j in range(i + 1, len(group)):
+            sb, tb, bb, vb, alb = info[j]
+            t = timing.get((sa, sb))
+            if t is None:
+                t = timing[sa, sb] = timing_allows(a, group[j], facts.entry_stops)
+            if not t:
+                continue
+            if ta or tb:
+                ok = alb if ta else ala
+            elif va or vb:
+                ok = facts.conditions_allow(a, group[j])
+            else:
+                ok = ba is None or bb is None or meet(ba, bb)
+            if ok:
+                found.append((a, group[j]))
+    return found
+
+
+def can_fire_together(a, b, facts: _Rules) -> bool:
+    """a before b in the file."""
+    key = (_timing_shape(a), _timing_shape(b))
+    timing = facts.memo_timing.get(key)
+    if timing is None:
+        timing = facts.memo_timing[key] = timing_allows(a, b, facts.entry_stops)
+    return timing and facts.conditions_allow(a, b)
+
+
+def _timing_shape(rule) -> tuple:
+    """What timing_allows reads of a rule: rules of one shape are alike."""
+    event = rule.event
+    values = tuple(sorted(event.values.items())) if event.name in (
+        "timer", "every", "after") and event.kind == "standard" else ()
+    return (rule.mode, event.kind, event.name, rule.repeat, values,
+            event.name == "enter" and _sets_timer_first(rule))
+
+
 def check_program(checker, out) -> None:
     named: dict = {}
     never = _events_that_never_occur(checker)
     motor_rules = [r for r in out.rules
                    if _commands_motors(checker, r.body, named)
                    and not (r.event.kind == "standard" and r.event.name in never)]
-    reported = 0
-    more = 0
-    for i, loser in enumerate(motor_rules):
-        for j in range(i + 1, len(motor_rules)):    # (no slice: a copy per rule)
-            winner = motor_rules[j]
-            if winner.priority != loser.priority or not can_fire_together(loser, winner):
-                continue
-            if reported == MAX_REPORTS:
-                more += 1
-                break
-            reported += 1
-            checker.diags.warning(
-                "W009", loser.node.event.span,
-                f"{describe(loser)} and {describe(winner)} can fire in the same poll, both "
-                f"command the motors and have the same priority ({loser.priority}): "
-                f"{describe(winner)} runs later and wins",
-                help=f"give the rule that should win a higher priority "
-                     f"(`on ... priority {loser.priority + 1} do ...`)",
-                notes=[_note(winner)])
-            break
-    if more:
+    if len(motor_rules) < 2:
+        return
+    facts = _Rules(checker, motor_rules, out.rules)
+    by_priority: dict = {}
+    for r in motor_rules:
+        by_priority.setdefault(r.priority, []).append(r)
+    pairs = []
+    for group in by_priority.values():
+        pairs += _racing_pairs(group, facts)
+    pairs.sort(key=lambda p: (facts.index[id(p[0])], facts.index[id(p[1])]))
+    for loser, winner in pairs[:MAX_REPORTS]:
+        if facts.key(winner) < facts.key(loser):
+            loser, winner = winner, loser
         checker.diags.warning(
-            "W009", motor_rules[-1].node.event.span,
-            f"{more} more rule{'s' if more > 1 else ''} race for the motors with a later rule of "
-            "the same priority (not listed one by one)",
-            help="give the rules that should win higher priorities")
+            "W009", loser.node.event.span,
+            f"{describe(loser)} and {describe(winner)} can fire in the same poll, both "
+            f"command the motors and have the same priority ({loser.priority}): "
+            f"{describe(winner)} runs later and wins",
+            help=_help(loser, winner, facts), notes=[_note(winner)])
+    rest = pairs[MAX_REPORTS:]
+    if rest:
+        partners: dict = {}             # each rule with the later ones it races with
+        for a, b in rest:
+            partners.setdefault(id(a), (a, []))[1].append(b)
+        listed = "; ".join(f"{describe(a)} with {_list(others)}"
+                           for a, others in partners.values())
+        checker.diags.warning(
+            "W009", rest[0][0].node.event.span,
+            f"{len(rest)} more pair{'s' if len(rest) > 1 else ''} of rules of the same "
+            f"priority can fire in the same poll and command the motors: {listed}",
+            help="give the rules that should win higher priorities, or guards that "
+                 "exclude each other")
+
+
+def _help(loser, winner, facts: _Rules) -> str:
+    """The fix that fits the pair."""
+    priority = (f"give the rule that should win a higher priority "
+                f"(`... priority {loser.priority + 1} do ...`)")
+    fa, fb = facts.condition[id(loser)], facts.condition[id(winner)]
+    if fa == fb and _same_event(loser, winner) and loser.node.guard is None \
+            and winner.node.guard is None:
+        return (f"both fire on the same event: {priority}, give one a guard that excludes the "
+                f"other (`if ...`), or merge them into one rule")
+    shared = cond.names_of(fa) & cond.names_of(fb)
+    unstable = facts.changing(loser, winner) & shared
+    if shared - unstable:
+        stable = cond.conjoin(cond.without(fa, unstable), cond.without(fb, unstable))
+        where = cond.overlap(stable, facts.base) or {}
+        spots = [f"{_code(n)} is {_span(*where[n])}" for n in sorted(shared - unstable)
+                 if n in where]
+        if spots:
+            return (f"their conditions hold together where {', '.join(spots)}: make them "
+                    f"exclude each other (e.g. `>` in one and `<=` in the other), or "
+                    f"{priority}")
+    if unstable:
+        writers = [r for r in facts.rules if facts.writes[id(r)] & unstable
+                   and facts.key(r) < max(facts.key(loser), facts.key(winner))
+                   and (facts.key(r) >= facts.key(loser) or _early(loser) or _early(winner))]
+        names = ", ".join(sorted(_code(n) for n in unstable))
+        them = "it" if len(unstable) == 1 else "them"
+        why = (f"their conditions on {names} would exclude each other, but "
+               f"{describe(writers[0])} changes {them} in the poll before {describe(winner)} "
+               f"reads {them}")
+        if writers == [loser] and not (facts.writes[id(winner)] & unstable) \
+                and not _is_enter(loser) and not _is_enter(winner):
+            return (f"{why}: move {describe(winner)} above {describe(loser)} in the file, so "
+                    f"that it reads {them} first, or {priority}")
+        return f"{why}: {priority}"
+    return priority
+
+
+def _same_event(a, b) -> bool:
+    ea, eb = a.event, b.event
+    return (ea.kind, ea.name, ea.values, ea.conditions) == (eb.kind, eb.name, eb.values,
+                                                            eb.conditions) \
+        if ea.name != "when" else _shown(ea.node.args[0].value) == _shown(eb.node.args[0].value)
+
+
+def _list(rules) -> str:
+    """rule `avoid`, rule `wander`, the rules of lines 9, 12: rules in a
+    long list, by name, else by line."""
+    parts = [f"rule {_code(r.name)}" for r in rules if r.name is not None]
+    lines = [str(r.node.span.line) for r in rules if r.name is None]
+    if lines:
+        parts.append(f"the rule{'s' if len(lines) > 1 else ''} of line"
+                     f"{'s' if len(lines) > 1 else ''} {', '.join(lines)}")
+    return ", ".join(parts)
+
+
+def _span(lo: int, hi: int) -> str:
+    return str(lo) if lo == hi else f"{lo}..{hi}"
 
 
 def _note(rule):

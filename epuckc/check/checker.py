@@ -21,13 +21,15 @@ from .variables import Variables
 from .ranges import Ranges
 from .externs import Externs
 from .names import Names
+from .overflow import Overflow
 from .program import CheckedProgram
 from .robot import RobotSettings
 from .rules import Rules
 from .values import Values
 
 
-class Checker(Names, Externs, RobotSettings, Values, Exprs, Variables, Ranges, Calls, Rules):
+class Checker(Names, Externs, RobotSettings, Values, Exprs, Variables, Ranges, Calls, Rules,
+              Overflow):
     """The checker's state and its order of work; each concern's methods live in
     the mixin of its module (names.py, externs.py, robot.py, values.py,
     calls.py, rules.py), the whole-program analyses in modes.py and

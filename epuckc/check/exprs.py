@@ -397,9 +397,10 @@ class Exprs:
         if not args or not all(a.op == "num" for a in args) or e.op == "random":
             return e
         # the exact value, as the runtime computes it (an interval, as of
-        # `%`, may be wider than the one value of constant operands)
+        # `%`, may be wider than the one value of constant operands); its
+        # operands stay: overflow.py looks for an operation that saturated
         v = _EXACT[e.op](*(a.value for a in args))
-        return Expr("num", e.kind, v, v, value=v, node=e.node, bare=e.bare)
+        return Expr("num", e.kind, v, v, args, value=v, node=e.node, bare=e.bare)
 
     # -- uses of expressions --
 
@@ -408,6 +409,7 @@ class Exprs:
         e = self._expr(node)
         if e is None or not self._is_bool(e, "a rule's condition"):
             return None
+        self._overflow(e)
         return e
 
     def _dynamic_arg(self, value, p, call_name: str) -> Optional[Expr]:
@@ -422,6 +424,7 @@ class Exprs:
                              f"`{self._text(value)}` is {_kind_word(e.kind)}",
                              help=self._kind_help(p.kind, p.name))
             return None
+        self._overflow(e, top=p.kind != SPEED)      # a speed's own range is W013's
         if p.kind == SPEED:
             top = self.geo.max_speed
             if e.hi > top or e.lo < -top:

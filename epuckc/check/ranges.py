@@ -8,8 +8,10 @@ graph whose strongly connected components (Tarjan, without recursion) are
 solved in dependency order: the components a component reads are final
 before it is iterated, so each one is a small fixpoint of its own
 assignments (in file order, RANGE_PASSES passes, then the bounds still
-growing are widened to the 16-bit range), and a chain of variables is
-exact however long it is.
+growing are widened to the 16-bit range; the assignments of rules that
+run at most once are joined once each; then narrowing gives back what
+widening took where the assignments bound it), and a chain of variables
+is exact however long it is.
 
 The result of a component depends only on its assignments, its members'
 declarations and the final intervals it reads (plus the constants and the
@@ -27,6 +29,10 @@ from .program import BOOL
 
 # passes of a component's assignments before the growing bounds are widened
 RANGE_PASSES = 4
+# rules that run at most once are joined once each, up to this many assignments
+ONCE_MAX = 16
+# passes that give back what widening took where the assignments bound it
+NARROW_PASSES = 2
 
 
 class RangeMemo:
@@ -118,15 +124,20 @@ class Ranges:
             return
         assigns: dict = {name: [] for name in self.vars}
         place: dict = {}        # id(Assign) -> its place in the file
+        once: set = set()       # id(Assign) of the rules that run at most once
         for stmt in self.program.statements:
             body = stmt.body if isinstance(stmt, (ast.Rule, ast.ActionDef)) else None
             if body is None:
                 continue
+            runs_once = isinstance(stmt, ast.Rule) and not stmt.repeat \
+                and stmt.mode is None and stmt.trigger != "every"
             for step in body.steps:
                 for c in step.calls:
                     if isinstance(c, ast.Assign) and c.target.name in self.vars:
                         assigns[c.target.name].append(c)
                         place[id(c)] = len(place)
+                        if runs_once:
+                            once.add(id(c))
         if not any(assigns.values()):
             return
         memo = self.range_memo
@@ -165,7 +176,8 @@ class Ranges:
                 continue
             inside = set(members)
             outside = sorted({n for c in calls for n in reads[id(c)]} - inside)
-            inputs = (tuple(texts[id(c)] for c in calls) if memo is not None else None,
+            inputs = (tuple((texts[id(c)], id(c) in once) for c in calls)
+                      if memo is not None else None,
                       tuple((m, self.vars[m].kind, self.vars[m].init) for m in members),
                       tuple((n, self.vars[n].kind, self.vars[n].lo, self.vars[n].hi)
                             for n in outside))
@@ -173,7 +185,7 @@ class Ranges:
             if known is not None and known[0] == inputs:
                 result = known[1]
             else:
-                result = self._solve(calls)
+                result = self._solve(calls, once)
                 if memo is not None:
                     memo.components[members] = (inputs, result)
             for m, (lo, hi) in result.items():
@@ -186,29 +198,75 @@ class Ranges:
             if len(memo.reads) > 2 * len(reads) + 100:
                 memo.reads = {k: v for k, v in memo.reads.items() if k in reads}
 
-    def _solve(self, calls: list) -> dict:
-        """A component's fixpoint: its assignments in file order until no
-        interval grows, widening what still grows after RANGE_PASSES."""
+    def _solve(self, calls: list, once: set) -> dict:
+        """A component's intervals: its assignments (in file order) joined
+        to a fixpoint, widened where they keep growing; those of rules that
+        run at most once joined once each, in any order among the others;
+        then narrowed where the assignments bound what widening took."""
+        repeated = [c for c in calls if id(c) not in once]
+        single = [c for c in calls if id(c) in once]
+        if len(single) > ONCE_MAX:
+            repeated, single = calls, []
         saved = self.diags
         self.diags = Collector(saved.source)
         try:
-            for attempt in range(RANGE_PASSES + 1):
-                changed = False
-                for call in calls:
-                    info = self.vars[call.target.name]
-                    value = self._assigned(call, info)
-                    if value is None or value.kind == BOOL:
-                        continue
-                    lo, hi = min(info.lo, value.lo), max(info.hi, value.hi)
-                    if (lo, hi) != (info.lo, info.hi):
-                        if attempt == RANGE_PASSES:       # still growing: widen
-                            lo = INT16_MIN if lo < info.lo else lo
-                            hi = INT16_MAX if hi > info.hi else hi
-                        info.lo, info.hi = lo, hi
-                        changed = True
-                if not changed:
+            self._join_assigned(repeated)
+            for _ in single:
+                if not self._join_assigned(single, widen=False):
                     break
+                self._join_assigned(repeated)
+            self._narrow_ranges(repeated + single)
         finally:
             self.diags = saved
         return {name: (self.vars[name].lo, self.vars[name].hi)
                 for name in dict.fromkeys(c.target.name for c in calls)}
+
+    def _join_assigned(self, calls, widen: bool = True) -> bool:
+        """Joins what `calls` can give into their variables' intervals,
+        repeated to a fixed point (widened where they keep growing); with
+        widen False, once. Whether an interval grew."""
+        grew = False
+        attempt = 0
+        while True:                     # each widening takes a bound to an end: it stops
+            changed = False
+            for call in calls:
+                info = self.vars[call.target.name]
+                value = self._assigned(call, info)
+                if value is None or value.kind == BOOL:
+                    continue
+                lo, hi = min(info.lo, value.lo), max(info.hi, value.hi)
+                if (lo, hi) != (info.lo, info.hi):
+                    if widen and attempt >= RANGE_PASSES:       # still growing: widen
+                        lo = INT16_MIN if lo < info.lo else lo
+                        hi = INT16_MAX if hi > info.hi else hi
+                    info.lo, info.hi = lo, hi
+                    changed = grew = True
+            attempt += 1
+            if not changed or not widen:
+                break
+        return grew
+
+    def _narrow_ranges(self, calls):
+        """Gives back what widening took where the assignments bound it
+        (`n = min(n + 1, 1000)`): every value a variable takes is its initial
+        value or one an assignment gives from values within the intervals,
+        so each interval may be met with the hull of those."""
+        members = dict.fromkeys(c.target.name for c in calls)
+        for _ in range(NARROW_PASSES):
+            hulls = {name: (self.vars[name].init, self.vars[name].init) for name in members}
+            for call in calls:
+                info = self.vars[call.target.name]
+                value = self._assigned(call, info)
+                if value is None or value.kind == BOOL:
+                    return              # not every value is known: keep the intervals
+                lo, hi = hulls[info.name]
+                hulls[info.name] = (min(lo, value.lo), max(hi, value.hi))
+            changed = False
+            for name, (lo, hi) in hulls.items():
+                info = self.vars[name]
+                met = (max(info.lo, lo), min(info.hi, hi))
+                if met != (info.lo, info.hi):
+                    info.lo, info.hi = met
+                    changed = True
+            if not changed:
+                return

@@ -26,7 +26,7 @@ class Rules:
         else:
             event = self._head_event(rule)
         guard = self._condition(rule.guard) if rule.guard is not None else None
-        body = self._body(rule.body)
+        body = self._guarded_body(rule.body, guard)
         priority = self._priority(rule.priority)
         modes.check_rule(self, rule, event)
         if event is None or priority is None or (rule.guard is not None and guard is None):

@@ -64,6 +64,7 @@ class Variables:
         value = self._assigned(call, info)
         if value is None:
             return None
+        self._overflow(value)
         if value.kind != info.kind:
             self._kind_clash(call, info.kind, value.kind,
                              f"variable {_code(name)} is {_kind_word(info.kind)} (from its "

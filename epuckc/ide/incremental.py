@@ -21,7 +21,8 @@ a 1,000-rule file only the edited statement is lexed, parsed and checked:
    mid-line is padded with spaces). Inserting a line above a statement
    therefore changes nothing in its AST, nor in what the checker found
    about it; virtual lines are turned into real ones only for what is
-   shown (`Analysis.real`). Lines below VLINE are real lines.
+   shown (`Analysis.real`, and `Analysis.real_words` for the lines a
+   message names). Lines below VLINE are real lines.
 4. **Checking**: the declarations (names, the robot block) and the
    whole-program checks (rules that can never fire, unused names,
    capacity) run every time, over all statements: they are cheap loops.
@@ -37,6 +38,7 @@ from __future__ import annotations
 
 import bisect
 import gc
+import re
 from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Optional
@@ -51,6 +53,10 @@ from ..syntax.lexer import MAX_LEXICAL_ERRORS
 from ..syntax.parser import ModePlacer, parse
 from .statements import (_CR_ENDS_LINES, _MARGIN, _ONCE, VLINE, Entry, _boundaries, _common_prefix,
                          _common_suffix, _parse_chunk, line_starts)
+
+# words that name lines in a diagnostic's text, and those of them that are virtual
+_LINE_WORDS = re.compile(r"\b(lines?) (\d+(?:, \d+)*)")
+_VIRTUAL_LINE = re.compile(r"\blines? (?:\d+, )*?\d{7,}")
 
 # ---- checking, reusing results ----------------------------------------------
 
@@ -290,6 +296,19 @@ class Analysis:
             self._starts = {e.id: line for e, line in zip(self.entries, self.lines)}
         return self._starts[ident] + line % VLINE - 1
 
+    def real_words(self, d: Diagnostic) -> Diagnostic:
+        """A diagnostic whose words name lines (`(line 12)`, `the rules of
+        lines 14, 15`: W009 names rules so) with those lines made real."""
+        def lines(match):
+            numbers = ", ".join(str(self.real_line(int(n)) if int(n) >= VLINE else n)
+                                for n in match.group(2).split(", "))
+            return f"{match.group(1)} {numbers}"
+
+        def fix(text):
+            return _LINE_WORDS.sub(lines, text) if text else text
+        return replace(d, message=fix(d.message), help=fix(d.help),
+                       notes=tuple(replace(n, message=fix(n.message)) for n in d.notes))
+
     def real(self, span: Span) -> Span:
         """A span of the AST (virtual lines) in the text's lines."""
         if span.line < VLINE:
@@ -494,6 +513,9 @@ class Analyzer:
                             notes=tuple(replace(n, span=real(n.span)) if n.span else n
                                         for n in d.notes),
                             fixes=tuple(replace(f, span=real(f.span)) for f in d.fixes))
+            if _VIRTUAL_LINE.search(d.message) or any(_VIRTUAL_LINE.search(n.message)
+                                                      for n in d.notes):
+                d = analysis.real_words(d)
             shown.append(d)
         shown.sort(key=Diagnostic.sort_key)
         analysis.diagnostics = shown

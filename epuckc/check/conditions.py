@@ -1,0 +1,225 @@
+"""What conditions say about the values they compare: a checked condition
+(an Expr of kind BOOL) seen as a formula over atoms `NAME OP NUMBER`, where
+NAME is a variable or a reading. Arbitration asks whether two rules'
+conditions can hold together (W009); the checker narrows a variable's
+interval after a guard (W020, W013, W014 in the rule's first step).
+
+The formula keeps what it can read and over-approximates the rest: a
+comparison of anything else, a `random(...)`, a deep tree, counts as
+"true" (it may hold), so that every conclusion drawn from it is sound:
+"cannot hold together" only where no values can make both true.
+"""
+from __future__ import annotations
+
+from typing import Optional
+
+from .program import BOOL, Expr
+
+TRUE, FALSE = ("true",), ("false",)
+_FLIP = {"<": ">", "<=": ">=", ">": "<", ">=": "<=", "==": "==", "!=": "!="}
+_NEGATE = {"<": ">=", "<=": ">", ">": "<=", ">=": "<", "==": "!=", "!=": "=="}
+MAX_DEPTH = 40          # deeper conditions count as "may hold"
+MAX_CLAUSES = 256       # the disjunctive form is given up beyond this
+
+
+def formula(e: Optional[Expr], positive: bool = True, depth: int = 0) -> tuple:
+    """The condition `e` (or its negation) in negation normal form:
+    ("and", parts), ("or", parts), ("atom", name, op, value), TRUE, FALSE."""
+    if e is None or depth > MAX_DEPTH:
+        return TRUE
+    op = e.op
+    if op == "num" and e.kind == BOOL:
+        return TRUE if bool(e.value) == positive else FALSE
+    if op == "not":
+        return formula(e.args[0], not positive, depth + 1)
+    if op in ("and", "or"):
+        joined = op if positive else ("or" if op == "and" else "and")
+        return (joined, tuple(formula(a, positive, depth + 1) for a in e.args))
+    if op in _FLIP:
+        a, b = e.args
+        if a.op in ("var", "read") and b.constant:
+            name, cmp, value = a.name, op, b.value
+        elif b.op in ("var", "read") and a.constant:
+            name, cmp, value = b.name, _FLIP[op], a.value
+        else:
+            return TRUE
+        return ("atom", name, cmp if positive else _NEGATE[cmp], value)
+    return TRUE
+
+
+def conjoin(*parts) -> tuple:
+    return ("and", tuple(parts))
+
+
+def without(f: tuple, names) -> tuple:
+    """`f` with its atoms on `names` made "may hold" (values that can change
+    between the evaluations compared)."""
+    if f[0] == "atom":
+        return TRUE if f[1] in names else f
+    if f[0] in ("and", "or"):
+        return (f[0], tuple(without(p, names) for p in f[1]))
+    return f
+
+
+def names_of(f: tuple) -> set:
+    if f[0] == "atom":
+        return {f[1]}
+    if f[0] in ("and", "or"):
+        return set().union(*(names_of(p) for p in f[1])) if f[1] else set()
+    return set()
+
+
+def _clauses(f: tuple) -> Optional[list]:
+    """The disjunctive form: a list of clauses, each a list of atoms; None
+    when it grows beyond MAX_CLAUSES."""
+    kind = f[0]
+    if kind == "atom":
+        return [[f]]
+    if kind == "true":
+        return [[]]
+    if kind == "false":
+        return []
+    if kind == "or":
+        out = []
+        for p in f[1]:
+            c = _clauses(p)
+            if c is None:
+                return None
+            out += c
+            if len(out) > MAX_CLAUSES:
+                return None
+        return out
+    out = [[]]
+    for p in f[1]:
+        c = _clauses(p)
+        if c is None:
+            return None
+        out = [a + b for a in out for b in c]
+        if len(out) > MAX_CLAUSES:
+            return None
+    return out
+
+
+def _clause_bounds(clause, base) -> Optional[dict]:
+    """Each name's interval under a conjunction of atoms (None: no value
+    satisfies it); `base`: name -> the interval its values lie in."""
+    bounds, excluded = {}, {}
+    for _, name, op, v in clause:
+        lo, hi = bounds.get(name) or base.get(name, (-32768, 32767))
+        if op == ">":
+            lo = max(lo, v + 1)
+        elif op == ">=":
+            lo = max(lo, v)
+        elif op == "<":
+            hi = min(hi, v - 1)
+        elif op == "<=":
+            hi = min(hi, v)
+        elif op == "==":
+            lo, hi = max(lo, v), min(hi, v)
+        else:
+            excluded.setdefault(name, set()).add(v)
+        if lo > hi:
+            return None
+        bounds[name] = (lo, hi)
+    for name, points in excluded.items():
+        lo, hi = bounds.get(name) or base.get(name, (-32768, 32767))
+        while lo <= hi and lo in points:
+            lo += 1
+        while hi >= lo and hi in points:
+            hi -= 1
+        if lo > hi:
+            return None
+        bounds[name] = (lo, hi)
+    return bounds
+
+
+def boxes(f: tuple, base: dict) -> Optional[list]:
+    """The values where `f` holds, as boxes: per clause of its disjunctive
+    form that some values satisfy, each name's interval and the values
+    `!=` excludes from it, (bounds, excluded); None when too large."""
+    found = _clauses(f)
+    if found is None:
+        return None
+    out = []
+    for clause in found:
+        bounds = _clause_bounds(clause, base)
+        if bounds is not None:
+            excluded = {}
+            for _, name, op, v in clause:
+                if op == "!=":
+                    excluded.setdefault(name, set()).add(v)
+            out.append((bounds, excluded))
+    return out
+
+
+def _meet(x: tuple, y: tuple) -> bool:
+    """Whether two boxes share a value."""
+    (bx, ex), (by, ey) = x, y
+    if len(by) < len(bx):
+        bx, by = by, bx
+    for name, (lo, hi) in bx.items():
+        other = by.get(name)
+        if other is None:
+            continue
+        lo, hi = max(lo, other[0]), min(hi, other[1])
+        if lo > hi:
+            return False
+        points = ex.get(name, set()) | ey.get(name, set())
+        if points and hi - lo + 1 <= len(points) and \
+                sum(lo <= p <= hi for p in points) == hi - lo + 1:
+            return False
+    return True
+
+
+def boxes_meet(a: list, b: list) -> bool:
+    """Whether some box of `a` and some box of `b` share a value."""
+    for x in a:
+        for y in b:
+            if _meet(x, y):
+                return True
+    return False
+
+
+def satisfiable_together(a: Optional[list], b: Optional[list]) -> bool:
+    """Whether two formulas, given by their boxes, can hold together (True
+    when either was too large to tell)."""
+    if a is None or b is None:
+        return True
+    return any(_meet(x, y) for x in a for y in b)
+
+
+def satisfiable(f: tuple, base: dict) -> bool:
+    """Whether some values (each name within its `base` interval) make `f`
+    true; True when the question is too large to answer."""
+    clauses = _clauses(f)
+    if clauses is None:
+        return True
+    return any(_clause_bounds(c, base) is not None for c in clauses)
+
+
+def overlap(f: tuple, base: dict) -> Optional[dict]:
+    """The intervals of the names in a clause of `f` that some values
+    satisfy (for a message: where two guards overlap); None if none."""
+    clauses = _clauses(f)
+    for c in clauses or ():
+        found = _clause_bounds(c, base)
+        if found is not None:
+            return found
+    return None
+
+
+def narrowed(f: tuple, base: dict) -> dict:
+    """Each name's interval wherever `f` holds: the hull over its clauses
+    (a name a clause does not constrain keeps its `base` interval). Names
+    of no clause are left out."""
+    clauses = _clauses(f)
+    if clauses is None:
+        return {}
+    hull: dict = {}
+    live = [b for b in (_clause_bounds(c, base) for c in clauses) if b is not None]
+    if not live:
+        return {}
+    for name in set().union(*live):
+        ranges = [b.get(name, base.get(name, (-32768, 32767))) for b in live]
+        hull[name] = (min(r[0] for r in ranges), max(r[1] for r in ranges))
+    return hull
