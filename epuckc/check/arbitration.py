@@ -478,9 +478,11 @@ def _help(loser, winner, facts: _Rules) -> str:
 
 def _same_event(a, b) -> bool:
     ea, eb = a.event, b.event
+    if "when" in (ea.name, eb.name):    # conditions compare by their text
+        return ea.name == eb.name and \
+            _shown(ea.node.args[0].value) == _shown(eb.node.args[0].value)
     return (ea.kind, ea.name, ea.values, ea.conditions) == (eb.kind, eb.name, eb.values,
-                                                            eb.conditions) \
-        if ea.name != "when" else _shown(ea.node.args[0].value) == _shown(eb.node.args[0].value)
+                                                            eb.conditions)
 
 
 def _list(rules) -> str:

@@ -274,3 +274,17 @@ def test_the_runtime_agrees_on_a_mode_s_own_timers(tmp_path):
     for a, b in itertools.combinations(["2", "3", "4", "5"], 2):
         together = fired[a] & fired[b]
         assert bool(together) == ((a, b) in reported), (a, b, together)
+
+
+def test_a_when_rule_beside_an_event_rule_of_the_same_facts_is_compared_without_a_crash():
+    """Found by bench/fuzz_campaign.py: the help compared the two rules'
+    events as if both were `when` rules (TypeError: an internal error)."""
+    text = """\
+const K1 = -45 deg
+when -heading <= heading do v1 += abs(x) + -50 mm + v1 + (-ir7) * (v1), start_straight(50 mm/s, 1 m) then v1 = -x
+    on stop_motor if heading + heading < K1 - K1 do start_straight(300 steps/s, -2 cm), set_speed(-200 steps/s - 300 steps/s, abs(random(-25956, 9051) * (1000 steps/s - 0 steps/s))), start_sensor then start_straight(300 steps/s, 1 m), v2 = v2, set_speed(50 mm/s, ((abs(ir7)) * (0 steps/s + -200 steps/s)) / (random(24159, 30910) - acc_z))
+"""
+    source = SourceFile("t.epk", text)
+    diags = Collector(source)
+    check(parse(source, diags), diags)      # v1, v2 are not declared: errors, no crash
+    assert "E051" in {d.code for d in diags.items}
