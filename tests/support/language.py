@@ -29,75 +29,118 @@ KINDS = ["int", "int", "int", "speed", "distance", "angle"]
 COMPARE = ["<", "<=", ">", ">=", "==", "!="]
 
 
+class Choices:
+    """What a generator asks of its source of choices; `RandomChoices` and
+    Hypothesis (`language_programs`) each give them."""
+    def integers(self, lo: int, hi: int) -> int: ...
+    def choice(self, options): ...
+    def boolean(self) -> bool: ...
+
+
+class RandomChoices(Choices):
+    """Choices from random.Random: what a long campaign uses, at a
+    fraction of Hypothesis's cost per example (bench/fuzz_campaign.py)."""
+    def __init__(self, rng):
+        self.rng = rng
+
+    def integers(self, lo, hi):
+        return self.rng.randint(lo, hi)
+
+    def choice(self, options):
+        return self.rng.choice(list(options))
+
+    def boolean(self):
+        return self.rng.random() < 0.5
+
+
+class _Drawn(Choices):
+    def __init__(self, draw):
+        self.draw = draw
+
+    def integers(self, lo, hi):
+        return self.draw(st.integers(lo, hi))
+
+    def choice(self, options):
+        return self.draw(st.sampled_from(list(options)))
+
+    def boolean(self):
+        return self.draw(st.booleans())
+
+
 @st.composite
 def language_programs(draw) -> Program:
+    """The Hypothesis strategy of language programs."""
+    return language_program(_Drawn(draw))
+
+
+def language_program(r: Choices) -> Program:
     variables: dict = {}        # name -> kind
     constants: dict = {}
     lines = []
-    for i in range(draw(st.integers(0, 3))):
-        kind = draw(st.sampled_from(KINDS))
-        value = draw(st.sampled_from(INT_NUMBERS if kind == "int" else UNIT_NUMBERS[kind]))
+    for i in range(r.integers(0, 3)):
+        kind = r.choice(KINDS)
+        value = r.choice(INT_NUMBERS if kind == "int" else UNIT_NUMBERS[kind])
         constants[f"K{i}"] = kind
         lines.append(f"const K{i} = {value}")
-    for i in range(draw(st.integers(1, 5))):
-        kind = draw(st.sampled_from(KINDS))
-        value = draw(st.sampled_from(INT_NUMBERS if kind == "int" else UNIT_NUMBERS[kind]))
+    for i in range(r.integers(1, 5)):
+        kind = r.choice(KINDS)
+        value = r.choice(INT_NUMBERS if kind == "int" else UNIT_NUMBERS[kind])
         variables[f"v{i}"] = kind
         lines.append(f"var v{i} = {value}")
 
     def leaf(kind):
-        options = [lambda: draw(st.sampled_from(INT_NUMBERS if kind == "int"
-                                                else UNIT_NUMBERS[kind]))]
+        options = [lambda: r.choice(INT_NUMBERS if kind == "int"
+                                                else UNIT_NUMBERS[kind])]
         names = [n for n, k in variables.items() if k == kind]
         names += [n for n, k in constants.items() if k == kind]
         names += READINGS[kind]
         if names:
-            options += [lambda: draw(st.sampled_from(names))] * 3
-            options.append(lambda: "-" + draw(st.sampled_from(names)))
-        return draw(st.sampled_from(options))()
+            options += [lambda: r.choice(names)] * 3
+            options.append(lambda: "-" + r.choice(names))
+        return r.choice(options)()
 
     def number(kind, depth):
-        if depth <= 0 or draw(st.integers(0, 3)) == 0:
+        if depth <= 0 or r.integers(0, 3) == 0:
             return leaf(kind)
-        form = draw(st.integers(0, 9))
+        form = r.integers(0, 9)
         if form <= 3:
-            op = draw(st.sampled_from(["+", "-"]))
+            op = r.choice(["+", "-"])
             return f"{number(kind, depth - 1)} {op} {number(kind, depth - 1)}"
         if form == 4:
             return f"({number('int', depth - 1)}) * ({number(kind, depth - 1)})"
         if form == 5:
-            op = draw(st.sampled_from(["/", "%"]))
+            op = r.choice(["/", "%"])
             return f"({number(kind, depth - 1)}) {op} ({number('int', depth - 1)})"
         if form == 6:
-            f = draw(st.sampled_from(["min", "max"]))
+            f = r.choice(["min", "max"])
             return f"{f}({number(kind, depth - 1)}, {number(kind, depth - 1)})"
         if form == 7:
             return (f"clamp({number(kind, depth - 1)}, {number(kind, depth - 1)}, "
                     f"{number(kind, depth - 1)})")
         if form == 8:
-            f = draw(st.sampled_from(["abs", "-"]))
+            f = r.choice(["abs", "-"])
             return f"{f}({number(kind, depth - 1)})"
-        lo, hi = sorted(draw(st.lists(st.integers(-32768, 32767), min_size=2, max_size=2)))
+        lo, hi = sorted((r.integers(-32768, 32767), r.integers(-32768, 32767)))
         if kind == "int":
             return f"random({lo}, {hi})"
         return f"random({lo}, {hi}) * ({number(kind, depth - 1)})"
 
     def condition(depth):
-        form = draw(st.integers(0, 5))
+        form = r.integers(0, 5)
         if depth <= 0 or form <= 2:
-            kind = draw(st.sampled_from(KINDS))
+            kind = r.choice(KINDS)
             left = number(kind, depth - 1)
-            right = left if draw(st.integers(0, 9)) == 9 else number(kind, depth - 1)
-            return f"{left} {draw(st.sampled_from(COMPARE))} {right}"
+            right = left if r.integers(0, 9) == 9 else number(kind, depth - 1)
+            return f"{left} {r.choice(COMPARE)} {right}"
         if form == 3:
             return f"not ({condition(depth - 1)})"
-        return f"({condition(depth - 1)}) {draw(st.sampled_from(['and', 'or']))} " \
+        return f"({condition(depth - 1)}) {r.choice(['and', 'or'])} " \
                f"({condition(depth - 1)})"
 
     def deep(kind):
         """An expression at or just beyond the depth limit."""
-        n = MAX_DEPTH + draw(st.sampled_from([-1, 0, 1]))
-        shape = draw(st.integers(0, 2))
+        n = MAX_DEPTH + r.choice([-1, 0, 1])
+        shape = r.integers(0, 2)
         if shape == 0:
             return "abs(" * n + leaf(kind) + ")" * n
         if shape == 1:
@@ -105,65 +148,65 @@ def language_programs(draw) -> Program:
         return leaf(kind) + "".join(f" + {leaf(kind)}" for _ in range(n))
 
     def expression(kind):
-        if draw(st.integers(0, 79)) == 79:
+        if r.integers(0, 79) == 79:
             return deep(kind)
-        return number(kind, draw(st.integers(0, 4)))
+        return number(kind, r.integers(0, 4))
 
     def action():
-        form = draw(st.integers(0, 9))
+        form = r.integers(0, 9)
         if form <= 3 and variables:
-            name = draw(st.sampled_from(sorted(variables)))
-            kind = variables[name] if draw(st.integers(0, 19)) < 19 else draw(st.sampled_from(KINDS))
-            return f"{name} {draw(st.sampled_from(['=', '=', '+=', '-=']))} {expression(kind)}"
+            name = r.choice(sorted(variables))
+            kind = variables[name] if r.integers(0, 19) < 19 else r.choice(KINDS)
+            return f"{name} {r.choice(['=', '=', '+=', '-='])} {expression(kind)}"
         if form <= 5:
             return f"set_speed({expression('speed')}, {expression('speed')})"
         if form == 6:
-            return f"start_straight({draw(st.sampled_from(UNIT_NUMBERS['speed']))}, " \
-                   f"{draw(st.sampled_from(['5 cm', '-2 cm', '1 m']))})"
-        return draw(st.sampled_from(["stop_motor", "led_toggle(body)", "led_on(led3)",
-                                     "start_sensor", "set_timer", "play_sound(haa)"]))
+            return f"start_straight({r.choice(UNIT_NUMBERS['speed'])}, " \
+                   f"{r.choice(['5 cm', '-2 cm', '1 m'])})"
+        return r.choice(["stop_motor", "led_toggle(body)", "led_on(led3)",
+                                     "start_sensor", "set_timer", "play_sound(haa)"])
 
     def body(allow_wait=True):
         steps = []
-        for _ in range(draw(st.integers(1, 3))):
-            calls = [action() for _ in range(draw(st.integers(1, 3)))]
-            if allow_wait and draw(st.integers(0, 3)) == 3:
-                calls.append(f"wait({draw(st.sampled_from(['10 ms', '100 ms', '1 s']))})")
+        for _ in range(r.integers(1, 3)):
+            calls = [action() for _ in range(r.integers(1, 3))]
+            if allow_wait and r.integers(0, 3) == 3:
+                calls.append(f"wait({r.choice(['10 ms', '100 ms', '1 s'])})")
             steps.append(", ".join(calls))
         return " then ".join(steps)
 
-    modes = [f"m{i}" for i in range(draw(st.integers(0, 2)))]
+    modes = [f"m{i}" for i in range(r.integers(0, 2))]
 
     def rule(in_mode):
-        form = draw(st.integers(0, 6))
-        tail = draw(st.sampled_from(["", "", " priority 1", " priority 2"]))
-        guard = f" if {condition(draw(st.integers(0, 2)))}" if draw(st.integers(0, 3)) == 3 \
+        form = r.integers(0, 6)
+        tail = r.choice(["", "", " priority 1", " priority 2"])
+        guard = f" if {condition(r.integers(0, 2))}" if r.integers(0, 3) == 3 \
             else ""
         if form <= 1:
-            head = f"when {condition(draw(st.integers(0, 3)))}"
+            head = f"when {condition(r.integers(0, 3))}"
             guard = ""
         elif form == 2:
-            head = f"every {draw(st.sampled_from(['10 ms', '50 ms', '200 ms', '1 s']))}"
+            head = f"every {r.choice(['10 ms', '50 ms', '200 ms', '1 s'])}"
         elif form == 3:
-            head = f"after {draw(st.sampled_from(['10 ms', '300 ms', '1 s']))}"
+            head = f"after {r.choice(['10 ms', '300 ms', '1 s'])}"
         else:
             events = ["immediate", "stop_motor", "timer(100 ms)", "sensor(ir0 > 300)",
                       "ambient(ir2 < 200)"] + (["enter"] if in_mode else [])
-            event = draw(st.sampled_from(events))
-            repeat = " repeat" if event != "immediate" and draw(st.booleans()) else ""
+            event = r.choice(events)
+            repeat = " repeat" if event != "immediate" and r.boolean() else ""
             head = f"on {event}{repeat}"
         actions = body()
-        if modes and draw(st.integers(0, 4)) == 4:
-            actions += f", enter {draw(st.sampled_from(modes))}"
+        if modes and r.integers(0, 4) == 4:
+            actions += f", enter {r.choice(modes)}"
         return f"{head}{tail}{guard} do {actions}"
 
-    for _ in range(draw(st.integers(1, 5))):
+    for _ in range(r.integers(1, 5)):
         lines.append(rule(False))
     for k, mode in enumerate(modes):
         lines.append(("initial " if k == 0 else "") + f"mode {mode} {{")
-        if draw(st.integers(0, 9)) == 9:
+        if r.integers(0, 9) == 9:
             lines.append(f"    var local{k} = 0")        # not allowed: E001, never a crash
-        for _ in range(draw(st.integers(1, 3))):
+        for _ in range(r.integers(1, 3)):
             lines.append("    " + rule(True))
         lines.append("}")
     lines.insert(0, "on immediate do start_sensor, set_timer")
