@@ -46,6 +46,7 @@ unsigned *rt_ev_latch;          /* compiled condition at its last poll */
 static unsigned *ev_now;            /* compiled conditions of this poll */
 static unsigned *ev_compiled;       /* the event is a compiled condition */
 unsigned *rt_ev_dead;           /* cancel_event: not re-armed by enter_mode */
+unsigned *rt_ev_hold;           /* holds the motors by its condition or guard */
 static int conditions_valid;        /* ev_now holds this poll's conditions */
 
 
@@ -58,6 +59,29 @@ int rt_event_priority(int id)
 int rt_event_mode(int id)
 {
     return id < rt_s_events ? rt_prog->events[id].mode : rt_event_ext[id - rt_s_events].mode;
+}
+
+/* How an event's rule holds the motors it commanded (docs/runtime.md,
+ * "Holding the motors"): the table entry's flags say it; a compiled
+ * condition, event_sensor and event_ambient are conditions on either path. */
+int rt_hold_kind(int id)
+{
+    event_func f;
+    unsigned flags = 0;
+
+    if (id < rt_s_events) {
+        f = rt_prog->events[id].event_function;
+        flags = rt_prog->events[id].flags;
+        if (f == NULL)
+            return RT_HOLD_WHILE;
+    } else {
+        f = rt_events[id - rt_s_events].event_function;
+    }
+    if (flags & RT_HOLD_GUARD)
+        return RT_HOLD_GUARD;
+    if ((flags & RT_HOLD_WHILE) || f == event_sensor || f == sensor || f == event_ambient)
+        return RT_HOLD_WHILE;
+    return 0;
 }
 
 /* ---- millisecond clock ---------------------------------------------------
@@ -120,6 +144,8 @@ int rt_exit_requested;      /* set by exit_main, checked by mainloop */
 int rt_current_action_id = -1;  /* the action being run by mainloop */
 int rt_current_event_id = -1;   /* the event whose action runs (-1: none) */
 int rt_current_rearmed;         /* its action entered its mode again: it stays armed */
+int rt_firing_event = -1;       /* the event whose action mainloop runs (-1: none) */
+int rt_polled_event = -1;       /* the event whose function was called last */
 
 /* ---- paper table 1 -------------------------------------------------------- */
 
@@ -169,6 +195,7 @@ int register_event(event_func f, void *event_param, int action_id)
     e->status.memory = 0;
     rt_event_ext[id].priority = 0;
     rt_event_ext[id].mode = 0;
+    rt_event_ext[id].hold = 0;
     if (f == event_remote) {
         remote_wanted = 1;
         remote_start();
@@ -197,6 +224,7 @@ void cancel_event(int event_id)
 {
     if (!event_ok(event_id))
         return;
+    rt_hold_release(event_id);
     if (event_id < rt_s_events) {
         BIT_CLEAR(rt_ev_armed, event_id);
         BIT_SET(rt_ev_dead, event_id);
@@ -245,6 +273,7 @@ void disarm_event(int event_id)
 {
     if (!event_ok(event_id))
         return;
+    rt_hold_release(event_id);
     if (event_id < rt_s_events)
         BIT_CLEAR(rt_ev_armed, event_id);
     else
@@ -319,7 +348,8 @@ int register_program(const rt_program *p)
     ev_now = rt_ev_latch + words_e;
     ev_compiled = ev_now + words_e;
     rt_ev_dead = ev_compiled + words_e;
-    for (k = 0; k < words_a + 6 * words_e; k++)
+    rt_ev_hold = rt_ev_dead + words_e;
+    for (k = 0; k < words_a + 7 * words_e; k++)
         p->state[k] = 0;
     for (k = 0; k < p->n_actions; k++)
         rt_new_action(k, p->actions[k].action_function);
@@ -410,9 +440,11 @@ static void fire_static(int id)
 {
     rt_trace_event(id);
     rt_current_event_id = id;
+    rt_firing_event = id;
     rt_current_rearmed = 0;
     run_action(rt_prog->events[id].action_id);
     rt_current_event_id = -1;
+    rt_firing_event = -1;
     if (!BIT_GET(ev_repeat, id) && !rt_current_rearmed)
         BIT_CLEAR(rt_ev_armed, id);
 }
@@ -434,6 +466,34 @@ static unsigned conditions_mask(void)
     return ~0u;
 }
 
+/* An RT_HOLD_WHILE event's condition in this poll, for its hold on the
+ * motors (also once it fired and disarmed): a compiled condition's bit, or
+ * what its function leaves in a copy of its status's memory (the condition,
+ * for event_sensor, event_ambient and rt_when; with the memory at 1 no edge
+ * occurs, so a guard is not evaluated). */
+int rt_condition_now(int id)
+{
+    event_status st;
+    event_func f;
+    void *param;
+
+    if (id < rt_s_events) {
+        f = rt_prog->events[id].event_function;
+        if (f == NULL)
+            return (conditions_mask() & ev_now[id >> 4] & BIT_OF(id)) != 0;
+        param = (void *)rt_prog->events[id].event_param;
+    } else {
+        f = rt_events[id - rt_s_events].event_function;
+        param = rt_events[id - rt_s_events].event_param;
+        if (f == NULL)
+            return 0;
+    }
+    st.occurred = 0;
+    st.memory = 1;
+    f(param, &st);
+    return st.memory != 0;
+}
+
 /* Polls a table event that is not a compiled condition. */
 static void poll_static_function(int id)
 {
@@ -442,6 +502,7 @@ static void poll_static_function(int id)
 
     st.occurred = 0;
     st.memory = e->memory != RT_NO_MEMORY ? rt_prog->memory[e->memory] : 0;
+    rt_polled_event = id;
     e->event_function((void *)e->event_param, &st);
     if (e->memory != RT_NO_MEMORY)
         rt_prog->memory[e->memory] = st.memory;
@@ -502,9 +563,11 @@ static void fire_dynamic(int i)
 
     rt_trace_event(rt_s_events + i);
     rt_current_event_id = rt_s_events + i;
+    rt_firing_event = rt_current_event_id;
     rt_current_rearmed = 0;
     run_action(e->action_id);
     rt_current_event_id = -1;
+    rt_firing_event = -1;
     if (!e->repeat_flag && !rt_current_rearmed)
         e->valid_flag = 0;
 }
@@ -592,6 +655,7 @@ static int poll_dynamic_level(int level)
         if (rt_event_ext[i].priority != level || !dynamic_armed(i))
             continue;
         e->status.occurred = 0;
+        rt_polled_event = rt_s_events + i;
         e->event_function(e->event_param, &e->status);
         if (e->status.occurred)
             fire_dynamic(i);
@@ -648,6 +712,7 @@ static int poll_enter_events(void)
         if (rt_events[i].event_function == event_enter_mode && dynamic_armed(i)
                 && rt_event_ext[i].mode == mode) {
             rt_events[i].status.occurred = 0;
+            rt_polled_event = rt_s_events + i;
             rt_events[i].event_function(rt_events[i].event_param, &rt_events[i].status);
             if (rt_events[i].status.occurred)
                 fire_dynamic(i);
@@ -670,6 +735,8 @@ static int poll_ranked(void)
     rt_mode_entered_in_poll = 0;
     if (rt_mode_entry_pending && poll_enter_events())
         return 1;
+    if (rt_holds > 0)
+        rt_holds_update();
     if (rt_prog != NULL && rt_prog->order != NULL)
         return poll_ordered();
     more = next_level(0, 0, &level);
@@ -711,6 +778,8 @@ static int poll_events(void)
     rt_mode_entered_in_poll = 0;
     if (rt_mode_entry_pending && poll_enter_events())
         return 1;
+    if (rt_holds > 0)
+        rt_holds_update();
     if (rt_prog != NULL && poll_static())
         return 1;
     /* n_events is re-read: an action may register events, polled at once */
@@ -719,6 +788,7 @@ static int poll_events(void)
         if (!e->valid_flag || e->event_function == NULL)
             continue;
         e->status.occurred = 0;
+        rt_polled_event = rt_s_events + i;
         e->event_function(e->event_param, &e->status);
         if (e->status.occurred)
             fire_dynamic(i);
@@ -758,6 +828,7 @@ void mainloop(void)
     rt_seq_waiting = 0;
     rt_seq_delay = 0;
     rt_seen_moving = 0;
+    rt_holds_release(-1);
     rt_exit_requested = 0;
     rt_prox_valid = 0;
     rt_trace_exit();

@@ -63,21 +63,110 @@ static long wheel_delta(int now, int last)
 
 static void sequence_outside_command(void);
 
+/* ---- holding the motors (docs/runtime.md, "Holding the motors") ----------
+ * An event holds the motors while its bounded motion runs (rt_motion.owner),
+ * while its sequence is in progress (rt_seq_event_id), and, for a condition
+ * (RT_HOLD_WHILE) or a guarded periodic rule (RT_HOLD_GUARD) that commanded
+ * them when it fired, while its condition stays true or until a period whose
+ * guard is false: its hold bit (a table event's plane, an array event's
+ * rt_event_ext).  rt_holds counts the bits, so that a program that holds
+ * nothing by a condition pays nothing for them. */
+int rt_holds;
+
+static int hold_bit(int id)
+{
+    return id < rt_s_events ? BIT_GET(rt_ev_hold, id) : rt_event_ext[id - rt_s_events].hold;
+}
+
+static void hold_put(int id, int on)
+{
+    if (hold_bit(id) == on)
+        return;
+    if (id >= rt_s_events)
+        rt_event_ext[id - rt_s_events].hold = on;
+    else if (on)
+        BIT_SET(rt_ev_hold, id);
+    else
+        BIT_CLEAR(rt_ev_hold, id);
+    rt_holds += on ? 1 : -1;
+}
+
+void rt_hold_release(int id)
+{
+    if (rt_holds > 0 && id >= 0 && id < rt_s_events + rt_n_events)
+        hold_put(id, 0);
+}
+
+void rt_holds_release(int mode)
+{
+    int id;
+
+    for (id = 0; rt_holds > 0 && id < rt_s_events + rt_n_events; id++) {
+        if (mode < 0 || rt_event_mode(id) == mode)
+            hold_put(id, 0);
+    }
+}
+
+/* Before the walk of each poll while something holds by a condition: a
+ * condition that became false lets go (a guard lets go in rt_guard). */
+void rt_holds_update(void)
+{
+    int id;
+
+    for (id = 0; rt_holds > 0 && id < rt_s_events + rt_n_events; id++) {
+        if (id < rt_s_events && (rt_ev_hold[id >> 4] & WORD_MASK) == 0) {
+            id = (id | 15) < rt_s_events ? id | 15 : rt_s_events - 1;  /* none in this word */
+            continue;
+        }
+        if (hold_bit(id) && rt_hold_kind(id) == RT_HOLD_WHILE && !rt_condition_now(id))
+            hold_put(id, 0);
+    }
+}
+
+/* The event of highest priority above `me`'s that holds the motors, or -1. */
+static int holder_above(int me)
+{
+    int best = -1, level = rt_event_priority(me), id;
+
+    if (rt_motion.active && !rt_motion.endless && rt_motion.owner >= 0
+            && rt_event_priority(rt_motion.owner) > level) {
+        best = rt_motion.owner;
+        level = rt_event_priority(best);
+    }
+    if (rt_seq != NULL && rt_seq_event_id >= 0 && rt_event_priority(rt_seq_event_id) > level) {
+        best = rt_seq_event_id;
+        level = rt_event_priority(best);
+    }
+    for (id = 0; rt_holds > 0 && id < rt_s_events + rt_n_events; id++) {
+        if (hold_bit(id) && rt_event_priority(id) > level) {
+            best = id;
+            level = rt_event_priority(id);
+        }
+    }
+    return best;
+}
+
 /* Motor arbitration: 1 when the running action may not command the motors
- * because the motion in progress belongs to an event of higher priority
- * (the command is then traced as suppressed and not carried out).  Commands
- * from outside any event's action (main, before mainloop) always pass. */
+ * because an event of higher priority holds them (the command is then
+ * traced as suppressed and not carried out).  Commands from outside any
+ * event's action (main, before mainloop) always pass.  A command carried
+ * out by a condition or a guarded periodic rule as it fires starts its
+ * hold. */
 static int motors_refused(const char *command)
 {
-    int owner = rt_motion.owner, me = rt_current_event_id;
+    int me = rt_current_event_id, holder;
 
-    if (!rt_motion.active || owner < 0 || me < 0 || owner == me)
+    if (me < 0)
         return 0;
-    if (rt_event_priority(me) >= rt_event_priority(owner))
-        return 0;
-    rt_trace_suppressed(me, rt_event_priority(me), owner, rt_event_priority(owner),
-                        command);
-    return 1;
+    holder = holder_above(me);
+    if (holder >= 0) {
+        rt_trace_suppressed(me, rt_event_priority(me), holder, rt_event_priority(holder),
+                            command);
+        return 1;
+    }
+    if (rt_firing_event == me && rt_hold_kind(me) != 0)
+        hold_put(me, 1);
+    return 0;
 }
 
 void rt_wheels(int left, int right)
