@@ -33,7 +33,8 @@ static int ranked;
 /* ---- the static tables (register_program) ----------------------------------
  * Ids 0..s_actions-1 and 0..s_events-1 are the program's table entries; the
  * arrays' ids follow (array index + s_actions / s_events).  The program's
- * RAM state is six bit planes of 16-bit words, bit k % 16 of word k / 16
+ * RAM state is seven bit planes of 16-bit words for the events (and one
+ * for the actions), bit k % 16 of word k / 16
  * for entry k: */
 const rt_program *rt_prog;      /* NULL: none registered */
 static int s_actions;               /* its table sizes, 0 without one */
