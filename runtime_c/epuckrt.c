@@ -467,32 +467,66 @@ static unsigned conditions_mask(void)
     return ~0u;
 }
 
-/* An RT_HOLD_WHILE event's condition in this poll, for its hold on the
- * motors (also once it fired and disarmed): a compiled condition's bit, or
- * what its function leaves in a copy of its status's memory (the condition,
- * for event_sensor, event_ambient and rt_when; with the memory at 1 no edge
- * occurs, so a guard is not evaluated). */
-int rt_condition_now(int id)
+/* The condition in this poll of an RT_HOLD_WHILE event with a function
+ * (1 for the other kinds): what the function leaves in a copy of its
+ * status's memory (the condition, for event_sensor, event_ambient and
+ * rt_when; with the memory at 1 no edge occurs, so a guard is not
+ * evaluated). */
+static int function_condition_now(int id)
 {
     event_status st;
     event_func f;
     void *param;
 
+    if (rt_hold_kind(id) != RT_HOLD_WHILE)
+        return 1;
     if (id < rt_s_events) {
         f = rt_prog->events[id].event_function;
-        if (f == NULL)
-            return (conditions_mask() & ev_now[id >> 4] & BIT_OF(id)) != 0;
         param = (void *)rt_prog->events[id].event_param;
     } else {
         f = rt_events[id - rt_s_events].event_function;
         param = rt_events[id - rt_s_events].event_param;
-        if (f == NULL)
-            return 0;
     }
     st.occurred = 0;
     st.memory = 1;
     f(param, &st);
     return st.memory != 0;
+}
+
+/* Before the walk of each poll while some event holds the motors by its
+ * condition or guard (rt_holds): a condition that became false lets go (a
+ * guard lets go in rt_guard).  A compiled condition's is its bit of this
+ * poll, sixteen events a word; an event function's, function_condition_now.
+ * One-shot rules that fired and disarmed are followed as well. */
+void rt_holds_update(void)
+{
+    int left = rt_holds, id;   /* the holders not met yet: none after the last */
+    unsigned w;
+
+    for (w = 0; w < s_words && left > 0; w++) {
+        unsigned held = rt_ev_hold[w] & WORD_MASK, rest, drop;
+        if (held == 0)
+            continue;
+        /* compiled conditions: their bits of this poll, sixteen at once */
+        drop = held & ev_compiled[w] & ~(conditions_mask() & ev_now[w]);
+        rest = held & ~ev_compiled[w];
+        for (; held != 0; held &= held - 1u)
+            left--;
+        rt_ev_hold[w] &= ~drop;
+        for (; drop != 0; drop &= drop - 1u)
+            rt_holds--;
+        for (id = (int)(w * 16u); rest != 0; rest >>= 1, id++) {
+            if ((rest & 1u) && !function_condition_now(id))
+                rt_hold_release(id);
+        }
+    }
+    for (id = rt_s_events; left > 0 && id < rt_s_events + rt_n_events; id++) {
+        if (rt_event_ext[id - rt_s_events].hold) {
+            left--;
+            if (!function_condition_now(id))
+                rt_hold_release(id);
+        }
+    }
 }
 
 /* Polls a table event that is not a compiled condition. */

@@ -73,7 +73,7 @@ extern unsigned *rt_ev_dead;   /* cancel_event: not re-armed by enter_mode */
 extern unsigned *rt_ev_hold;   /* holds the motors by its condition or guard */
 int rt_event_priority(int id);
 int rt_hold_kind(int id);   /* RT_HOLD_WHILE, RT_HOLD_GUARD or 0 */
-int rt_condition_now(int id);   /* an RT_HOLD_WHILE event's condition, this poll */
+void rt_holds_update(void);   /* before the walk: conditions that became false let go */
 int rt_event_mode(int id);
 extern int rt_initialised;
 extern int rt_remote_started;   /* e_init_remote_control() has run */
@@ -104,7 +104,7 @@ void rt_wheels(int left, int right);
 extern int rt_holds;   /* events holding the motors by their condition or guard */
 void rt_hold_release(int id);
 void rt_holds_release(int mode);   /* those of the events of `mode`; all: -1 */
-void rt_holds_update(void);   /* before the walk: conditions that became false let go */
+int rt_next_holder(int id);   /* the first event from id on that holds by its condition or guard */
 void rt_motion_update(void);
 void rt_sequence_advance(void);
 

@@ -107,26 +107,32 @@ void rt_holds_release(int mode)
     }
 }
 
-/* Before the walk of each poll while something holds by a condition: a
- * condition that became false lets go (a guard lets go in rt_guard). */
-void rt_holds_update(void)
+/* The first event from `id` on whose hold bit is set, or -1: the table's a
+ * word at a time (epuckc numbers the events by priority, highest first, so
+ * the holders, of high priority, come first), then the arrays'. */
+int rt_next_holder(int id)
 {
-    int id;
-
-    for (id = 0; rt_holds > 0 && id < rt_s_events + rt_n_events; id++) {
-        if (id < rt_s_events && (rt_ev_hold[id >> 4] & WORD_MASK) == 0) {
-            id = (id | 15) < rt_s_events ? id | 15 : rt_s_events - 1;  /* none in this word */
-            continue;
+    while (id < rt_s_events) {
+        unsigned w = rt_ev_hold[id >> 4] & WORD_MASK & ~(BIT_OF(id) - 1u);
+        if (w != 0) {
+            int k = 0;
+            while (!((w >> k) & 1u))
+                k++;
+            return (id & ~15) + k;
         }
-        if (hold_bit(id) && rt_hold_kind(id) == RT_HOLD_WHILE && !rt_condition_now(id))
-            hold_put(id, 0);
+        id = (id | 15) + 1;
     }
+    for (; id < rt_s_events + rt_n_events; id++) {
+        if (rt_event_ext[id - rt_s_events].hold)
+            return id;
+    }
+    return -1;
 }
 
 /* The event of highest priority above `me`'s that holds the motors, or -1. */
 static int holder_above(int me)
 {
-    int best = -1, level = rt_event_priority(me), id;
+    int best = -1, level = rt_event_priority(me), id, left = rt_holds;
 
     if (rt_motion.active && !rt_motion.endless && rt_motion.owner >= 0
             && rt_event_priority(rt_motion.owner) > level) {
@@ -137,8 +143,8 @@ static int holder_above(int me)
         best = rt_seq_event_id;
         level = rt_event_priority(best);
     }
-    for (id = 0; rt_holds > 0 && id < rt_s_events + rt_n_events; id++) {
-        if (hold_bit(id) && rt_event_priority(id) > level) {
+    for (id = left > 0 ? rt_next_holder(0) : -1; id >= 0; id = --left > 0 ? rt_next_holder(id + 1) : -1) {
+        if (rt_event_priority(id) > level) {
             best = id;
             level = rt_event_priority(id);
         }
