@@ -63,6 +63,19 @@ def test_when_holds_while_its_condition_is_true_and_lets_go_when_it_is_false(tmp
     assert "when ir0 > 500" in first["owner_name"]
 
 
+def test_a_guarded_condition_holds_by_its_condition_not_its_guard(tmp_path):
+    """A guard decides whether the rule fires; its condition how long it
+    holds (a guarded condition is an event function, not a compiled
+    condition: its condition is followed after the one-shot rule fired)."""
+    records = _run(tmp_path, "var n = 0\nafter 100 ms do n = 5\n"
+                   "when ir0 > 500 priority 1 if n >= 5 do set_speed(left: -200, right: -200)\n"
+                   "on sensor(ir7 > 500) priority 1 if n >= 5 do set_speed(left: -100, right: -100)\n"
+                   "on immediate do start_sensor\n",
+                   "0 ms ir0=0 ir7=0\n200 ms ir0=900\n400 ms ir0=0\n600 ms ir7=900\n"
+                   "800 ms ir7=0\n")
+    assert _suppressed(records) == _cruise_times(200, 400) + _cruise_times(600, 800)
+
+
 def test_a_guarded_every_holds_until_a_period_whose_guard_is_false(tmp_path):
     records = _run(tmp_path, "every 50 ms priority 1 if ir0 > 500 "
                              "do set_speed(left: -200, right: -200)\n", NEAR_200_TO_500)
