@@ -117,6 +117,15 @@ def when_program(n: int) -> str:
     return "\n".join(lines) + "\n"
 
 
+def hold_program(n: int) -> str:
+    """The sensor rules, plus a `when` rule of priority 1 whose condition is
+    true all along, so that it holds the motors for the whole run, and a
+    rule of priority 0 that renews its command every 10 ms (refused each
+    time): the poll's cost while a condition holds the motors (issue 24)."""
+    return (sensor_program(n) + "when selector == 0 priority 1 do set_speed(left: 100, right: 100)\n"
+            "every 10 ms do set_speed(left: 200, right: 200)\n")
+
+
 def vars_program(n: int) -> str:
     """n variables, all given a value by one rule (RAM per variable)."""
     lines = [f"var v{i} = {i}" for i in range(n)]
@@ -379,7 +388,7 @@ def main() -> int:
                     help="comma-separated parts: callgrind, ram, simavr, priorities (simavr's "
                          "programs with and without priorities, side by side), when (callgrind: "
                          "sensor rules, when rules, priority levels, the reference chain), vars "
-                         "(RAM per variable)")
+                         "(RAM per variable), holding (callgrind: while a condition holds the motors)")
     ap.add_argument("--sizes", default="10,100,1000", help="rule counts (default 10,100,1000)")
     ap.add_argument("--keep", type=Path, help="keep the generated files in this folder")
     args = ap.parse_args()
@@ -445,6 +454,19 @@ def main() -> int:
             for n, sensor, when, levels, chain in bench_conditions(sizes, work):
                 print(f"{n:>6} {sensor:>8.0f} {when:>8.0f} {levels:>8.0f} {chain:>8.0f}"
                       f" {when / sensor:>11.2f}x {when / chain:>10.2f}x {levels / sensor:>13.2f}x")
+    if "holding" in parts:
+        if missing("cc", "valgrind", "callgrind_annotate"):
+            print(f"holding: skipped, missing {missing('cc', 'valgrind', 'callgrind_annotate')}")
+            status = 1
+        else:
+            print("\n== x86 instructions per poll (callgrind) while a `when` rule of priority 1"
+                  " holds the motors, N sensor rules that never fire (hold_program); a reference"
+                  " revision runs the same program with its own per_poll")
+            print(f"{'rules':>6} {'per poll':>9}")
+            for n in sizes:
+                d = work / f"hold{n}"
+                d.mkdir()
+                print(f"{n:>6} {per_poll(hold_program(n), d, 'hold'):>9.0f}")
     if "vars" in parts:
         if missing("avr-gcc", "avr-size"):
             print(f"vars: skipped, missing {missing('avr-gcc', 'avr-size')}")

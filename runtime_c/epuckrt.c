@@ -33,7 +33,8 @@ static int ranked;
 /* ---- the static tables (register_program) ----------------------------------
  * Ids 0..s_actions-1 and 0..s_events-1 are the program's table entries; the
  * arrays' ids follow (array index + s_actions / s_events).  The program's
- * RAM state is six bit planes of 16-bit words, bit k % 16 of word k / 16
+ * RAM state is seven bit planes of 16-bit words for the events (and one
+ * for the actions), bit k % 16 of word k / 16
  * for entry k: */
 const rt_program *rt_prog;      /* NULL: none registered */
 static int s_actions;               /* its table sizes, 0 without one */
@@ -46,6 +47,7 @@ unsigned *rt_ev_latch;          /* compiled condition at its last poll */
 static unsigned *ev_now;            /* compiled conditions of this poll */
 static unsigned *ev_compiled;       /* the event is a compiled condition */
 unsigned *rt_ev_dead;           /* cancel_event: not re-armed by enter_mode */
+unsigned *rt_ev_hold;           /* holds the motors by its condition or guard */
 static int conditions_valid;        /* ev_now holds this poll's conditions */
 
 
@@ -58,6 +60,29 @@ int rt_event_priority(int id)
 int rt_event_mode(int id)
 {
     return id < rt_s_events ? rt_prog->events[id].mode : rt_event_ext[id - rt_s_events].mode;
+}
+
+/* How an event's rule holds the motors it commanded (docs/runtime.md,
+ * "Holding the motors"): the table entry's flags say it; a compiled
+ * condition, event_sensor and event_ambient are conditions on either path. */
+int rt_hold_kind(int id)
+{
+    event_func f;
+    unsigned flags = 0;
+
+    if (id < rt_s_events) {
+        f = rt_prog->events[id].event_function;
+        flags = rt_prog->events[id].flags;
+        if (f == NULL)
+            return RT_HOLD_WHILE;
+    } else {
+        f = rt_events[id - rt_s_events].event_function;
+    }
+    if (flags & RT_HOLD_GUARD)
+        return RT_HOLD_GUARD;
+    if ((flags & RT_HOLD_WHILE) || f == event_sensor || f == sensor || f == event_ambient)
+        return RT_HOLD_WHILE;
+    return 0;
 }
 
 /* ---- millisecond clock ---------------------------------------------------
@@ -120,6 +145,8 @@ int rt_exit_requested;      /* set by exit_main, checked by mainloop */
 int rt_current_action_id = -1;  /* the action being run by mainloop */
 int rt_current_event_id = -1;   /* the event whose action runs (-1: none) */
 int rt_current_rearmed;         /* its action entered its mode again: it stays armed */
+int rt_firing_event = -1;       /* the event whose action mainloop runs (-1: none) */
+int rt_polled_event = -1;       /* the event whose function was called last */
 
 /* ---- paper table 1 -------------------------------------------------------- */
 
@@ -169,6 +196,7 @@ int register_event(event_func f, void *event_param, int action_id)
     e->status.memory = 0;
     rt_event_ext[id].priority = 0;
     rt_event_ext[id].mode = 0;
+    rt_event_ext[id].hold = 0;
     if (f == event_remote) {
         remote_wanted = 1;
         remote_start();
@@ -197,6 +225,7 @@ void cancel_event(int event_id)
 {
     if (!event_ok(event_id))
         return;
+    rt_hold_release(event_id);
     if (event_id < rt_s_events) {
         BIT_CLEAR(rt_ev_armed, event_id);
         BIT_SET(rt_ev_dead, event_id);
@@ -245,6 +274,7 @@ void disarm_event(int event_id)
 {
     if (!event_ok(event_id))
         return;
+    rt_hold_release(event_id);
     if (event_id < rt_s_events)
         BIT_CLEAR(rt_ev_armed, event_id);
     else
@@ -319,7 +349,8 @@ int register_program(const rt_program *p)
     ev_now = rt_ev_latch + words_e;
     ev_compiled = ev_now + words_e;
     rt_ev_dead = ev_compiled + words_e;
-    for (k = 0; k < words_a + 6 * words_e; k++)
+    rt_ev_hold = rt_ev_dead + words_e;
+    for (k = 0; k < words_a + 7 * words_e; k++)
         p->state[k] = 0;
     for (k = 0; k < p->n_actions; k++)
         rt_new_action(k, p->actions[k].action_function);
@@ -410,9 +441,11 @@ static void fire_static(int id)
 {
     rt_trace_event(id);
     rt_current_event_id = id;
+    rt_firing_event = id;
     rt_current_rearmed = 0;
     run_action(rt_prog->events[id].action_id);
     rt_current_event_id = -1;
+    rt_firing_event = -1;
     if (!BIT_GET(ev_repeat, id) && !rt_current_rearmed)
         BIT_CLEAR(rt_ev_armed, id);
 }
@@ -434,6 +467,68 @@ static unsigned conditions_mask(void)
     return ~0u;
 }
 
+/* The condition in this poll of an RT_HOLD_WHILE event with a function
+ * (1 for the other kinds): what the function leaves in a copy of its
+ * status's memory (the condition, for event_sensor, event_ambient and
+ * rt_when; with the memory at 1 no edge occurs, so a guard is not
+ * evaluated). */
+static int function_condition_now(int id)
+{
+    event_status st;
+    event_func f;
+    void *param;
+
+    if (rt_hold_kind(id) != RT_HOLD_WHILE)
+        return 1;
+    if (id < rt_s_events) {
+        f = rt_prog->events[id].event_function;
+        param = (void *)rt_prog->events[id].event_param;
+    } else {
+        f = rt_events[id - rt_s_events].event_function;
+        param = rt_events[id - rt_s_events].event_param;
+    }
+    st.occurred = 0;
+    st.memory = 1;
+    f(param, &st);
+    return st.memory != 0;
+}
+
+/* Before the walk of each poll while some event holds the motors by its
+ * condition or guard (rt_holds): a condition that became false lets go (a
+ * guard lets go in rt_guard).  A compiled condition's is its bit of this
+ * poll, sixteen events a word; an event function's, function_condition_now.
+ * One-shot rules that fired and disarmed are followed as well. */
+void rt_holds_update(void)
+{
+    int left = rt_holds, id;   /* the holders not met yet: none after the last */
+    unsigned w;
+
+    for (w = 0; w < s_words && left > 0; w++) {
+        unsigned held = rt_ev_hold[w] & WORD_MASK, rest, drop;
+        if (held == 0)
+            continue;
+        /* compiled conditions: their bits of this poll, sixteen at once */
+        drop = held & ev_compiled[w] & ~(conditions_mask() & ev_now[w]);
+        rest = held & ~ev_compiled[w];
+        for (; held != 0; held &= held - 1u)
+            left--;
+        rt_ev_hold[w] &= ~drop;
+        for (; drop != 0; drop &= drop - 1u)
+            rt_holds--;
+        for (id = (int)(w * 16u); rest != 0; rest >>= 1, id++) {
+            if ((rest & 1u) && !function_condition_now(id))
+                rt_hold_release(id);
+        }
+    }
+    for (id = rt_s_events; left > 0 && id < rt_s_events + rt_n_events; id++) {
+        if (rt_event_ext[id - rt_s_events].hold) {
+            left--;
+            if (!function_condition_now(id))
+                rt_hold_release(id);
+        }
+    }
+}
+
 /* Polls a table event that is not a compiled condition. */
 static void poll_static_function(int id)
 {
@@ -442,6 +537,7 @@ static void poll_static_function(int id)
 
     st.occurred = 0;
     st.memory = e->memory != RT_NO_MEMORY ? rt_prog->memory[e->memory] : 0;
+    rt_polled_event = id;
     e->event_function((void *)e->event_param, &st);
     if (e->memory != RT_NO_MEMORY)
         rt_prog->memory[e->memory] = st.memory;
@@ -502,9 +598,11 @@ static void fire_dynamic(int i)
 
     rt_trace_event(rt_s_events + i);
     rt_current_event_id = rt_s_events + i;
+    rt_firing_event = rt_current_event_id;
     rt_current_rearmed = 0;
     run_action(e->action_id);
     rt_current_event_id = -1;
+    rt_firing_event = -1;
     if (!e->repeat_flag && !rt_current_rearmed)
         e->valid_flag = 0;
 }
@@ -592,6 +690,7 @@ static int poll_dynamic_level(int level)
         if (rt_event_ext[i].priority != level || !dynamic_armed(i))
             continue;
         e->status.occurred = 0;
+        rt_polled_event = rt_s_events + i;
         e->event_function(e->event_param, &e->status);
         if (e->status.occurred)
             fire_dynamic(i);
@@ -648,6 +747,7 @@ static int poll_enter_events(void)
         if (rt_events[i].event_function == event_enter_mode && dynamic_armed(i)
                 && rt_event_ext[i].mode == mode) {
             rt_events[i].status.occurred = 0;
+            rt_polled_event = rt_s_events + i;
             rt_events[i].event_function(rt_events[i].event_param, &rt_events[i].status);
             if (rt_events[i].status.occurred)
                 fire_dynamic(i);
@@ -670,6 +770,8 @@ static int poll_ranked(void)
     rt_mode_entered_in_poll = 0;
     if (rt_mode_entry_pending && poll_enter_events())
         return 1;
+    if (rt_holds > 0)
+        rt_holds_update();
     if (rt_prog != NULL && rt_prog->order != NULL)
         return poll_ordered();
     more = next_level(0, 0, &level);
@@ -711,6 +813,8 @@ static int poll_events(void)
     rt_mode_entered_in_poll = 0;
     if (rt_mode_entry_pending && poll_enter_events())
         return 1;
+    if (rt_holds > 0)
+        rt_holds_update();
     if (rt_prog != NULL && poll_static())
         return 1;
     /* n_events is re-read: an action may register events, polled at once */
@@ -719,6 +823,7 @@ static int poll_events(void)
         if (!e->valid_flag || e->event_function == NULL)
             continue;
         e->status.occurred = 0;
+        rt_polled_event = rt_s_events + i;
         e->event_function(e->event_param, &e->status);
         if (e->status.occurred)
             fire_dynamic(i);
@@ -751,15 +856,17 @@ void mainloop(void)
             rt_accel_sample();
         if (poll_events())          /* (5) */
             break;
+        rt_motors_changed();        /* holds end in the poll too */
     }
     /* exit_main: stop at once */
     rt_motion.active = 0;
     rt_wheels(0, 0);
-    rt_motors_changed();
     rt_seq = NULL;
     rt_seq_waiting = 0;
     rt_seq_delay = 0;
     rt_seen_moving = 0;
+    rt_holds_release(-1);
+    rt_motors_changed();
     rt_exit_requested = 0;
     rt_prox_valid = 0;
     rt_trace_exit();

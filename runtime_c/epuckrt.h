@@ -125,6 +125,13 @@ typedef struct {
 } rt_action;
 
 #define RT_REPEAT 1u            /* rt_event.flags: stays armed after firing */
+/* rt_event.flags: how the rule holds the motors it commanded (docs/runtime.md,
+ * "Holding the motors"); without either, until its action or sequence ends */
+#define RT_HOLD_WHILE 2u        /* a condition (`when`, `sensor`, `ambient`):
+                                   also while it stays true; implied by a NULL
+                                   function, event_sensor and event_ambient */
+#define RT_HOLD_GUARD 4u        /* a guarded periodic rule (`every D if G`):
+                                   until a period whose guard is false */
 #define RT_NO_MEMORY (-1)       /* rt_event.memory: the function gets 0 */
 #define RT_CONDITIONS_ALWAYS 0x100u   /* rt_program.sensors: see conditions */
 
@@ -133,7 +140,7 @@ typedef struct {
                                    sensor condition (rt_program.conditions) */
     const void *event_param;
     int action_id;              /* an index in the program's actions */
-    unsigned char flags;        /* RT_REPEAT */
+    unsigned char flags;        /* RT_REPEAT, RT_HOLD_WHILE, RT_HOLD_GUARD */
     int memory;                 /* index in rt_program.memory of the status's
                                    memory, kept between polls (0 at the
                                    start), or RT_NO_MEMORY */
@@ -172,7 +179,7 @@ typedef struct {
 
 /* The state is bit planes of 16-bit words (unsigned is at least 16 bits). */
 #define RT_WORDS(n) (((n) + 15) / 16)
-#define RT_STATE_WORDS(n_actions, n_events) (RT_WORDS(n_actions) + 6 * RT_WORDS(n_events))
+#define RT_STATE_WORDS(n_actions, n_events) (RT_WORDS(n_actions) + 7 * RT_WORDS(n_events))
 
 /* Registers a program's tables (before mainloop; tables registered by an
  * action are polled from the next poll): its actions get ids
@@ -428,7 +435,8 @@ void name_var(int id, const char *name);
  * occurs when the condition becomes true (status->memory: the condition at
  * the previous poll, 0 when the rule is armed).  A guard (`if COND`) is
  * evaluated only when the rule's event occurred (rt_occurred), and rt_guard
- * with a false guard makes the event not occur. */
+ * with a false guard makes the event not occur (and ends the hold of an
+ * RT_HOLD_GUARD event on the motors: its guard was false at a period). */
 void rt_when(void *status, int condition);
 int rt_occurred(void *status);          /* the event occurred in this poll */
 void rt_guard(void *status, int guard);

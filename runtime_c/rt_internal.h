@@ -42,6 +42,7 @@
 struct rt_event_ext {
     int priority;
     int mode;
+    int hold;       /* holds the motors by its condition or guard */
 };
 
 /* Motion: at most one at a time.  Progress is measured from the 16-bit step
@@ -69,15 +70,20 @@ extern const rt_program *rt_prog;   /* NULL: none registered */
 extern unsigned *rt_ev_armed;   /* the event is armed (valid_flag) */
 extern unsigned *rt_ev_latch;   /* compiled condition at its last poll */
 extern unsigned *rt_ev_dead;   /* cancel_event: not re-armed by enter_mode */
+extern unsigned *rt_ev_hold;   /* holds the motors by its condition or guard */
 int rt_event_priority(int id);
+int rt_hold_kind(int id);   /* RT_HOLD_WHILE, RT_HOLD_GUARD or 0 */
+void rt_holds_update(void);   /* before the walk: conditions that became false let go */
 int rt_event_mode(int id);
 extern int rt_initialised;
 extern int rt_remote_started;   /* e_init_remote_control() has run */
 extern int rt_exit_requested;   /* set by exit_main, checked by mainloop */
 extern int rt_current_action_id;   /* the action being run by mainloop */
 extern int rt_current_event_id;   /* the event whose action runs (-1: none) */
-extern int rt_current_rearmed;
-extern unsigned long rt_poll_count;   /* polls so far: readings are read once in each */   /* its action entered its mode again: it stays armed */
+extern int rt_current_rearmed;   /* its action entered its mode again: it stays armed */
+extern int rt_firing_event;   /* the event whose action mainloop runs (-1: none) */
+extern int rt_polled_event;   /* the event whose function was called last */
+extern unsigned long rt_poll_count;   /* polls so far: readings are read once in each */
 
 /* rt_motion.c: motion and the sequencer */
 extern struct rt_motion rt_motion;
@@ -100,6 +106,10 @@ extern long rt_geo_circumference_um;   /* the geometry (set_robot_geometry) */
 extern long rt_geo_axle_um;
 extern long rt_geo_steps_per_rev;
 void rt_wheels(int left, int right);
+extern int rt_holds;   /* events holding the motors by their condition or guard */
+void rt_hold_release(int id);
+void rt_holds_release(int mode);   /* those of the events of `mode`; all: -1 */
+int rt_next_holder(int id);   /* the first event from id on that holds by its condition or guard */
 void rt_motion_update(void);
 void rt_sequence_advance(void);
 

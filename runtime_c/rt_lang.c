@@ -316,8 +316,12 @@ int rt_occurred(void *status)
 
 void rt_guard(void *status, int guard)
 {
-    if (!guard)
-        ((event_status *)status)->occurred = 0;
+    if (guard)
+        return;
+    ((event_status *)status)->occurred = 0;
+    /* a guarded periodic rule lets the motors go at a period whose guard is false */
+    if (rt_holds > 0 && rt_polled_event >= 0 && rt_hold_kind(rt_polled_event) == RT_HOLD_GUARD)
+        rt_hold_release(rt_polled_event);
 }
 
 static void deadline(const param_event_every *p, event_status *st, int again)

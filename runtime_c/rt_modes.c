@@ -69,6 +69,7 @@ void enter_mode(int mode)
     if (left == 0)
         return;
     /* what the rules of the mode left were doing with the motors ends */
+    rt_holds_release(left);
     if (rt_seq != NULL && rt_seq_event_id >= 0 && rt_event_mode(rt_seq_event_id) == left) {
         rt_seq_generation++;
         rt_seq = NULL;

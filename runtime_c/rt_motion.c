@@ -63,10 +63,16 @@ static long wheel_delta(int now, int last)
 
 /* ---- who holds the motors, for the trace ---------------------------------- */
 
+static int holder_over(int level);
+
+/* Called where the motion changes and once per poll (holds by a condition
+ * or a sequence end there): traces the event of highest priority that holds
+ * the motors (as arbitration sees it), main for a bounded motion that main
+ * started, or nothing (a `set_speed` that no event holds: free). */
 void rt_motors_changed(void)
 {
-    int active = rt_motion.active != 0;
-    int owner = active ? rt_motion.owner : -1;
+    int owner = holder_over(-1);
+    int active = owner >= 0 || (rt_motion.active && !rt_motion.endless);
 
     if (active == traced_active && owner == traced_owner)
         return;
@@ -85,21 +91,121 @@ void rt_motors_retrace(void)
 
 static void sequence_outside_command(void);
 
+/* ---- holding the motors (docs/runtime.md, "Holding the motors") ----------
+ * An event holds the motors while its bounded motion runs (rt_motion.owner),
+ * while its sequence is in progress (rt_seq_event_id), and, for a condition
+ * (RT_HOLD_WHILE) or a guarded periodic rule (RT_HOLD_GUARD) that commanded
+ * them when it fired, while its condition stays true or until a period whose
+ * guard is false: its hold bit (a table event's plane, an array event's
+ * rt_event_ext).  rt_holds counts the bits, so that a program that holds
+ * nothing by a condition pays nothing for them. */
+int rt_holds;
+
+static int hold_bit(int id)
+{
+    return id < rt_s_events ? BIT_GET(rt_ev_hold, id) : rt_event_ext[id - rt_s_events].hold;
+}
+
+static void hold_put(int id, int on)
+{
+    if (hold_bit(id) == on)
+        return;
+    if (id >= rt_s_events)
+        rt_event_ext[id - rt_s_events].hold = on;
+    else if (on)
+        BIT_SET(rt_ev_hold, id);
+    else
+        BIT_CLEAR(rt_ev_hold, id);
+    rt_holds += on ? 1 : -1;
+}
+
+void rt_hold_release(int id)
+{
+    if (rt_holds > 0 && id >= 0 && id < rt_s_events + rt_n_events)
+        hold_put(id, 0);
+}
+
+void rt_holds_release(int mode)
+{
+    int id;
+
+    for (id = 0; rt_holds > 0 && id < rt_s_events + rt_n_events; id++) {
+        if (mode < 0 || rt_event_mode(id) == mode)
+            hold_put(id, 0);
+    }
+}
+
+/* The first event from `id` on whose hold bit is set, or -1: the table's a
+ * word at a time (epuckc numbers the events by priority, highest first, so
+ * the holders, of high priority, come first), then the arrays'. */
+int rt_next_holder(int id)
+{
+    while (id < rt_s_events) {
+        unsigned w = rt_ev_hold[id >> 4] & WORD_MASK & ~(BIT_OF(id) - 1u);
+        if (w != 0) {
+            int k = 0;
+            while (!((w >> k) & 1u))
+                k++;
+            return (id & ~15) + k;
+        }
+        id = (id | 15) + 1;
+    }
+    for (; id < rt_s_events + rt_n_events; id++) {
+        if (rt_event_ext[id - rt_s_events].hold)
+            return id;
+    }
+    return -1;
+}
+
+/* The event of highest priority above `level` that holds the motors, or -1. */
+static int holder_over(int level)
+{
+    int best = -1, id, left = rt_holds;
+
+    if (rt_motion.active && !rt_motion.endless && rt_motion.owner >= 0
+            && rt_event_priority(rt_motion.owner) > level) {
+        best = rt_motion.owner;
+        level = rt_event_priority(best);
+    }
+    if (rt_seq != NULL && rt_seq_event_id >= 0 && rt_event_priority(rt_seq_event_id) > level) {
+        best = rt_seq_event_id;
+        level = rt_event_priority(best);
+    }
+    for (id = left > 0 ? rt_next_holder(0) : -1; id >= 0; id = --left > 0 ? rt_next_holder(id + 1) : -1) {
+        if (rt_event_priority(id) > level) {
+            best = id;
+            level = rt_event_priority(id);
+        }
+    }
+    return best;
+}
+
+static int holder_above(int me)
+{
+    return holder_over(rt_event_priority(me));
+}
+
 /* Motor arbitration: 1 when the running action may not command the motors
- * because the motion in progress belongs to an event of higher priority
- * (the command is then traced as suppressed and not carried out).  Commands
- * from outside any event's action (main, before mainloop) always pass. */
+ * because an event of higher priority holds them (the command is then
+ * traced as suppressed and not carried out).  Commands from outside any
+ * event's action (main, before mainloop) always pass.  A command carried
+ * out by a condition or a guarded periodic rule as it fires starts its
+ * hold. */
 static int motors_refused(const char *command)
 {
-    int owner = rt_motion.owner, me = rt_current_event_id;
+    int me = rt_current_event_id, holder;
 
-    if (!rt_motion.active || owner < 0 || me < 0 || owner == me)
+    if (me < 0)
         return 0;
-    if (rt_event_priority(me) >= rt_event_priority(owner))
-        return 0;
-    rt_trace_suppressed(me, rt_event_priority(me), owner, rt_event_priority(owner),
-                        command);
-    return 1;
+    holder = holder_above(me);
+    if (holder >= 0) {
+        rt_trace_suppressed(me, rt_event_priority(me), holder, rt_event_priority(holder),
+                            command);
+        return 1;
+    }
+    if (rt_firing_event == me && rt_hold_kind(me) != 0)
+        hold_put(me, 1);
+    return 0;
 }
 
 void rt_wheels(int left, int right)

@@ -72,7 +72,7 @@ class CEvent:
     function: str          # "NULL": a compiled sensor condition
     param: str
     action: int            # index in the action table
-    flags: str             # "RT_REPEAT" or "0"
+    flags: str             # "RT_REPEAT", "RT_HOLD_WHILE", "RT_HOLD_GUARD" joined with |, or "0"
     memory: str            # index in epk_event_memory, or "RT_NO_MEMORY"
     comment: str
     event_label: str

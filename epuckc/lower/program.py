@@ -407,7 +407,7 @@ class _Lowerer:
                 out.memory_slots += 1
             head = f"rule {rule.name}: " if rule.name else ""
             out.events.append(CEvent(
-                function, const_ref(param), registered[key], "RT_REPEAT" if rule.repeat else "0",
+                function, const_ref(param), registered[key], event_flags(rule),
                 slot, c_comment(f"{event_id}: {self.where(rule.node)}: {self.text_of(rule.node)}"
                                 + (f" (mode {rule.mode})" if rule.mode is not None else "")),
                 c_string(_shorten(f"{self.where(rule.node)} {head}"
@@ -488,6 +488,23 @@ class _Lowerer:
         for steps in [r.body for r in self.program.rules] + list(self.program.actions.values()):
             names.update(c.name for step in steps for c in step if c.kind == "cancel")
         return names
+
+
+def event_flags(rule) -> str:
+    """The rt_event flags of a rule: RT_REPEAT, and how it holds the motors it
+    commands (docs/runtime.md, "Holding the motors"): a condition while it
+    stays true, a guarded `every` until a period whose guard is false; any
+    other rule until its action or sequence has ended (no flag)."""
+    flags = ["RT_REPEAT"] if rule.repeat else []
+    if rule.event.name in HOLD_WHILE and rule.event.kind != "extern":
+        flags.append("RT_HOLD_WHILE")
+    elif rule.event.name == "every" and rule.guard is not None:
+        flags.append("RT_HOLD_GUARD")
+    return " | ".join(flags) or "0"
+
+
+# The events that are conditions: their rules hold the motors while they hold.
+HOLD_WHILE = {"when", "sensor", "ambient"}
 
 
 def lower(program: CheckedProgram, source_text: str, version: str,

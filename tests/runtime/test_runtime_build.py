@@ -78,7 +78,7 @@ SANITIZED = {
     "timer_reset.c": {"time_limit": 500}, "stop_action.c": {}, "stop_restart.c": {},
     "zero_motion.c": {}, "overflow.c": {}, "sequence_self.c": {}, "static_table.c": {},
     "priority.c": {}, "modes.c": {}, "devices.c": {}, "static_ranked.c": {},
-    "mode_reentry.c": {},
+    "mode_reentry.c": {}, "hold.c": {},
 }
 
 

@@ -97,3 +97,22 @@ def test_extreme_geometry_and_parameters_saturate(tmp_path):
     assert r.returncode == 0, r.stderr
     assert "runtime error" not in r.stderr
     assert r.times("exit") == [5]
+
+
+def test_holds_on_the_papers_api(tmp_path):
+    """hold.c: the same holds on both registration paths (a sensor event is
+    a condition whether it is event_sensor or a compiled condition)."""
+    r = build_and_run(tmp_path, "hold.c")
+    assert r.returncode == 0, r.stderr
+    held = [(s["t_ms"], s["name"], s["owner_name"]) for s in r.records("suppressed")]
+    # the timer renews `cruise` every 10 ms; `back off` holds from its edge at
+    # 200 ms to the poll at 500 ms where nothing is near
+    assert [t for t, _, o in held if o == "back off"] == list(range(200, 500, 10))
+    # `turn` (600 ms): its curve (150 steps at 300 steps/s: 500 ms) and its
+    # wait (100 ms) hold, its final set_speed does not: the cruise takes the
+    # wheels back once that last step has run
+    [last] = [a["t_ms"] for a in r.records("action") if a.get("step") == 3]
+    assert 1200 <= last <= 1202
+    assert [t for t, _, o in held if o == "turn"] == list(range(600, last, 10))
+    assert r.records("exit")[0]["left_steps"] > -150 + 50
+    assert {n for _, n, _ in held} == {"cruise"}

@@ -192,6 +192,31 @@ def test_random_walk_swarm_each_robot_its_own_random_numbers(tmp_path):
     assert final_pose(other, "r1") != final_pose(records, "r1")
 
 
+def test_random_walk_wanders_on_once_the_way_is_clear(tmp_path):
+    """Issue 24: avoid (a guarded `every` of priority 1) holds the wheels only
+    while something is near (and its last turn runs); the wander turns after
+    a robot's first avoid are carried out, except those that come while it is
+    turning away. They used to be all suppressed (246 records): the final
+    `set_speed` of avoid's sequence owned the wheels for good."""
+    records, _, _ = run(EXAMPLES / "random_walk.epk", tmp_path, "--world",
+                        EXAMPLES / "swarm.world", expect=3)
+    turn_ms = 405 + 50      # avoid's 45-degree turn (162 steps at 400 steps/s), one period
+    later = refused = 0
+    for robot in sorted({r["robot"] for r in records if "robot" in r}):
+        mine = [r for r in records if r.get("robot") == robot]
+        avoids = [r["t_ms"] for r in mine if r["kind"] == "event" and "rule avoid" in r["name"]]
+        if not avoids:
+            continue
+        later += len([r for r in mine if r["kind"] == "event" and "rule wander" in r["name"]
+                      and r["t_ms"] > avoids[0]])
+        for r in (r for r in mine if r["kind"] == "suppressed"):
+            refused += 1
+            assert "rule wander" in r["name"] and "rule avoid" in r["owner_name"]
+            # refused only while avoid was turning away
+            assert min(r["t_ms"] - t for t in avoids if t <= r["t_ms"]) < turn_ms, (robot, r)
+    assert later >= 50 and refused <= 0.25 * later, (later, refused)
+
+
 def test_ten_robots_disperse(tmp_path):
     records, out, _ = run(EXAMPLES / "dispersion.epk", tmp_path, "--world",
                           EXAMPLES / "dispersion.world", "--time-limit", "30s", expect=3)

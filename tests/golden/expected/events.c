@@ -71,7 +71,7 @@ static const rt_event epk_event_table[] = {
     /* 0: events.epk:2: on immediate do start_sensor, set_timer */
     {immediate, NULL, 0, 0, RT_NO_MEMORY, 0, 0},
     /* 1: events.epk:3: rule near: on sensor(ir2 > 1000, ir5 < 20) repeat do start_straight(300, 1 cm) */
-    {NULL, NULL, 1, RT_REPEAT, RT_NO_MEMORY, 0, 0},
+    {NULL, NULL, 1, RT_REPEAT | RT_HOLD_WHILE, RT_NO_MEMORY, 0, 0},
     /* 2: events.epk:4: rule moved: on stop_motor repeat do reset_timer, set_timer */
     {event_stop_motor, NULL, 2, RT_REPEAT, RT_NO_MEMORY, 0, 0},
     /* 3: events.epk:5: on timer(400 ms) repeat do stop_sensor */

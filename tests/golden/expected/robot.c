@@ -108,7 +108,7 @@ static const rt_event epk_event_table[] = {
     /* 0: robot.epk:8: rule escape: on tap(600) repeat priority urgent do start_straight(-500, 5 cm) (mode explore) */
     {event_tap, &epk_when_r4, 0, RT_REPEAT, 0, 3, 1},
     /* 1: robot.epk:7: rule avoid: on sensor(ir0 > 500, ir7 > 500) repeat priority 1 do start_curve(0 mm, 90 deg, 300) (mode explore) */
-    {NULL, NULL, 1, RT_REPEAT, RT_NO_MEMORY, 1, 1},
+    {NULL, NULL, 1, RT_REPEAT | RT_HOLD_WHILE, RT_NO_MEMORY, 1, 1},
     /* 2: robot.epk:5: on enter do start_sensor, set_timer, led_on(led0), start_straight(300, 50 cm) (mode explore) */
     {event_enter_mode, NULL, 2, 0, 1, 0, 1},
     /* 3: robot.epk:6: rule wander: on stop_motor repeat do start_straight(300, 50 cm) (mode explore) */
@@ -124,7 +124,7 @@ static const rt_event epk_event_table[] = {
     /* 8: robot.epk:16: on clap(3000) repeat do led_toggle(front) */
     {event_clap, &epk_when_r9, 8, RT_REPEAT, 6, 0, 0},
     /* 9: robot.epk:17: on ambient(ir0 < 200) repeat do play_sound(haa) */
-    {event_ambient, &epk_when_r10, 9, RT_REPEAT, 7, 0, 0},
+    {event_ambient, &epk_when_r10, 9, RT_REPEAT | RT_HOLD_WHILE, 7, 0, 0},
     /* 10: robot.epk:18: on tilt(800) do exit_main */
     {event_tilt, &epk_when_r11, 10, 0, 8, 0, 0},
     /* 11: robot.epk:19: on selector(15) do exit_main */
