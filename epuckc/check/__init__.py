@@ -4,8 +4,9 @@ events and rules, modes and arbitration; the second stage.
 checker.py is the orchestrator: `Checker` holds the state and the order of
 work, and takes its methods from one mixin per concern (names.py,
 values.py, robot.py, externs.py, calls.py, rules.py, exprs.py,
-variables.py, overflow.py); modes.py and arbitration.py are the
-whole-program analyses (modes entered, W009 races); conditions.py reads
+variables.py, ranges.py, overflow.py); modes.py and arbitration.py are
+the whole-program analyses (modes entered, W009 races; races.py reports
+them); conditions.py reads
 conditions as comparisons of variables and readings (for W009 and guards).
 program.py is its output, a `CheckedProgram` whose calls carry runtime
 integers; messages.py the shared wording; cnames.py the C names a user's

@@ -40,7 +40,6 @@ uses, calls a motor action (`start_straight`, `start_curve`, `stop_motor`,
 """
 from __future__ import annotations
 
-from ..diagnostics import Note
 from ..stdlib.table import MOTION_ACTIONS, MOTOR_ACTIONS, STANDARD_READINGS
 from ..syntax import ast
 from . import conditions as cond
@@ -50,7 +49,8 @@ from .modes import flat_steps
 # Pairs reported one by one; the rest are listed, every one, in one more
 # warning: a file of hundreds of racing rules needs one fix, not thousands
 # of warnings, but each pair is named.
-MAX_REPORTS = 10
+# above this many racing candidates of one priority, pairs are found by kinds of rules
+EXPAND_RULES = 40
 # Motor actions that can end a motion without starting one.
 _STOPPING = MOTOR_ACTIONS - MOTION_ACTIONS
 
@@ -350,16 +350,11 @@ def _racing_pairs(group: list, facts: _Rules) -> list:
     fire together: can_fire_together over every pair, with what it reads of
     each rule computed once (a file of a thousand racing rules has half a
     million pairs)."""
-    shapes: dict = {}
-    info = []
-    for r in group:
-        f = facts.condition[id(r)]
-        reads_vars = f is not cond.TRUE and bool(facts._names(f) & facts.variables)
-        info.append((shapes.setdefault(_timing_shape(r), len(shapes)), f is cond.TRUE,
-                     None if f is cond.TRUE else facts._boxes(f), reads_vars,
-                     f is cond.TRUE or facts._alone(f)))
+    info = rule_facts(group, facts)
     timing = {}
     meet = cond.boxes_meet
+    if len(group) > EXPAND_RULES:
+        return _racing_blocks(group, info, facts, timing)
     found = []
     for i, a in enumerate(group):
         sa, ta, ba, va, ala = info[i]
@@ -381,6 +376,79 @@ def _racing_pairs(group: list, facts: _Rules) -> list:
     return found
 
 
+def rule_facts(group: list, facts: _Rules) -> list:
+    """What the pair loop reads of each rule, computed once: (its timing
+    shape's number, no condition, its condition's boxes, reads a variable,
+    its condition can hold)."""
+    shapes: dict = {}
+    info = []
+    for r in group:
+        f = facts.condition[id(r)]
+        reads_vars = f is not cond.TRUE and bool(facts._names(f) & facts.variables)
+        info.append((shapes.setdefault(_timing_shape(r), len(shapes)), f is cond.TRUE,
+                     None if f is cond.TRUE else facts._boxes(f), reads_vars,
+                     f is cond.TRUE or facts._alone(f)))
+    return info
+
+
+def _racing_blocks(group: list, info: list, facts: _Rules, timing: dict) -> list:
+    """_racing_pairs for a big group, in time and memory that grow with its
+    kinds of rules rather than with its pairs: rules whose conditions read
+    no variable are alike when their timing and condition are, so one pair
+    of each two kinds decides for all their pairs. Returns the pairs as
+    blocks (a, b, members of a's kind, members of b's kind), a kind with
+    itself once."""
+    kinds: dict = {}            # key -> [rules in file order]
+    keys = []
+    for r, (sa, ta, ba, va, ala) in zip(group, info):
+        key = (sa, ta, id(ba), ala) if not va else ("rule", id(r))
+        kinds.setdefault(key, []).append(r)
+        keys.append(key)
+    first = {key: members[0] for key, members in kinds.items()}
+    where = {key: i for i, key in reversed(list(enumerate(keys)))}   # first index of each
+    order = sorted(kinds, key=where.__getitem__)
+    blocks = []
+    for x, kx in enumerate(order):
+        for ky in order[x:]:
+            a, b = first[kx], first[ky]
+            if kx == ky and len(kinds[kx]) < 2:
+                continue
+            if kx == ky and kx[0] == "rule":
+                continue
+            ia, ib = where[kx], where[ky]
+            if kx == ky:
+                b = kinds[kx][1]
+                ib = group.index(b)
+            ab = _pair_races(a, b, info[ia], info[ib], facts, timing)
+            ba = ab if kx == ky else _pair_races(b, a, info[ib], info[ia], facts, timing)
+            if ab and ba:
+                blocks.append((a, b, kinds[kx], kinds[ky]))
+            elif ab or ba:      # it depends on which comes first: pair by pair
+                index = {id(r): i for i, r in enumerate(group)}
+                for x in kinds[kx]:
+                    for y in kinds[ky]:
+                        if (ab if index[id(x)] < index[id(y)] else ba):
+                            first_, second = sorted((x, y), key=lambda r: index[id(r)])
+                            blocks.append((first_, second, [first_], [second]))
+    return blocks
+
+
+def _pair_races(a, b, ia, ib, facts: _Rules, timing: dict) -> bool:
+    """_racing_pairs's decision for one pair, a before b."""
+    sa, ta, ba, va, ala = ia
+    sb, tb, bb, vb, alb = ib
+    t = timing.get((sa, sb))
+    if t is None:
+        t = timing[sa, sb] = timing_allows(a, b, facts.entry_stops)
+    if not t:
+        return False
+    if ta or tb:
+        return alb if ta else ala
+    if va or vb:
+        return facts.conditions_allow(a, b)
+    return ba is None or bb is None or cond.boxes_meet(ba, bb)
+
+
 def can_fire_together(a, b, facts: _Rules) -> bool:
     """a before b in the file."""
     key = (_timing_shape(a), _timing_shape(b))
@@ -397,108 +465,3 @@ def _timing_shape(rule) -> tuple:
         "timer", "every", "after") and event.kind == "standard" else ()
     return (rule.mode, event.kind, event.name, rule.repeat, values,
             event.name == "enter" and _sets_timer_first(rule))
-
-
-def check_program(checker, out) -> None:
-    named: dict = {}
-    never = _events_that_never_occur(checker)
-    motor_rules = [r for r in out.rules
-                   if _commands_motors(checker, r.body, named)
-                   and not (r.event.kind == "standard" and r.event.name in never)]
-    if len(motor_rules) < 2:
-        return
-    facts = _Rules(checker, motor_rules, out.rules)
-    by_priority: dict = {}
-    for r in motor_rules:
-        by_priority.setdefault(r.priority, []).append(r)
-    pairs = []
-    for group in by_priority.values():
-        pairs += _racing_pairs(group, facts)
-    pairs.sort(key=lambda p: (facts.index[id(p[0])], facts.index[id(p[1])]))
-    for loser, winner in pairs[:MAX_REPORTS]:
-        if facts.key(winner) < facts.key(loser):
-            loser, winner = winner, loser
-        checker.diags.warning(
-            "W009", loser.node.event.span,
-            f"{describe(loser)} and {describe(winner)} can fire in the same poll, both "
-            f"command the motors and have the same priority ({loser.priority}): "
-            f"{describe(winner)} runs later and wins",
-            help=_help(loser, winner, facts), notes=[_note(winner)])
-    rest = pairs[MAX_REPORTS:]
-    if rest:
-        partners: dict = {}             # each rule with the later ones it races with
-        for a, b in rest:
-            partners.setdefault(id(a), (a, []))[1].append(b)
-        listed = "; ".join(f"{describe(a)} with {_list(others)}"
-                           for a, others in partners.values())
-        checker.diags.warning(
-            "W009", rest[0][0].node.event.span,
-            f"{len(rest)} more pair{'s' if len(rest) > 1 else ''} of rules of the same "
-            f"priority can fire in the same poll and command the motors: {listed}",
-            help="give the rules that should win higher priorities, or guards that "
-                 "exclude each other")
-
-
-def _help(loser, winner, facts: _Rules) -> str:
-    """The fix that fits the pair."""
-    priority = (f"give the rule that should win a higher priority "
-                f"(`... priority {loser.priority + 1} do ...`)")
-    fa, fb = facts.condition[id(loser)], facts.condition[id(winner)]
-    if fa == fb and _same_event(loser, winner) and loser.node.guard is None \
-            and winner.node.guard is None:
-        return (f"both fire on the same event: {priority}, give one a guard that excludes the "
-                f"other (`if ...`), or merge them into one rule")
-    shared = cond.names_of(fa) & cond.names_of(fb)
-    unstable = facts.changing(loser, winner) & shared
-    if shared - unstable:
-        stable = cond.conjoin(cond.without(fa, unstable), cond.without(fb, unstable))
-        where = cond.overlap(stable, facts.base) or {}
-        spots = [f"{_code(n)} is {_span(*where[n])}" for n in sorted(shared - unstable)
-                 if n in where]
-        if spots:
-            return (f"their conditions hold together where {', '.join(spots)}: make them "
-                    f"exclude each other (e.g. `>` in one and `<=` in the other), or "
-                    f"{priority}")
-    if unstable:
-        writers = [r for r in facts.rules if facts.writes[id(r)] & unstable
-                   and facts.key(r) < max(facts.key(loser), facts.key(winner))
-                   and (facts.key(r) >= facts.key(loser) or _early(loser) or _early(winner))]
-        names = ", ".join(sorted(_code(n) for n in unstable))
-        them = "it" if len(unstable) == 1 else "them"
-        why = (f"their conditions on {names} would exclude each other, but "
-               f"{describe(writers[0])} changes {them} in the poll before {describe(winner)} "
-               f"reads {them}")
-        if writers == [loser] and not (facts.writes[id(winner)] & unstable) \
-                and not _is_enter(loser) and not _is_enter(winner):
-            return (f"{why}: move {describe(winner)} above {describe(loser)} in the file, so "
-                    f"that it reads {them} first, or {priority}")
-        return f"{why}: {priority}"
-    return priority
-
-
-def _same_event(a, b) -> bool:
-    ea, eb = a.event, b.event
-    if "when" in (ea.name, eb.name):    # conditions compare by their text
-        return ea.name == eb.name and \
-            _shown(ea.node.args[0].value) == _shown(eb.node.args[0].value)
-    return (ea.kind, ea.name, ea.values, ea.conditions) == (eb.kind, eb.name, eb.values,
-                                                            eb.conditions)
-
-
-def _list(rules) -> str:
-    """rule `avoid`, rule `wander`, the rules of lines 9, 12: rules in a
-    long list, by name, else by line."""
-    parts = [f"rule {_code(r.name)}" for r in rules if r.name is not None]
-    lines = [str(r.node.span.line) for r in rules if r.name is None]
-    if lines:
-        parts.append(f"the rule{'s' if len(lines) > 1 else ''} of line"
-                     f"{'s' if len(lines) > 1 else ''} {', '.join(lines)}")
-    return ", ".join(parts)
-
-
-def _span(lo: int, hi: int) -> str:
-    return str(lo) if lo == hi else f"{lo}..{hi}"
-
-
-def _note(rule):
-    return Note(f"{describe(rule)} is here", rule.node.span)

@@ -14,7 +14,7 @@ from typing import Optional
 from ..diagnostics import ERROR, Collector
 from ..stdlib.units import Geometry
 from ..syntax import ast
-from . import arbitration, modes
+from . import modes, races
 from .calls import Calls
 from .exprs import Exprs
 from .variables import Variables
@@ -87,7 +87,7 @@ class Checker(Names, Externs, RobotSettings, Values, Exprs, Variables, Ranges, C
         if complete:
             self._unused()
         modes.check_program(self, out, complete)
-        arbitration.check_program(self, out)
+        races.check_program(self, out)
         self._no_warnings_beside_errors()
         return out
 

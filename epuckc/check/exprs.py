@@ -432,29 +432,30 @@ class Exprs:
                 where = "above max_speed" if v > 0 else "below -max_speed"
                 self.diags.warning(
                     "W013", value.span,
-                    f"{p.name} can reach {v} steps/s{self._how(e, v == e.hi)}: {where} "
+                    f"{p.name} can reach {v} steps/s{_how(e, v == e.hi)}: {where} "
                     f"{'-' if v < 0 else ''}{top:.0f}; the runtime clamps it",
                     help=Fix(value.span, f"clamp({self._text(value)}, -{top:.0f}, {top:.0f})",
                              f"clamp it to -{top:.0f}..{top:.0f}: `clamp(..., -{top:.0f}, "
                              f"{top:.0f})`"))
         return e
 
-    def _how(self, e: Expr, high: bool) -> str:
-        """` (300 + 4095)`: the operands that give an extreme of `e`."""
-        if len(e.args) != 2 or e.op not in ("+", "-", "*", "/"):
+
+def _how(e: Expr, high: bool) -> str:
+    """` (300 + 4095)`: the operands that give an extreme of `e`."""
+    if len(e.args) != 2 or e.op not in ("+", "-", "*", "/"):
+        return ""
+    a, b = e.args
+    if e.op == "+":
+        x, y = (a.hi, b.hi) if high else (a.lo, b.lo)
+    elif e.op == "-":
+        x, y = (a.hi, b.lo) if high else (a.lo, b.hi)
+    else:
+        pairs = [(x, y) for x in (a.lo, a.hi) for y in (b.lo, b.hi)
+                 if e.op == "*" or y != 0]
+        f = arith.BINARY[e.op]
+        target = e.hi if high else e.lo
+        found = [pr for pr in pairs if f(*pr) == target]
+        if not found:
             return ""
-        a, b = e.args
-        if e.op == "+":
-            x, y = (a.hi, b.hi) if high else (a.lo, b.lo)
-        elif e.op == "-":
-            x, y = (a.hi, b.lo) if high else (a.lo, b.hi)
-        else:
-            pairs = [(x, y) for x in (a.lo, a.hi) for y in (b.lo, b.hi)
-                     if e.op == "*" or y != 0]
-            f = arith.BINARY[e.op]
-            target = e.hi if high else e.lo
-            found = [pr for pr in pairs if f(*pr) == target]
-            if not found:
-                return ""
-            x, y = found[0]
-        return f" ({x} {e.op} {y})" if y >= 0 else f" ({x} {e.op} ({y}))"
+        x, y = found[0]
+    return f" ({x} {e.op} {y})" if y >= 0 else f" ({x} {e.op} ({y}))"

@@ -4,13 +4,12 @@ from __future__ import annotations
 
 from typing import Optional
 
-from ..diagnostics import Collector, Note
+from ..diagnostics import Note
 from ..stdlib.table import STANDARD_READINGS
-from ..stdlib.units import INT16_MAX, INT16_MIN
 from ..syntax import ast
 from .exprs import _kind_word
 from .messages import _code, did_you_mean
-from .program import BOOL, Expr, ResolvedCall, VarInfo
+from .program import Expr, ResolvedCall, VarInfo
 
 
 class Variables:

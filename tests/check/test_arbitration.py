@@ -242,8 +242,22 @@ def test_the_pair_loop_decides_as_can_fire_together():
             slow = [(a, b) for i, a in enumerate(group) for b in group[i + 1:]
                     if arbitration.can_fire_together(a, b, facts)]
             assert [(id(a), id(b)) for a, b in fast] == [(id(a), id(b)) for a, b in slow], path
+            # and by kinds of rules, as for a big group
+            blocks = arbitration._racing_blocks(
+                group, arbitration.rule_facts(group, facts), facts, {})
+            assert _expanded(blocks) == {frozenset((id(a), id(b))) for a, b in slow}, path
             compared += len(group) * (len(group) - 1) // 2
     assert compared > 100
+
+
+def _expanded(blocks) -> set:
+    pairs = set()
+    for _, _, xs, ys in blocks:
+        for x in xs:
+            for y in ys:
+                if x is not y:
+                    pairs.add(frozenset((id(x), id(y))))
+    return pairs
 
 
 def test_the_runtime_agrees_on_a_mode_s_own_timers(tmp_path):

@@ -1,0 +1,162 @@
+"""W009's report: the pairs of rules of one priority that can command the
+motors in the same poll (found by arbitration.py), each named, with the
+fix that fits it; in a big program, by kinds of rules, every rule listed."""
+from __future__ import annotations
+
+from ..diagnostics import Note
+from .arbitration import (describe, head_text, _is_enter, _code, _Rules, _racing_pairs, EXPAND_RULES, _commands_motors, _events_that_never_occur, _early)
+from . import conditions as cond
+from .messages import _shown
+
+MAX_REPORTS = 10
+
+
+def check_program(checker, out) -> None:
+    named: dict = {}
+    never = _events_that_never_occur(checker)
+    motor_rules = [r for r in out.rules
+                   if _commands_motors(checker, r.body, named)
+                   and not (r.event.kind == "standard" and r.event.name in never)]
+    if len(motor_rules) < 2:
+        return
+    facts = _Rules(checker, motor_rules, out.rules)
+    by_priority: dict = {}
+    for r in motor_rules:
+        by_priority.setdefault(r.priority, []).append(r)
+    pairs, blocks = [], []
+    for group in by_priority.values():
+        found = _racing_pairs(group, facts)
+        if len(group) > EXPAND_RULES:
+            blocks += found
+        else:
+            pairs += found
+    if blocks:              # a big program: the pairs by kinds of rules
+        _report_blocks(checker, blocks, facts)
+    pairs.sort(key=lambda p: (facts.index[id(p[0])], facts.index[id(p[1])]))
+    for loser, winner in pairs[:MAX_REPORTS]:
+        if facts.key(winner) < facts.key(loser):
+            loser, winner = winner, loser
+        checker.diags.warning(
+            "W009", loser.node.event.span,
+            f"{describe(loser)} and {describe(winner)} can fire in the same poll, both "
+            f"command the motors and have the same priority ({loser.priority}): "
+            f"{describe(winner)} runs later and wins",
+            help=_help(loser, winner, facts), notes=[_note(winner)])
+    rest = pairs[MAX_REPORTS:]
+    if rest:
+        partners: dict = {}             # each rule with the later ones it races with
+        for a, b in rest:
+            partners.setdefault(id(a), (a, []))[1].append(b)
+        listed = "; ".join(f"{describe(a)} with {_list(others)}"
+                           for a, others in partners.values())
+        checker.diags.warning(
+            "W009", rest[0][0].node.event.span,
+            f"{len(rest)} more pair{'s' if len(rest) > 1 else ''} of rules of the same "
+            f"priority can fire in the same poll and command the motors: {listed}",
+            help="give the rules that should win higher priorities, or guards that "
+                 "exclude each other")
+
+
+def _report_blocks(checker, blocks, facts: _Rules) -> None:
+    """W009 for a big group: one warning a kind of rules (rules alike in
+    timing and condition), naming every rule it races with (lines as
+    ranges)."""
+    kinds: dict = {}        # id(first rule of a kind) -> [rule, its kind, others, among itself]
+    for a, b, xs, ys in blocks:
+        entry = kinds.setdefault(id(a), [a, xs, [], False])
+        if xs is ys:
+            entry[3] = True
+        else:
+            entry[2].extend(ys)
+    for a, xs, others, itself in sorted(kinds.values(), key=lambda e: facts.index[id(e[0])]):
+        who = describe(a) if len(xs) == 1 else \
+            f"the {len(xs)} rules like {_code(head_text(a))} ({_compact(xs)})"
+        races = (["each other"] if itself else []) + ([_compact(others)] if others else [])
+        checker.diags.warning(
+            "W009", a.node.event.span,
+            f"{who} can fire in the same poll as {' and as '.join(races)}, command the motors "
+            f"and have the same priority ({a.priority})",
+            help="give the rules that should win higher priorities, or guards that exclude "
+                 "each other")
+
+
+def _compact(rules) -> str:
+    """Rules by name, and the others by their lines as ranges (`lines 3..9,
+    12`), each line once."""
+    names = [f"rule {_code(r.name)}" for r in rules if r.name is not None]
+    lines = sorted({r.node.span.line for r in rules if r.name is None})
+    runs = []
+    for line in lines:
+        if runs and runs[-1][1] == line - 1:
+            runs[-1][1] = line
+        else:
+            runs.append([line, line])
+    if runs:
+        names.append(f"line{'s' if len(lines) > 1 else ''} "
+                     + ", ".join(_span(lo, hi) for lo, hi in runs))
+    return ", ".join(names)
+
+
+def _help(loser, winner, facts: _Rules) -> str:
+    """The fix that fits the pair."""
+    priority = (f"give the rule that should win a higher priority "
+                f"(`... priority {loser.priority + 1} do ...`)")
+    fa, fb = facts.condition[id(loser)], facts.condition[id(winner)]
+    if fa == fb and _same_event(loser, winner) and loser.node.guard is None \
+            and winner.node.guard is None:
+        return (f"both fire on the same event: {priority}, give one a guard that excludes the "
+                f"other (`if ...`), or merge them into one rule")
+    shared = cond.names_of(fa) & cond.names_of(fb)
+    unstable = facts.changing(loser, winner) & shared
+    if shared - unstable:
+        stable = cond.conjoin(cond.without(fa, unstable), cond.without(fb, unstable))
+        where = cond.overlap(stable, facts.base) or {}
+        spots = [f"{_code(n)} is {_span(*where[n])}" for n in sorted(shared - unstable)
+                 if n in where]
+        if spots:
+            return (f"their conditions hold together where {', '.join(spots)}: make them "
+                    f"exclude each other (e.g. `>` in one and `<=` in the other), or "
+                    f"{priority}")
+    if unstable:
+        writers = [r for r in facts.rules if facts.writes[id(r)] & unstable
+                   and facts.key(r) < max(facts.key(loser), facts.key(winner))
+                   and (facts.key(r) >= facts.key(loser) or _early(loser) or _early(winner))]
+        names = ", ".join(sorted(_code(n) for n in unstable))
+        them = "it" if len(unstable) == 1 else "them"
+        why = (f"their conditions on {names} would exclude each other, but "
+               f"{describe(writers[0])} changes {them} in the poll before {describe(winner)} "
+               f"reads {them}")
+        if writers == [loser] and not (facts.writes[id(winner)] & unstable) \
+                and not _is_enter(loser) and not _is_enter(winner):
+            return (f"{why}: move {describe(winner)} above {describe(loser)} in the file, so "
+                    f"that it reads {them} first, or {priority}")
+        return f"{why}: {priority}"
+    return priority
+
+
+def _same_event(a, b) -> bool:
+    ea, eb = a.event, b.event
+    if "when" in (ea.name, eb.name):    # conditions compare by their text
+        return ea.name == eb.name and \
+            _shown(ea.node.args[0].value) == _shown(eb.node.args[0].value)
+    return (ea.kind, ea.name, ea.values, ea.conditions) == (eb.kind, eb.name, eb.values,
+                                                            eb.conditions)
+
+
+def _list(rules) -> str:
+    """rule `avoid`, rule `wander`, the rules of lines 9, 12: rules in a
+    long list, by name, else by line."""
+    parts = [f"rule {_code(r.name)}" for r in rules if r.name is not None]
+    lines = [str(r.node.span.line) for r in rules if r.name is None]
+    if lines:
+        parts.append(f"the rule{'s' if len(lines) > 1 else ''} of line"
+                     f"{'s' if len(lines) > 1 else ''} {', '.join(lines)}")
+    return ", ".join(parts)
+
+
+def _span(lo: int, hi: int) -> str:
+    return str(lo) if lo == hi else f"{lo}..{hi}"
+
+
+def _note(rule):
+    return Note(f"{describe(rule)} is here", rule.node.span)
