@@ -21,6 +21,7 @@ KEYS = {
     "scenario": "a scenario file, relative to this file's folder",
     "world": "a world file, relative to this file's folder",
     "trace": "true or false: compare the readable trace with NAME.trace",
+    "diag": "true or false: compare the diagnostics with NAME.diag",
     "c": "true or false: also compare the generated C with NAME.c",
     "expect": "a list of property checks such as \"exit within 5 s\"",
     "tolerance": "a table: pose_mm, heading_deg, time_ms",
@@ -56,6 +57,7 @@ class Case:
     time_limit_ms: int = DEFAULT_TIME_LIMIT_MS
     seed: int = 1
     compare_trace: Optional[bool] = None     # default: true unless there are property checks
+    compare_diag: Optional[bool] = None      # default: as compare_trace
     compare_c: bool = False
     expect: list = field(default_factory=list)      # props.Property
     tolerance: Tolerance = field(default_factory=Tolerance)
@@ -170,13 +172,11 @@ def _apply(case: Case, data: dict, text: str, shown: str, folder: Path):
                                  f"not exist (paths are relative to {shown}'s folder)")
             setattr(case, key, target)
             setattr(case, "world" if key == "scenario" else "scenario", None)
-        elif key in ("trace", "c"):
+        elif key in ("trace", "diag", "c"):
             if not isinstance(value, bool):
                 raise _bad(shown, text, key, KEYS[key])
-            if key == "trace":
-                case.compare_trace = value
-            else:
-                case.compare_c = value
+            setattr(case, {"trace": "compare_trace", "diag": "compare_diag",
+                           "c": "compare_c"}[key], value)
         elif key == "expect":
             if not isinstance(value, list) or not all(isinstance(v, str) for v in value):
                 raise _bad(shown, text, key, KEYS[key])
@@ -250,8 +250,10 @@ def load_case(path: Path, root: Optional[Path] = None, base: Optional[Path] = No
                 (case.scenario is not None or case.world is not None):
             data = {k: v for k, v in data.items() if k not in ("scenario", "world")}
         _apply(case, data, text, _shown(source, base), source.parent)
-    if case.compare_trace is None:      # property checks replace the golden unless asked for
+    if case.compare_trace is None:      # property checks replace the goldens unless asked for
         case.compare_trace = not case.expect
+    if case.compare_diag is None:
+        case.compare_diag = case.compare_trace
     if case.compare_c and case.path.with_suffix(".c").resolve() in _extern_files(case.path):
         raise UsageError(f"{case.shown}: `c = true` would compare the generated C with "
                          f"{case.path.with_suffix('.c').name}, which is the program's own extern "

@@ -146,7 +146,7 @@ def _wanted(case: Case, kind: str, produced: Produced) -> bool:
         return case.compare_trace
     if kind == ".c":
         return case.compare_c
-    return True
+    return case.compare_diag
 
 
 def _compare(case: Case, kind: str, expected: Optional[str], actual: Optional[str],
@@ -211,7 +211,11 @@ def run_case(case: Case, bless: bool = False, bless_hint: str = "`epuckc test --
         for text, why in check_properties(case.expect, produced.records):
             outcome.problems.append(f"expect `{text}`: {why}")
     elif case.expect and produced.has_errors:
-        outcome.problems.append("the property checks need a run, but the program has errors")
+        problem = "the property checks need a run, but the program has errors"
+        if not case.compare_diag:
+            problem += ":\n" + "\n".join("  " + row if row else ""
+                                          for row in (produced.texts[".diag"] or "").splitlines())
+        outcome.problems.append(problem)
     if outcome.problems:
         outcome.status = FAILED
     return outcome

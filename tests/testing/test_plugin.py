@@ -14,7 +14,7 @@ from pathlib import Path
 import pytest
 
 from tests.support.programs import REPO, epuckc
-from tests.testing.test_epuckc_test import SCENARIO, make_case
+from tests.testing.test_epuckc_test import PROGRAM, SCENARIO, make_case
 
 # Whatever the installation: the plugin by its module (an editable install
 # of this tree also registers it as `epuckc`, which would load it twice).
@@ -164,3 +164,32 @@ def test_a_fresh_venv_gets_the_command_and_the_plugin(tmp_path):
     assert r.returncode == 1
     failure = junit(tmp_path / "bad.xml")["avoid.epk"][0]
     assert "this one at 3,001 ms: the rule at avoid.epk:6" in failure and "--- avoid.trace (expected)" in failure, failure
+
+
+def test_a_teachers_folder_of_submissions(tmp_path):
+    """docs/testing.md: the lab's checks in one epuckc-test.toml, the
+    students' files below it, one JUnit test case per student."""
+    lab = tmp_path / "lab3"
+    (lab / "submissions").mkdir(parents=True)
+    (lab / "course.scn").write_text(SCENARIO)
+    (lab / "epuckc-test.toml").write_text(
+        'scenario = "course.scn"\ntime_limit = "10s"\n'
+        'expect = ["exit within 5 s", "rule avoid fires", "y > 20 mm at exit"]\n')
+    good = PROGRAM
+    (lab / "submissions" / "alice.epk").write_text(good)
+    (lab / "submissions" / "bob.epk").write_text(good.replace("timer(4 s)", "timer(7 s)"))
+    (lab / "submissions" / "carol.epk").write_text(good.replace("start_curve", "start_curv"))
+    # a warning (an unused constant) is no failure: the checks are the lab's
+    (lab / "submissions" / "dave.epk").write_text("const UNUSED = 3\n" + good)
+    r = pytest_run("lab3", "--junitxml", tmp_path / "lab3.xml", cwd=tmp_path)
+    assert r.returncode == 1, r.stdout + r.stderr
+    report = junit(tmp_path / "lab3.xml")
+    assert set(report) == {"alice.epk", "bob.epk", "carol.epk", "dave.epk"}
+    assert report["alice.epk"] == (None, False) and report["dave.epk"] == (None, False)
+    assert "expect `exit within 5 s`: the program exited at 7001 ms, after 5000 ms" \
+        in report["bob.epk"][0]
+    assert "the program has errors" in report["carol.epk"][0]
+    assert "carol.epk:4:8: error[E011]: unknown action `start_curv`" in report["carol.epk"][0]
+    cli = epuckc("test", "lab3", cwd=tmp_path)
+    assert cli.returncode == 1 and cli.stdout.endswith("2 passed, 2 failed\n"), cli.stdout
+    assert not list(lab.rglob("*.trace")) and not list(lab.rglob("*.diag"))
