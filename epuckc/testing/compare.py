@@ -150,6 +150,13 @@ def divergence(expected: list, actual: list, index: int) -> str:
         return f"{at}this run has ended where the expected trace goes on: {what}"
     t1, what1 = _describe(expected[index])
     t2, what2 = _describe(actual[index])
+    if t1 is not None and t1 == t2 and what1 == what2:
+        # the same thing at the same time: what differs is where
+        p1, p2 = _POSE.search(expected[index]), _POSE.search(actual[index])
+        if p1 and p2:
+            return (f"at {t1:,} ms {what1} in both traces, at {p1.group(0)} in the expected "
+                    f"one, {p2.group(0)[5:]} in this one")
+        return f"at {t1:,} ms {what1} in both traces, but the lines differ"
     if t1 is not None and t1 == t2:
         return f"at {t1:,} ms {what1} in the expected trace, {what2} in this one"
     if t1 is not None and t2 is not None:

@@ -37,8 +37,8 @@ def blessed(tmp_path):
     return tmp_path
 
 
-def _with_tolerance(folder, text):
-    (folder / "avoid.toml").write_text(text)
+def _with_tolerance(folder, text, name="avoid"):
+    (folder / f"{name}.toml").write_text(text)
     return epuckc("test", folder)
 
 
@@ -137,3 +137,41 @@ def test_property_checks_in_a_world(tmp_path):
                      r"\d+ ms", out), out
     assert "expect `r3: exit`: there is no robot `r3` in this run (robots: r1, r2)" in out
     assert "r2: timeout" not in out and "r1: x" not in out
+
+
+def test_a_world_golden_within_tolerances(tmp_path):
+    """As after a change of Enki: every robot's poses and times moved a
+    little; its lines carry the robot's name."""
+    from epuckc.sim.enki import enki_available
+    if not enki_available():
+        pytest.skip("Enki is not installed (libenki-dev)")
+    program = ("on immediate do start_sensor, start_straight(500 steps/s, 20 cm)\n"
+               "rule near: on sensor(ir0 > 300, ir7 > 300) repeat priority 1 do stop_motor\n"
+               "on stop_motor do exit_main\n")
+    make_case(tmp_path, name="walls", program=program, scenario=None)
+    (tmp_path / "walls.world").write_text("arena 40 cm x 40 cm\nrobot at 10 cm, 20 cm\n"
+                                          "robot at 30 cm, 20 cm heading 180 deg\n")
+    assert epuckc("test", "--bless", tmp_path).returncode == 0
+    trace = tmp_path / "walls.trace"
+    assert trace.read_text().startswith("r1: [")
+    trace.write_text(_shift(trace.read_text(), dx=-0.8, dt=4))
+    r = epuckc("test", tmp_path)
+    assert r.returncode == 1
+    # the same event at the same time, somewhere else: the poses are named
+    assert "at 1 ms robot r1: the rule at walls.epk:1 (`on immediate`) fired in both traces, " \
+           "at pose (99.2, 200.0) 0.0 deg in the expected one, (100.0, 200.0) 0.0 deg in this " \
+           "one" in r.stdout, r.stdout
+    r = _with_tolerance(tmp_path, "[tolerance]\npose_mm = 1\ntime_ms = 5\n", name="walls")
+    assert (r.returncode, r.stdout) == (0, "1 passed, 0 failed\n"), r.stdout + r.stderr
+
+
+def test_long_diffs_are_cut_and_say_so():
+    from epuckc.testing.compare import MAX_DIFF_LINES, trimmed_diff
+    expected = "".join(f"line {i}\n" for i in range(200))
+    actual = "".join(f"line {i}{' changed' if i >= 100 else ''}\n" for i in range(200))
+    diff = trimmed_diff(expected, actual, "a (expected)", "b (this run)", 100)
+    lines = diff.splitlines()
+    assert len(lines) == MAX_DIFF_LINES + 1
+    assert lines[-1].startswith("... (") and lines[-1].endswith("more diff lines)")
+    # it starts at the first difference, with its context, not at the top
+    assert lines[2].startswith("@@ -98,") and lines[3] == " line 97"
