@@ -203,17 +203,16 @@ def _apply(case: Case, data: dict, text: str, shown: str, folder: Path):
             case.tolerance = tolerance
 
 
-def _folder_file(folder: Path, stop: Optional[Path]) -> Optional[Path]:
-    """The nearest `epuckc-test.toml` from `folder` up to `stop`."""
+def _folder_file(folder: Path, stop: Optional[Path] = None) -> Optional[Path]:
+    """The nearest `epuckc-test.toml` in `folder` or a folder above it, up
+    to `stop` (when it is one of them) or the top."""
     here = folder.resolve()
     stop = stop.resolve() if stop is not None else None
     while True:
         candidate = here / FOLDER_FILE
         if candidate.is_file():
             return candidate
-        if here == stop or here.parent == here or stop is None:
-            return None
-        if stop not in here.parents:
+        if here == stop or here.parent == here:
             return None
         here = here.parent
 
@@ -227,11 +226,12 @@ def _shown(path: Path, base: Path) -> str:
 
 def load_case(path: Path, root: Optional[Path] = None, base: Optional[Path] = None) -> Case:
     """The case of one rule file, with its options read and checked.
-    `root`: how far up a folder's defaults are looked for; `base`: names
-    are shown relative to it (default: the current folder)."""
+    `root`: how far up a folder's defaults are looked for (default: to the
+    top); `base`: names are shown relative to it (default: the current
+    folder)."""
     base = base if base is not None else Path.cwd()
     case = Case(path, _shown(path, base))
-    defaults = _folder_file(path.parent, root if root is not None else path.parent)
+    defaults = _folder_file(path.parent, root)
     sources = [defaults] if defaults else []
     own = path.with_suffix(".toml")
     if own.is_file():
@@ -281,17 +281,16 @@ def discover(paths: list, base: Optional[Path] = None) -> list:
             files = sorted(p for p in path.rglob("*.epk")
                            if p.is_file() and not any(part.startswith(".")
                                                       for part in p.relative_to(path).parts))
-            root = path
         elif path.is_file():
             if path.suffix != ".epk":
                 raise UsageError(f"{name}: not a rule file (.epk) nor a folder; a case is a "
                                  "rule file with its expected outputs beside it")
-            files, root = [path], path.parent
+            files = [path]
         else:
             raise UsageError(f"{name}: no such file or folder")
         for file in files:
             key = file.resolve()
             if key not in seen:
                 seen.add(key)
-                found.append(load_case(file, root, base))
+                found.append(load_case(file, None, base))
     return found

@@ -193,3 +193,7 @@ def test_a_teachers_folder_of_submissions(tmp_path):
     cli = epuckc("test", "lab3", cwd=tmp_path)
     assert cli.returncode == 1 and cli.stdout.endswith("2 passed, 2 failed\n"), cli.stdout
     assert not list(lab.rglob("*.trace")) and not list(lab.rglob("*.diag"))
+    # one submission, or the folder of submissions: the lab's options above still hold
+    one = epuckc("test", "lab3/submissions/bob.epk", cwd=tmp_path)
+    assert one.returncode == 1 and "exited at 7001 ms, after 5000 ms" in one.stdout, one.stdout
+    assert epuckc("test", "submissions", cwd=lab).stdout.endswith("2 passed, 2 failed\n")
