@@ -6,7 +6,8 @@ from __future__ import annotations
 import argparse
 
 from .. import __version__
-from .commands import cmd_build, cmd_check, cmd_compile, cmd_explain, cmd_fmt, cmd_lsp, cmd_run
+from .commands import (cmd_build, cmd_check, cmd_compile, cmd_explain, cmd_fmt, cmd_lsp, cmd_run,
+                       cmd_test)
 
 
 def _add_check_options(p: argparse.ArgumentParser):
@@ -204,6 +205,30 @@ def _run_parser(sub):
     p.set_defaults(run=cmd_run)
 
 
+def _jobs(text: str) -> int:
+    if not (text.isascii() and text.isdigit()) or not 1 <= int(text) <= 1024:
+        raise argparse.ArgumentTypeError(f"{_clip(text)} is not a number of jobs: give 1 to 1024")
+    return int(text)
+
+
+def _test_parser(sub):
+    p = sub.add_parser("test", help="run golden-output tests of rule files",
+                       description="Run each rule file under the paths (folders recursively) as "
+                                   "a case: its scenario NAME.scn or world NAME.world and options "
+                                   "NAME.toml beside it, its output compared with NAME.trace, "
+                                   "NAME.diag (and NAME.c when asked) beside it (docs/testing.md)."
+                                   " Exit status: 0 all passed, 1 some failed, 2 a bad path or "
+                                   "options file.")
+    p.add_argument("paths", nargs="*", metavar="PATH", help="folders or rule files (default: .)")
+    p.add_argument("--bless", action="store_true",
+                   help="write or rewrite the expected files from what the cases produce now, "
+                        "and say which changed")
+    p.add_argument("-j", "--jobs", type=_jobs, metavar="N",
+                   help="cases run at once (default: the number of processors)")
+    p.add_argument("-v", "--verbose", action="store_true", help="also name the cases that pass")
+    p.set_defaults(run=cmd_test)
+
+
 def _plot_parser(sub):
     from . import world as world_cli
     world_cli.add_plot_parser(sub, world_cli.cmd_plot)
@@ -212,4 +237,4 @@ def _plot_parser(sub):
 # The commands in the order `epuckc --help` lists them.
 _COMMANDS = {"check": _check_parser, "explain": _explain_parser, "fmt": _fmt_parser,
              "lsp": _lsp_parser, "compile": _compile_parser, "build": _build_parser,
-             "run": _run_parser, "plot": _plot_parser}
+             "run": _run_parser, "test": _test_parser, "plot": _plot_parser}

@@ -365,3 +365,32 @@ def _scenario_problem(name: str):
         print("\n\n".join(problems) + "\n", file=sys.stderr)
         return f"{len(problems)} error{'s' if len(problems) > 1 else ''} in the scenario {shown}"
     return None
+
+
+def cmd_test(args) -> int:
+    """`epuckc test`: the golden-output cases under the paths
+    (epuckc/testing/). 0 all passed, 1 some failed, 2 a bad path or a bad
+    options file."""
+    from ..testing.case import UsageError, discover
+    from ..testing.runner import FAILED, PASSED, describe, run_cases, summary
+    try:
+        cases = discover(args.paths or ["."])
+    except UsageError as exc:
+        if exc.located:
+            print(exc, file=sys.stderr)
+        else:
+            _error(str(exc))
+        return EXIT_USAGE
+    if not cases:
+        _error(f"no rule files (.epk) under {', '.join(args.paths or ['.'])}")
+        return EXIT_USAGE
+
+    def show(outcome):
+        text = describe(outcome)
+        if text:
+            print(text, flush=True)
+        elif args.verbose and outcome.status == PASSED:
+            print(f"ok   {outcome.case.shown}", flush=True)
+    outcomes = run_cases(cases, bless=args.bless, jobs=args.jobs, on_done=show)
+    print(summary(outcomes))
+    return EXIT_ERRORS if any(o.status == FAILED for o in outcomes) else EXIT_OK
