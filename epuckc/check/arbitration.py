@@ -40,6 +40,8 @@ uses, calls a motor action (`start_straight`, `start_curve`, `stop_motor`,
 """
 from __future__ import annotations
 
+import bisect
+
 from ..stdlib.table import MOTION_ACTIONS, MOTOR_ACTIONS, STANDARD_READINGS
 from ..syntax import ast
 from . import conditions as cond
@@ -51,6 +53,8 @@ from .modes import flat_steps
 # of warnings, but each pair is named.
 # above this many racing candidates of one priority, pairs are found by kinds of rules
 EXPAND_RULES = 40
+# above this many pairs of kinds of rules, a big group is compared by timing alone
+PAIR_BUDGET = 3000
 # Motor actions that can end a motion without starting one.
 _STOPPING = MOTOR_ACTIONS - MOTION_ACTIONS
 
@@ -245,11 +249,15 @@ class _Rules:
         ordered = self.ordered = sorted(every_rule, key=self.key)
         self.place = {id(r): i for i, r in enumerate(ordered)}
         self.before, written = [], frozenset()
-        for r in ordered:
+        self.write_places: dict = {}    # variable -> the places that write it, in order
+        for i, r in enumerate(ordered):
             self.before.append(written)
             if self.writes[id(r)]:
                 written = written | self.writes[id(r)]
+                for name in self.writes[id(r)]:
+                    self.write_places.setdefault(name, []).append(i)
         self.entry_stops = self._entry_stops(checker, every_rule)
+        self.by_timing_only = False     # a big group was compared by timing alone
 
     @staticmethod
     def _entry_stops(checker, every_rule) -> bool:
@@ -283,18 +291,21 @@ class _Rules:
         first = rule.event.kind == "standard" and rule.event.name == "enter"
         return (0 if first else 1, 0 if first else -rule.priority, self.index[id(rule)])
 
-    def changing(self, a, b) -> set:
-        """The variables that can change in a poll between the evaluations
+    def changing(self, a, b, among) -> set:
+        """The variables of `among` that can change in a poll between the evaluations
         of a's and b's conditions: by the actions from the first one's on,
         before the later one's turn (a `when` condition without a guard is
         compiled with the others and may be evaluated early in the poll:
         then every action before the later one's turn counts)."""
         first, later = sorted((self.place[id(a)], self.place[id(b)]))
         if _early(a) or _early(b):
-            return self.before[later]
-        found = set()                   # from the first one's action on
-        for r in self.ordered[first:later]:
-            found |= self.writes[id(r)]
+            return self.before[later] & among
+        found = set()                   # from the first one's action on: a write
+        for name in among:              # in first..later-1
+            places = self.write_places.get(name, ())
+            i = bisect.bisect_left(places, first)
+            if i < len(places) and places[i] < later:
+                found.add(name)
         return found
 
     def conditions_allow(self, a, b) -> bool:
@@ -303,7 +314,7 @@ class _Rules:
             # (one condition that always may hold: the other alone decides)
             return fa is cond.TRUE and fb is cond.TRUE or self._alone(fa if fb is cond.TRUE else fb)
         read = (self._names(fa) | self._names(fb)) & self.variables
-        unstable = self.changing(a, b) & read if read else ()
+        unstable = self.changing(a, b, read) if read else ()
         if unstable:
             both = cond.conjoin(cond.without(fa, unstable), cond.without(fb, unstable))
             return cond.satisfiable(both, self.base)
@@ -404,6 +415,15 @@ def _racing_blocks(group: list, info: list, facts: _Rules, timing: dict) -> list
         key = (sa, ta, id(ba), ala) if not va else ("rule", id(r))
         kinds.setdefault(key, []).append(r)
         keys.append(key)
+    if len(kinds) * (len(kinds) + 1) // 2 > PAIR_BUDGET:
+        # too many kinds to compare two by two: by timing alone (a race
+        # is never missed; conditions that exclude each other are not seen)
+        facts.by_timing_only = True
+        info = [(sa, True, None, False, True) for sa, _, _, _, _ in info]
+        kinds, keys = {}, []
+        for r, (sa, *_) in zip(group, info):
+            kinds.setdefault((sa, True, id(None), True), []).append(r)
+            keys.append((sa, True, id(None), True))
     first = {key: members[0] for key, members in kinds.items()}
     where = {key: i for i, key in reversed(list(enumerate(keys)))}   # first index of each
     order = sorted(kinds, key=where.__getitem__)

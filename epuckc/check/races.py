@@ -77,7 +77,10 @@ def _report_blocks(checker, blocks, facts: _Rules) -> None:
             f"{who} can fire in the same poll as {' and as '.join(races)}, command the motors "
             f"and have the same priority ({a.priority})",
             help="give the rules that should win higher priorities, or guards that exclude "
-                 "each other")
+                 "each other" + (
+                     f" (this program has so many rules of priority {a.priority} that command "
+                     f"the motors that they were compared by their timing only, not by their "
+                     f"conditions)" if facts.by_timing_only else ""))
 
 
 def _compact(rules) -> str:
@@ -107,7 +110,7 @@ def _help(loser, winner, facts: _Rules) -> str:
         return (f"both fire on the same event: {priority}, give one a guard that excludes the "
                 f"other (`if ...`), or merge them into one rule")
     shared = cond.names_of(fa) & cond.names_of(fb)
-    unstable = facts.changing(loser, winner) & shared
+    unstable = facts.changing(loser, winner, shared)
     if shared - unstable:
         stable = cond.conjoin(cond.without(fa, unstable), cond.without(fb, unstable))
         where = cond.overlap(stable, facts.base) or {}

@@ -302,3 +302,29 @@ when -heading <= heading do v1 += abs(x) + -50 mm + v1 + (-ir7) * (v1), start_st
     diags = Collector(source)
     check(parse(source, diags), diags)      # v1, v2 are not declared: errors, no crash
     assert "E051" in {d.code for d in diags.items}
+
+
+def test_a_big_group_by_timing_only_misses_no_race():
+    """Past PAIR_BUDGET kinds of rules, a group is compared by timing
+    alone: every pair that can fire together is still reported (the
+    conditions are not looked at, and the help says so)."""
+    from epuckc.check import arbitration
+    from epuckc.check.checker import Checker
+    lines = ["on immediate do start_sensor"]
+    lines += [f"on sensor(ir{i % 8} > {100 + i}) repeat do start_curve(0 mm, 90 deg, 300)"
+              for i in range(90)]
+    lines += [f"when ir{i % 8} > {200 + i} and ir{(i + 1) % 8} < {300 + i} do stop_motor"
+              for i in range(10)]
+    source = SourceFile("big.epk", "\n".join(lines) + "\n")
+    diags = Collector(source)
+    checker = Checker(parse(source, diags), diags)
+    rules = checker.check().rules
+    group = [r for r in rules if r.event.name != "immediate"]
+    facts = arbitration._Rules(checker, group, rules)
+    blocks = arbitration._racing_blocks(group, arbitration.rule_facts(group, facts), facts, {})
+    assert facts.by_timing_only
+    exact = {frozenset((id(a), id(b))) for i, a in enumerate(group) for b in group[i + 1:]
+             if arbitration.can_fire_together(a, b, facts)}
+    assert exact and exact <= _expanded(blocks)
+    w009 = [d for d in diags.items if d.code == "W009"]
+    assert w009 and all("timing only" in d.help for d in w009)
