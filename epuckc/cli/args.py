@@ -85,6 +85,18 @@ def _add_program_options(p: argparse.ArgumentParser):
     p.add_argument("file", metavar="FILE", help="a rule file (.epk) or a C program using the runtime")
     _add_capacity_options(p)
     p.add_argument("--werror", action="store_true", help="treat warnings as errors")
+    p.add_argument("-D", dest="defines", action="append", type=_define, metavar="NAME=VALUE",
+                   help="give the constant NAME the value VALUE (a number with its unit, e.g. "
+                        "-D SPEED=400steps/s) instead of its `const` line's; checked as if "
+                        "written there")
+
+
+def _define(text: str) -> tuple:
+    from ..check.defines import DefineError, parse_define
+    try:
+        return parse_define(text)
+    except DefineError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
 
 
 def build_parser(only: str | None = None) -> argparse.ArgumentParser:
