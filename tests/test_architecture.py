@@ -29,8 +29,9 @@ ALLOWED = {
     "build": {"base"},
     "sim": {"base", "build"},
     "ide": {"base", "diagnostics", "stdlib", "syntax", "check"},
+    "experiment": {"base", "build", "check", "sim"},
     "cli": {"base", "diagnostics", "stdlib", "syntax", "check", "lower", "emit", "build",
-            "sim", "ide"},
+            "sim", "ide", "experiment"},
 }
 TOP_LEVEL = {"__init__", "__main__"}      # the package's own files: version, `python -m epuckc`
 

@@ -90,3 +90,11 @@ def apply_defines(text: str, defines: dict, name: str = "<program>") -> str:
         end = starts[span.end_line - 1] + span.end_column - 1
         out = out[:start] + defines[const] + out[end:]
     return out
+
+
+def constants_of(text: str, name: str = "<program>") -> list:
+    """The names of the constants a program's text defines (`const` lines
+    that parse), in order."""
+    source = SourceFile(name, text)
+    program = parse(source, Collector(source))
+    return [s.name.name for s in program.statements if isinstance(s, ast.ConstDef)]

@@ -221,7 +221,12 @@ def _plot_parser(sub):
     world_cli.add_plot_parser(sub, world_cli.cmd_plot)
 
 
+def _experiment_parser(sub):
+    from . import experiment
+    experiment.add_parser(sub, experiment.cmd_experiment)
+
+
 # The commands in the order `epuckc --help` lists them.
 _COMMANDS = {"check": _check_parser, "explain": _explain_parser, "fmt": _fmt_parser,
              "lsp": _lsp_parser, "compile": _compile_parser, "build": _build_parser,
-             "run": _run_parser, "plot": _plot_parser}
+             "run": _run_parser, "plot": _plot_parser, "experiment": _experiment_parser}
