@@ -55,12 +55,12 @@ class Progress:
     """Runs done, failures and the time left: one line redrawn on a
     terminal, a plain line per run otherwise."""
 
-    def __init__(self, total: int, already: int, stream=sys.stderr):
+    def __init__(self, total: int, already: int, stream=None):
         self.total, self.done, self.failed = total, already, 0
         self.new = 0
         self.start = time.monotonic()
-        self.stream = stream
-        self.tty = stream.isatty()
+        self.stream = stream if stream is not None else sys.stderr
+        self.tty = self.stream.isatty()
 
     def update(self, task, result):
         self.done += 1

@@ -31,9 +31,13 @@ def run_local(tasks: list, workers: int, done):
         for task in tasks:
             done(task, execute(task))
         return
+    import multiprocessing
     from concurrent.futures import ProcessPoolExecutor, as_completed
     from concurrent.futures.process import BrokenProcessPool
-    pool = ProcessPoolExecutor(max_workers=min(workers, len(tasks)))
+    # fresh interpreters: a fork of a process with threads (a test runner,
+    # an embedding tool) can inherit a lock held by another thread and hang
+    pool = ProcessPoolExecutor(max_workers=min(workers, len(tasks)),
+                               mp_context=multiprocessing.get_context("spawn"))
     try:
         futures = {pool.submit(execute, task): task for task in tasks}
         for future in as_completed(futures):

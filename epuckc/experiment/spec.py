@@ -87,12 +87,20 @@ class _Positions:
     def key(self, key: str, table: str = "") -> tuple:
         return self.at.get((table, key), (1, 1))
 
-    def item(self, key: str, text: str, table: str = "") -> tuple:
-        """Where one element of a key's list is written (its value else)."""
+    def item(self, key: str, value, table: str = "", nth: int = 0) -> tuple:
+        """Where an element of a key's list is written (the nth one equal
+        to it; the key's value when it cannot be found)."""
         line, col = self.key(key, table)
         raw = self.lines[line - 1] if 0 < line <= len(self.lines) else ""
-        i = raw.find(text, col - 1)
-        return (line, i + 1) if i >= 0 else (line, col)
+        texts = ([("true" if value else "false")] if isinstance(value, bool)
+                 else [f'"{value}"', f"'{value}'", str(value)])
+        for text in texts:
+            at = [m.start() for m in re.finditer(re.escape(text), raw)
+                  if m.start() >= col - 1 and (text[0] in "\"'"
+                                                or not raw[m.end():m.end() + 1].isalnum())]
+            if len(at) > nth:
+                return line, at[nth] + 1
+        return line, col
 
 
 def parse_duration(value) -> Optional[int]:
@@ -122,9 +130,10 @@ def read_experiment(path: Path, shown: Optional[str] = None) -> Experiment:
     except tomllib.TOMLDecodeError as exc:
         message = str(exc)
         m = re.search(r"\(at line (\d+), column (\d+)\)", message)
-        where = (int(m.group(1)), int(m.group(2))) if m else (1, 1)
-        if m:
-            message = message[:m.start()].strip()
+        end = re.search(r"\(at end of document\)", message)
+        where = (int(m.group(1)), int(m.group(2))) if m else (len(pos.lines) + 1, 1)
+        if m or end:
+            message = message[:(m or end).start()].strip()
         if where[0] > len(pos.lines):
             where = (max(len(pos.lines), 1), len(pos.lines[-1]) + 1 if pos.lines else 1)
         raise pos.error(shown, where, f"this is not TOML: {message[0].lower() + message[1:]}",
@@ -213,10 +222,10 @@ def _seeds(data, pos, fail) -> list:
         seeds = []
         for s in value:
             if isinstance(s, bool) or not isinstance(s, int) or not 0 <= s < 2 ** 32:
-                fail(pos.item("seeds", str(s)), f"{s!r} is not a seed: a whole number "
+                fail(pos.item("seeds", s), f"{s!r} is not a seed: a whole number "
                      "from 0 to 4294967295")
             elif s in seeds:
-                fail(pos.item("seeds", str(s)), f"the seed {s} is given twice")
+                fail(pos.item("seeds", s, nth=seeds.count(s)), f"the seed {s} is given twice")
             else:
                 seeds.append(s)
         return seeds
@@ -269,11 +278,11 @@ def _params(data, pos, fail) -> dict:
                 text = format_value(v)
                 check_value(name, text)
             except DefineError:
-                fail(pos.item(name, str(v), "params"), f"{v!r} is not a value of the language",
+                fail(pos.item(name, v, "params"), f"{v!r} is not a value of the language",
                      'give numbers, or values with their unit in quotes: ["10 cm", "20 cm"]')
                 continue
             if text in texts:
-                fail(pos.item(name, str(v), "params"), f"{name} takes the value {text} twice")
+                fail(pos.item(name, v, "params", nth=1), f"{name} takes the value {text} twice")
             texts.append(text)
         if not values:
             fail(where, f"{name} has no values", f"{name} = [1, 2]")
