@@ -15,6 +15,9 @@ DASK_MISSING = ("--engine dask needs Dask's distributed scheduler, which is not 
                 "install it with: pip install 'epuckc[cluster]' (or: pip install dask distributed)")
 
 
+CONNECT_TIMEOUT_S = 10
+
+
 class EngineError(Exception):
     """The engine cannot start; str() says why and what to do."""
 
@@ -71,14 +74,14 @@ def run_dask(tasks: list, workers: int, scheduler, done):
     cluster = None
     try:
         if scheduler:
-            client = Client(scheduler, timeout="30s")
+            client = Client(scheduler, timeout=f"{CONNECT_TIMEOUT_S}s")
         else:
             cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
                                    dashboard_address=None)
             client = Client(cluster)
     except (OSError, TimeoutError) as exc:
-        raise EngineError(f"cannot reach the Dask scheduler {scheduler or '(local)'}: {exc}") \
-            from None
+        raise EngineError(f"cannot reach the Dask scheduler {scheduler or '(local)'} within "
+                          f"{CONNECT_TIMEOUT_S} s: {exc}") from None
     try:
         futures = client.map(execute, tasks, key=[f"epuckc-run-{t.key}" for t in tasks],
                              pure=False)
