@@ -37,6 +37,10 @@ ROBOT_INCLUDES = [".", "epuck_api", "host", "enki"]
 # robot_glue.c's header comment says why each of these is wrapped
 WRAPPED = ["stub_motors_1ms", "stub_pose", "stub_set_geometry", "getenv", "exit"]
 RUNNER_FLAGS = ["-std=c++14", "-O2", "-Wall", "-Wextra"]
+# In a world the pose is Enki's (the glue wraps stub_pose): the stub's own
+# dead reckoning, sines and cosines at every ms of every robot, was a fifth
+# of a run's time for nothing (docs/performance.md)
+ROBOT_RUNTIME_FLAGS = ["-fPIC", "-DEPUCK_STUB_NO_POSE"]
 ENKI_HEADER = Path("/usr/include/enki/PhysicalEngine.h")
 ENKI_MISSING = ("running in a world needs Enki, its headers and a C++ compiler "
                 "(Debian/Ubuntu: apt-get install libenki-dev g++)")
@@ -85,7 +89,8 @@ def build_runner() -> Path:
 
 def build_robot(program: Program) -> Path:
     """The program as a robot of a world: a shared object, cached."""
-    key = hashlib.sha256(("enki-robot\0" + host_build_key(program)).encode()).hexdigest()[:24]
+    key = hashlib.sha256(("enki-robot\0" + " ".join(ROBOT_RUNTIME_FLAGS) + "\0"
+                          + host_build_key(program)).encode()).hexdigest()[:24]
     lib = cache_dir() / "enki" / key / f"{program.name}.so"
 
     def produce(out: Path):
@@ -93,7 +98,8 @@ def build_robot(program: Program) -> Path:
         # generated program and the runtime with it, all at once; the
         # runtime's objects (position-independent) kept for the next robot
         objects, runtime = compile_objects(
-            program, out.parent, ROBOT_SOURCES, runtime_flags(program, ROBOT_INCLUDES, ["-fPIC"]),
+            program, out.parent, ROBOT_SOURCES,
+            runtime_flags(program, ROBOT_INCLUDES, ROBOT_RUNTIME_FLAGS),
             runtime_cache_dir(), ["-fPIC"])
         command = (c_compiler() + ["-shared"] + [str(o) for o in objects + runtime]
                    + ["-Wl,--wrap=" + ",--wrap=".join(WRAPPED), "-Wl,-Bsymbolic",
