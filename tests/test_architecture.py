@@ -17,7 +17,7 @@ PACKAGE = REPO / "epuckc"
 
 # Which stages each stage may import (besides itself). The pipeline runs
 # syntax -> check -> lower -> emit -> build; ide and sim sit on top of it,
-# cli on top of everything. docs/architecture.md shows the same table.
+# experiment on sim, cli on top of everything. docs/architecture.md shows the same table.
 ALLOWED = {
     "base": set(),
     "diagnostics": {"base"},
