@@ -42,7 +42,9 @@ metrics = ["contacts", "distance", "coverage", "exit", "var:left_near", "mean:le
 K = ["1 steps/s", "4 steps/s"]
 """
 
-# a hand-written C program that aborts in the run of seed 2
+# a hand-written C program that aborts in the run of seed 2, never
+# returns in the run of seed 4 (the watchdog's case) and stops with
+# status 2 in the run of seed 5
 CRASHER = r"""#include <stdlib.h>
 #include <string.h>
 #include "utility.h"
@@ -52,6 +54,11 @@ int main(void)
     const char *seed = getenv("EPUCK_SEED");
     if (seed != NULL && strcmp(seed, "2") == 0)
         abort();
+    if (seed != NULL && strcmp(seed, "4") == 0)
+        for (;;)
+            ;
+    if (seed != NULL && strcmp(seed, "5") == 0)
+        return 2;
     mainloop();
     return 0;
 }

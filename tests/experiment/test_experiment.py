@@ -42,6 +42,7 @@ def test_two_by_six_gives_twelve_rows_and_a_two_row_summary(tmp_path, capsys):
         assert math.isclose(float(s["distance_mm:ci95_low"]), mean - half, abs_tol=2e-3)
     svg = (tmp_path / "one" / "summary.svg").read_text()
     assert svg.startswith("<svg") and "distance_mm" in svg and "K=4 steps/s" in svg
+    assert not (tmp_path / "one" / "traces").exists()       # only when asked
 
     # the same rows, byte for byte, with two workers
     status, out, err = run_cli(["experiment", str(exp), "-o", str(tmp_path / "two"),
@@ -79,20 +80,25 @@ def test_a_failing_run_is_a_row_with_its_error(tmp_path, capsys):
     exp = make(tmp_path, """program = "crash.c"
 world = "arena.world"
 duration = "500 ms"
-seeds = 3
+seeds = 5
 metrics = ["distance"]
+timeout = "3 s"
 """)
     status, out, err = run_cli(["experiment", str(exp), "-o", str(tmp_path / "o"),
                                 "--workers", "2"], capsys)
     assert status == 0, err
     runs = rows(tmp_path / "o" / "runs.csv")
-    assert [r["seed"] for r in runs] == ["1", "2", "3"]
+    assert [r["seed"] for r in runs] == ["1", "2", "3", "4", "5"]
     assert runs[0]["error"] == "" and runs[2]["error"] == ""
     assert "world runner failed" in runs[1]["error"] and "signal 6" in runs[1]["error"]
     assert runs[1]["distance_mm"] == ""
+    assert "more than 3 s of wall-clock time" in runs[3]["error"]
+    assert "watchdog" in runs[3]["error"]
+    assert runs[4]["error"] == "the program stopped with exit status 2"
+    assert runs[4]["status"] == "2"
     (summary,) = rows(tmp_path / "o" / "summary.csv")
-    assert summary["runs"] == "3" and summary["failed"] == "1" and summary["distance_mm:n"] == "2"
-    assert "1 failed" in err
+    assert summary["runs"] == "5" and summary["failed"] == "3" and summary["distance_mm:n"] == "2"
+    assert "3 failed" in err
 
 
 def test_resume_after_an_interrupt(tmp_path):
@@ -138,6 +144,7 @@ world = "three.world"
 duration = "1 s"
 seeds = 2
 metrics = ["contacts", "distance", "coverage", "exit"]
+traces = true
 """)
     (tmp_path / "three.world").write_text("arena 60 cm x 40 cm\nrobot a at 10 cm, 10 cm\n"
                                           "robot b at 30 cm, 10 cm\n"
@@ -153,6 +160,13 @@ metrics = ["contacts", "distance", "coverage", "exit"]
         assert math.isclose(float(swarm["distance_mm"]), total, abs_tol=0.01)
         assert int(swarm["coverage_cells"]) <= sum(int(r["coverage_cells"]) for r in robots)
         assert int(swarm["coverage_cells"]) >= max(int(r["coverage_cells"]) for r in robots)
+    # the traces, asked for: each run's merged trace, as `epuckc run --trace` writes it
+    import json
+    records = [json.loads(line) for line in
+               (tmp_path / "o" / "traces" / "p0-s2.jsonl").read_text().splitlines()]
+    assert records[0]["kind"] == "world" and records[0]["seed"] == 2
+    assert {r["robot"] for r in records[1:]} == {"a", "b", "c"}
+    assert [r["kind"] for r in records[-3:]] == ["contacts"] * 3
     summary = rows(tmp_path / "o" / "summary.csv")
     swarm_distances = [float(r["distance_mm"]) for r in runs if r["robot"] == "swarm"]
     assert math.isclose(float(summary[0]["distance_mm:mean"]),
