@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import os
 
-from .task import execute, lost
+from .task import execute, lost, worker_started
 
 DASK_MISSING = ("--engine dask needs Dask's distributed scheduler, which is not installed; "
                 "install it with: pip install 'epuckc[cluster]' (or: pip install dask distributed)")
@@ -40,7 +40,8 @@ def run_local(tasks: list, workers: int, done):
     # fresh interpreters: a fork of a process with threads (a test runner,
     # an embedding tool) can inherit a lock held by another thread and hang
     pool = ProcessPoolExecutor(max_workers=min(workers, len(tasks)),
-                               mp_context=multiprocessing.get_context("spawn"))
+                               mp_context=multiprocessing.get_context("spawn"),
+                               initializer=worker_started)
     try:
         futures = {pool.submit(execute, task): task for task in tasks}
         for future in as_completed(futures):

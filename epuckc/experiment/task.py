@@ -15,6 +15,16 @@ from ..build.common import BuildError, Program
 from . import metrics as M
 
 _built = {}             # payload digest -> robot's shared object, in this worker
+_pool_worker = False    # a process of the local pool (worker_started)
+
+
+def worker_started():
+    """A local pool's process: Ctrl-C on the terminal is the parent's to
+    handle (it stops the experiment); here it would only print tracebacks."""
+    global _pool_worker
+    import signal
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    _pool_worker = True
 
 
 @dataclass
@@ -64,6 +74,10 @@ def execute(task) -> RunResult:
         libs = [_robot(task.payloads[i]) for i in task.robot_programs]
         run = simulate(task.world, libs, task.duration_ms, task.seed, task.pose_ms,
                        quiet=True, capture=True, timeout_s=task.timeout_s)
+    except KeyboardInterrupt:
+        if not _pool_worker:
+            raise
+        return lost(task, "interrupted")
     except (BuildError, WorldTimeout) as exc:
         out.error = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
         return _failed(task, out)

@@ -208,6 +208,8 @@ def simulate(world: World, libs: list, time_limit_ms: int, seed: int = 1,
                                f"and was stopped (the watchdog)") from None
         except OSError as exc:
             raise BuildError(f"cannot run {runner}: {exc.strerror or exc}") from None
+        if proc.returncode == -2:          # SIGINT: Ctrl-C on the terminal reached it too
+            raise KeyboardInterrupt
         if proc.returncode != 0 or not results_file.is_file():
             why = ""
             if capture and proc.stderr:
