@@ -95,3 +95,42 @@ def test_statistics():
     assert s["mean"] == 2.5 and math.isclose(s["sd"], math.sqrt(5 / 3))
     assert math.isclose(s["ci_high"] - s["mean"], 3.182 * math.sqrt(5 / 3) / 2)
     assert describe([7.0])["sd"] is None and describe([])["n"] == 0
+
+
+class _Terminal:
+    def __init__(self, tty):
+        self.text, self.tty = "", tty
+
+    def isatty(self):
+        return self.tty
+
+    def write(self, s):
+        self.text += s
+
+    def flush(self):
+        pass
+
+
+def test_progress_on_a_terminal_and_in_a_log():
+    from types import SimpleNamespace
+    from epuckc.cli.experiment import Progress
+    from epuckc.experiment.task import RunResult
+    task = SimpleNamespace(values={"K": "1 steps/s"}, point=0, seed=3)
+    good = RunResult("k", 0, 3, {}, rows=[{"robot": "r1", "error": ""}])
+    bad = RunResult("k", 0, 3, {}, error="the watchdog", rows=[{"robot": "r1", "error": "x"}])
+    term = _Terminal(True)
+    p = Progress(4, 1, term)        # one run already done: resumed
+    p.update(task, good)
+    p.update(task, bad)
+    assert term.text.startswith("\r[")
+    assert "3/4 runs, 1 failed" in term.text and "s left" in term.text
+    assert "\n" not in term.text
+    p.update(task, good)
+    assert term.text.endswith("\n") and "4/4 runs, 1 failed" in term.text
+    log = _Terminal(False)
+    p = Progress(2, 0, log)
+    p.update(task, good)
+    p.update(task, bad)
+    lines = log.text.splitlines()
+    assert lines[0].startswith("run 1/2 (point 0 K=1 steps/s, seed 3): ok; ")
+    assert lines[1].startswith("run 2/2 (point 0 K=1 steps/s, seed 3): failed: the watchdog; ")
