@@ -29,7 +29,7 @@ def add_parser(sub, run):
                        description="Run the experiment of FILE.toml (programs, world, duration, "
                                    "seeds, metrics, a grid of constants; docs/experiments.md): "
                                    "DIR/runs.csv has a row per run and robot, DIR/summary.csv "
-                                   "and DIR/summary.svg the mean and 95%% interval of each "
+                                   "and DIR/summary.svg the mean and 95% interval of each "
                                    "metric per grid point. Runs already in DIR are not run "
                                    "again. Exit status: 0 done (failed runs are rows with "
                                    "their error), 1 a program has errors or the engine "
