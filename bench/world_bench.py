@@ -8,6 +8,9 @@
    the traces). Target: at least 50 times faster than real time.
 2. The stub harness alone (the executable `epuckc build` makes), one robot,
    the same program for 60 s. Target: at least 1,000 times faster.
+3. Enki alone (bench/enki_alone.cpp: the same world, the same robots with
+   a trivial controller, nothing else), beside 1. Target: the whole
+   `epuckc run --world` within 1.25 x Enki alone's CPU time.
 
 Each process is pinned to one CPU (sched_setaffinity), so "on one core"
 holds on a machine with several. Prints the median of --runs runs, their
@@ -100,6 +103,19 @@ def main() -> int:
         times = [timed(run, env, cpu) for _ in range(args.runs)]
         ok &= report(f"{args.robots} robots, {PROGRAM.name}, walled arena, Enki "
                      f"(whole `epuckc run --world`)", args.seconds, times, 50)
+        alone = Path(tmp) / "enki_alone"
+        subprocess.run(["c++", "-O2", "-std=c++14", str(REPO / "bench" / "enki_alone.cpp"),
+                        "-o", str(alone), "-lenki"], check=True)
+        # side by side: the two alternate, so that the machine's load hits both
+        pairs = [(timed(run, env, cpu), timed([str(alone), str(args.robots), str(args.seconds)],
+                                              env, cpu)) for _ in range(args.runs)]
+        ours = statistics.median(c for (_, c), _ in pairs)
+        enki = statistics.median(c for _, (_, c) in pairs)
+        print(f"Enki alone, {args.robots} robots, a trivial controller, {args.seconds} s: CPU "
+              f"median {enki:.3f} s; `epuckc run --world` beside it {ours:.3f} s = "
+              f"{ours / enki:.2f} x Enki alone; target 1.25 x: "
+              f"{'met' if ours / enki <= 1.25 else 'NOT met'}")
+        ok &= ours / enki <= 1.25
         exe_dir = Path(tmp) / "stub"
         subprocess.run([sys.executable, "-m", "epuckc", "build", str(PROGRAM), "-o", str(exe_dir)],
                        env=env, check=True, capture_output=True)

@@ -17,7 +17,7 @@ PACKAGE = REPO / "epuckc"
 
 # Which stages each stage may import (besides itself). The pipeline runs
 # syntax -> check -> lower -> emit -> build; ide and sim sit on top of it,
-# cli on top of everything. docs/architecture.md shows the same table.
+# experiment on sim, cli on top of everything. docs/architecture.md shows the same table.
 ALLOWED = {
     "base": set(),
     "diagnostics": {"base"},
@@ -30,8 +30,9 @@ ALLOWED = {
     "sim": {"base", "build"},
     "ide": {"base", "diagnostics", "stdlib", "syntax", "check"},
     "testing": {"base", "diagnostics", "check", "emit", "build", "sim"},
+    "experiment": {"base", "build", "check", "sim"},
     "cli": {"base", "diagnostics", "stdlib", "syntax", "check", "lower", "emit", "build",
-            "sim", "ide", "testing"},
+            "sim", "ide", "testing", "experiment"},
 }
 TOP_LEVEL = {"__init__", "__main__"}      # the package's own files: version, `python -m epuckc`
 

@@ -86,6 +86,18 @@ def _add_program_options(p: argparse.ArgumentParser):
     p.add_argument("file", metavar="FILE", help="a rule file (.epk) or a C program using the runtime")
     _add_capacity_options(p)
     p.add_argument("--werror", action="store_true", help="treat warnings as errors")
+    p.add_argument("-D", dest="defines", action="append", type=_define, metavar="NAME=VALUE",
+                   help="give the constant NAME the value VALUE (a number with its unit, e.g. "
+                        "-D SPEED=400steps/s) instead of its `const` line's; checked as if "
+                        "written there")
+
+
+def _define(text: str) -> tuple:
+    from ..check.defines import DefineError, parse_define
+    try:
+        return parse_define(text)
+    except DefineError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
 
 
 def build_parser(only: str | None = None) -> argparse.ArgumentParser:
@@ -234,7 +246,13 @@ def _plot_parser(sub):
     world_cli.add_plot_parser(sub, world_cli.cmd_plot)
 
 
+def _experiment_parser(sub):
+    from . import experiment
+    experiment.add_parser(sub, experiment.cmd_experiment)
+
+
 # The commands in the order `epuckc --help` lists them.
 _COMMANDS = {"check": _check_parser, "explain": _explain_parser, "fmt": _fmt_parser,
              "lsp": _lsp_parser, "compile": _compile_parser, "build": _build_parser,
-             "run": _run_parser, "test": _test_parser, "plot": _plot_parser}
+             "run": _run_parser, "test": _test_parser, "plot": _plot_parser,
+             "experiment": _experiment_parser}

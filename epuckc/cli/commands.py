@@ -150,11 +150,13 @@ def _load(args, report=None):
     from ..diagnostics import Report
     from .driver import load_program
     from ..check.frontend import InputError
+    from ..check.defines import DefineError
     report = Report() if report is None else report
     try:
         program = load_program(Path(args.file), report, args.max_actions, args.max_events,
-                               shown_name=display_name(args.file))
-    except InputError as exc:
+                               shown_name=display_name(args.file),
+                               defines=dict(getattr(args, "defines", None) or ()))
+    except (InputError, DefineError) as exc:
         _error(str(exc))
         return None, EXIT_USAGE
     _print_report(report, "human")
@@ -230,7 +232,7 @@ def cmd_run(args) -> int:
         os.environ["EPUCK_SEED"] = str(args.seed)
     # A rule file built before goes straight to its executable (runcache.py).
     path, key, data = Path(args.file), None, None
-    if path.suffix != ".c" and not wants_world:
+    if path.suffix != ".c" and not wants_world and not args.defines:
         from ..build import runcache
         try:
             data = path.read_bytes()

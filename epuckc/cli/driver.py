@@ -26,11 +26,18 @@ def _program_name(path: Path) -> str:
 
 def load_program(path: Path, report: Report, max_actions: Optional[int] = None,
                  max_events: Optional[int] = None,
-                 shown_name: Optional[str] = None) -> Optional[Program]:
-    """A rule file is checked and compiled; a .c file is taken as it is."""
+                 shown_name: Optional[str] = None,
+                 defines: Optional[dict] = None) -> Optional[Program]:
+    """A rule file is checked and compiled; a .c file is taken as it is.
+    `defines` (NAME -> VALUE text, `-D`) override constants before checking
+    (check/defines.py; DefineError for an unknown name)."""
     name = _program_name(path)
     shown = shown_name if shown_name is not None else str(path)
     if path.suffix == ".c":
+        if defines:
+            from ..check.defines import DefineError
+            raise DefineError(f"-D {next(iter(defines))}: {shown} is C, which has no "
+                              f"constants of the language to override")
         try:
             text = path.read_text(encoding="utf-8")
         except OSError as exc:
@@ -39,7 +46,17 @@ def load_program(path: Path, report: Report, max_actions: Optional[int] = None,
             raise InputError(f"cannot read {shown}: it is not UTF-8 text") from None
         return Program(name, text, path.parent, [], max_actions, max_events,
                        generated=False, source_path=path, inputs=[path])
-    result = check_file(path, report, shown_name=shown)
+    text = None
+    if defines:
+        from ..check.defines import apply_defines
+        try:
+            text = path.read_text(encoding="utf-8")
+        except OSError as exc:
+            raise read_error(shown, exc) from None
+        except UnicodeDecodeError:
+            raise InputError(f"cannot read {shown}: it is not UTF-8 text") from None
+        text = apply_defines(text, defines, shown)
+    result = check_file(path, report, shown_name=shown, text=text)
     if result.checked is None:
         return None
     from ..emit.program import emit_program

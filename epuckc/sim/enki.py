@@ -37,6 +37,10 @@ ROBOT_INCLUDES = [".", "epuck_api", "host", "enki"]
 # robot_glue.c's header comment says why each of these is wrapped
 WRAPPED = ["stub_motors_1ms", "stub_pose", "stub_set_geometry", "getenv", "exit"]
 RUNNER_FLAGS = ["-std=c++14", "-O2", "-Wall", "-Wextra"]
+# In a world the pose is Enki's (the glue wraps stub_pose): the stub's own
+# dead reckoning, sines and cosines at every ms of every robot, was a fifth
+# of a run's time for nothing (docs/performance.md)
+ROBOT_RUNTIME_FLAGS = ["-fPIC", "-DEPUCK_STUB_NO_POSE"]
 ENKI_HEADER = Path("/usr/include/enki/PhysicalEngine.h")
 ENKI_MISSING = ("running in a world needs Enki, its headers and a C++ compiler "
                 "(Debian/Ubuntu: apt-get install libenki-dev g++)")
@@ -85,7 +89,8 @@ def build_runner() -> Path:
 
 def build_robot(program: Program) -> Path:
     """The program as a robot of a world: a shared object, cached."""
-    key = hashlib.sha256(("enki-robot\0" + host_build_key(program)).encode()).hexdigest()[:24]
+    key = hashlib.sha256(("enki-robot\0" + " ".join(ROBOT_RUNTIME_FLAGS) + "\0"
+                          + host_build_key(program)).encode()).hexdigest()[:24]
     lib = cache_dir() / "enki" / key / f"{program.name}.so"
 
     def produce(out: Path):
@@ -93,7 +98,8 @@ def build_robot(program: Program) -> Path:
         # generated program and the runtime with it, all at once; the
         # runtime's objects (position-independent) kept for the next robot
         objects, runtime = compile_objects(
-            program, out.parent, ROBOT_SOURCES, runtime_flags(program, ROBOT_INCLUDES, ["-fPIC"]),
+            program, out.parent, ROBOT_SOURCES,
+            runtime_flags(program, ROBOT_INCLUDES, ROBOT_RUNTIME_FLAGS),
             runtime_cache_dir(), ["-fPIC"])
         command = (c_compiler() + ["-shared"] + [str(o) for o in objects + runtime]
                    + ["-Wl,--wrap=" + ",--wrap=".join(WRAPPED), "-Wl,-Bsymbolic",
@@ -149,13 +155,91 @@ def _contact_line(r: RobotResult) -> str:
             f"the first at {r.first_contact_ms} ms")
 
 
+@dataclass
+class WorldRun:
+    """What one run of a world gave: each robot's result (status and
+    contacts, in the world's order), each robot's own trace (JSON lines),
+    and the last time any robot reached."""
+    results: list
+    traces: list
+    end_ms: int
+
+
+class WorldTimeout(Exception):
+    """The runner ran longer than the wall-clock limit it was given."""
+
+
+def simulate(world: World, libs: list, time_limit_ms: int, seed: int = 1,
+             pose_ms: Optional[int] = None, quiet: bool = False, capture: bool = False,
+             timeout_s: Optional[float] = None) -> WorldRun:
+    """Run the world once: `libs` are the robots' built shared objects, in
+    the world's order; Enki's generator is seeded by the world's `seed`,
+    robot k's `random` by `seed + k`. `quiet`: the robots print nothing;
+    `capture`: the runner's output is kept from stdout and stderr (its last
+    line of stderr then says why it failed). After `timeout_s` seconds of wall clock it is
+    killed (WorldTimeout). BuildError when the runner fails."""
+    runner = build_runner()
+    with tempfile.TemporaryDirectory(prefix="epuckc-world-") as tmp:
+        tmpdir = Path(tmp)
+        entries = []
+        for i, lib in enumerate(libs):
+            # each robot loads its own copy: its own globals (docs/world.md)
+            copy = tmpdir / f"robot{i}.so"
+            shutil.copyfile(lib, copy)
+            settings = {"EPUCK_TIME_LIMIT_MS": str(time_limit_ms),
+                        "EPUCK_TRACE": str(tmpdir / f"robot{i}.jsonl"),
+                        # each robot its own `random` (`run --seed N`: N + i)
+                        "EPUCK_SEED": str((seed + i) & 0xFFFFFFFF)}
+            if pose_ms:
+                settings["EPUCK_POSE_MS"] = str(pose_ms)
+            if quiet:
+                settings["EPUCK_QUIET"] = "1"
+            entries.append((copy, settings))
+        spec = tmpdir / "world.spec"
+        spec.write_text(runner_spec(world, entries), encoding="utf-8")
+        results_file = tmpdir / "results"
+        sys.stdout.flush()
+        capture = subprocess.PIPE if capture else None
+        try:
+            proc = subprocess.run([str(runner), str(spec), str(results_file)], stdout=capture,
+                                  stderr=capture, timeout=timeout_s)
+        except subprocess.TimeoutExpired:
+            raise WorldTimeout(f"the run took more than {timeout_s:g} s of wall-clock time "
+                               f"and was stopped (the watchdog)") from None
+        except OSError as exc:
+            raise BuildError(f"cannot run {runner}: {exc.strerror or exc}") from None
+        if proc.returncode == -2:          # SIGINT: Ctrl-C on the terminal reached it too
+            raise KeyboardInterrupt
+        if proc.returncode != 0 or not results_file.is_file():
+            why = ""
+            if capture and proc.stderr:
+                why = ": " + proc.stderr.decode("utf-8", "replace").strip().splitlines()[-1]
+            elif proc.returncode < 0:
+                why = f": killed by signal {-proc.returncode}"
+            raise BuildError(f"the Enki world runner failed (exit status {proc.returncode})"
+                             + why)
+        results = []
+        for line in results_file.read_text().splitlines():
+            name, *numbers = line.split()
+            results.append(RobotResult(name, *map(int, numbers)))
+        traces = []
+        end_ms = 0
+        for i in range(len(libs)):
+            path = tmpdir / f"robot{i}.jsonl"
+            text = path.read_text(encoding="utf-8") if path.is_file() else ""
+            traces.append(text)
+            for m in _T_MS.finditer(text):
+                end_ms = max(end_ms, int(m.group(1)))
+    return WorldRun(results, traces, end_ms)
+
+
 def run_world(world: World, default_program: Program, load_program, time_limit_ms: int,
               trace: Optional[Path], pose_ms: Optional[int] = None) -> int:
     """Build and run every robot of the world; print the robots' readable
     traces and a collision summary; write the merged trace to `trace`.
     `load_program(path)` gives the Program of a robot's own `program`, or
     raises BuildError. Returns the highest of the robots' exit statuses."""
-    runner = build_runner()
+    build_runner()
     text = os.environ.get("EPUCK_SEED", "")
     seed = int(text) if text.isdigit() else 1
     libs = {}
@@ -166,49 +250,13 @@ def run_world(world: World, default_program: Program, load_program, time_limit_m
             libs[id(program)] = (program, build_robot(program))
         robots.append(libs[id(program)][1])
     quiet = os.environ.get("EPUCK_QUIET", "")
-    with tempfile.TemporaryDirectory(prefix="epuckc-world-") as tmp:
-        tmpdir = Path(tmp)
-        entries = []
-        for i, (placement, lib) in enumerate(zip(world.robots, robots)):
-            # each robot loads its own copy: its own globals (docs/world.md)
-            copy = tmpdir / f"robot{i}.so"
-            shutil.copyfile(lib, copy)
-            settings = {"EPUCK_TIME_LIMIT_MS": str(time_limit_ms),
-                        "EPUCK_TRACE": str(tmpdir / f"robot{i}.jsonl"),
-                        # each robot its own `random` (`run --seed N`: N + i)
-                        "EPUCK_SEED": str((seed + i) & 0xFFFFFFFF)}
-            if pose_ms:
-                settings["EPUCK_POSE_MS"] = str(pose_ms)
-            if quiet and quiet != "0":
-                settings["EPUCK_QUIET"] = "1"
-            entries.append((copy, settings))
-        spec = tmpdir / "world.spec"
-        spec.write_text(runner_spec(world, entries), encoding="utf-8")
-        results_file = tmpdir / "results"
-        sys.stdout.flush()
-        try:
-            proc = subprocess.run([str(runner), str(spec), str(results_file)])
-        except OSError as exc:
-            raise BuildError(f"cannot run {runner}: {exc.strerror or exc}") from None
-        if proc.returncode != 0 or not results_file.is_file():
-            raise BuildError(f"the Enki world runner failed (exit status {proc.returncode})")
-        results = []
-        for line in results_file.read_text().splitlines():
-            name, *numbers = line.split()
-            results.append(RobotResult(name, *map(int, numbers)))
-        traces = []
-        end_ms = 0
-        for i in range(len(world.robots)):
-            path = tmpdir / f"robot{i}.jsonl"
-            text = path.read_text(encoding="utf-8") if path.is_file() else ""
-            traces.append(text)
-            for m in _T_MS.finditer(text):
-                end_ms = max(end_ms, int(m.group(1)))
-        if not (quiet and quiet != "0"):
-            for r in results:
-                print(_contact_line(r))
-        if trace is not None:
-            from ..base.output import write_atomic
-            write_atomic(trace, merge_traces(world, traces, results, end_ms))
+    quiet = bool(quiet and quiet != "0")
+    run = simulate(world, robots, time_limit_ms, seed, pose_ms, quiet=quiet)
+    if not quiet:
+        for r in run.results:
+            print(_contact_line(r))
+    if trace is not None:
+        from ..base.output import write_atomic
+        write_atomic(trace, merge_traces(world, run.traces, run.results, run.end_ms))
     sys.stdout.flush()
-    return max(r.status for r in results)
+    return max(r.status for r in run.results)
