@@ -25,6 +25,18 @@ def require_tool(name: str) -> str:
     pytest.skip(reason)
 
 
+def require_checkout(variable: str, inside: str, reason: str) -> Path:
+    """The folder an environment variable names (a user's checkout of
+    GCtronic's library or firmware), holding `inside`; skips with the
+    reason without it, fails in CI (.ci/run points at shared/third_party)."""
+    folder = os.environ.get(variable)
+    if folder and (Path(folder) / inside).exists():
+        return Path(folder)
+    if os.environ.get("EPUCKC_REQUIRE_ALL_TOOLS"):
+        pytest.fail(reason)
+    pytest.skip(reason)
+
+
 def pytest_addoption(parser):
     parser.addoption("--update-goldens", action="store_true", default=False,
                      help="rewrite golden files from the current output")

@@ -84,19 +84,13 @@ def _report_blocks(checker, blocks, facts: _Rules) -> None:
 
 
 def _compact(rules) -> str:
-    """Rules by name, and the others by their lines as ranges (`lines 3..9,
-    12`), each line once."""
+    """Rules by name, and the others by their lines (`lines 3, 4, 12`),
+    each line once. (Not as ranges: the language server makes the lines a
+    message names real one by one, ide/incremental.py.)"""
     names = [f"rule {_code(r.name)}" for r in rules if r.name is not None]
     lines = sorted({r.node.span.line for r in rules if r.name is None})
-    runs = []
-    for line in lines:
-        if runs and runs[-1][1] == line - 1:
-            runs[-1][1] = line
-        else:
-            runs.append([line, line])
-    if runs:
-        names.append(f"line{'s' if len(lines) > 1 else ''} "
-                     + ", ".join(_span(lo, hi) for lo, hi in runs))
+    if lines:
+        names.append(f"line{'s' if len(lines) > 1 else ''} {', '.join(map(str, lines))}")
     return ", ".join(names)
 
 

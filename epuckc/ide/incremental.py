@@ -300,8 +300,11 @@ class Analysis:
         """A diagnostic whose words name lines (`(line 12)`, `the rules of
         lines 14, 15`: W009 names rules so) with those lines made real."""
         def lines(match):
-            numbers = ", ".join(str(self.real_line(int(n)) if int(n) >= VLINE else n)
-                                for n in match.group(2).split(", "))
+            # (in the order of the file, as the checker lists them: virtual
+            # lines follow statements' ids, not their places)
+            numbers = ", ".join(str(n) for n in sorted(
+                self.real_line(int(n)) if int(n) >= VLINE else int(n)
+                for n in match.group(2).split(", ")))
             return f"{match.group(1)} {numbers}"
 
         def fix(text):

@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from conftest import REPO, require_tool
+from conftest import REPO, require_checkout, require_tool
 from epuckc.base.resources import RUNTIME_CORE
 from tests.support.programs import epuckc
 
@@ -111,10 +111,10 @@ def test_a_full_build_with_the_firmware(tmp_path, example):
     """Needs the firmware tree with its submodules (ChibiOS, ...): where
     EPUCK2_FIRMWARE names it, every example and the language's
     every-feature program link into an .elf and a .bin."""
-    firmware = os.environ.get("EPUCK2_FIRMWARE")
-    if not firmware:
-        pytest.skip("EPUCK2_FIRMWARE is not set: the full e-puck2 link needs the firmware "
-                    "(git clone --recursive https://github.com/e-puck2/e-puck2_main-processor)")
+    firmware = str(require_checkout(
+        "EPUCK2_FIRMWARE", "src",
+        "EPUCK2_FIRMWARE is not set: the full e-puck2 link needs the firmware "
+        "(git clone --recursive https://github.com/e-puck2/e-puck2_main-processor)"))
     require_tool("arm-none-eabi-gcc")
     if example == "every_feature":
         from tests.runtime.test_language import EVERY_FEATURE

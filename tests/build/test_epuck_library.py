@@ -5,14 +5,12 @@ dspic Makefile lists exists there, every header the runtime includes is
 there at the same path, and the runtime, the robot layer and every
 example's program compile against the library's own headers (avr-gcc:
 16-bit int, -Werror) instead of runtime_c/epuck_api's declarations."""
-import os
 import re
 import subprocess
-from pathlib import Path
 
 import pytest
 
-from conftest import REPO, require_tool
+from conftest import REPO, require_checkout, require_tool
 from epuckc.base.resources import RUNTIME_CORE
 from tests.support.programs import epuckc
 
@@ -22,11 +20,11 @@ STRICT = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", "-Os", "-DEPUC
 
 @pytest.fixture(scope="module")
 def library():
-    folder = os.environ.get("EPUCK_LIB")
-    if not folder or not (Path(folder) / "library").is_dir():
-        pytest.skip("EPUCK_LIB does not name a checkout of GCtronic's e-puck library (git clone "
-                    "https://github.com/gctronic/e-puck-library; the folder that holds library/)")
-    return Path(folder) / "library"
+    folder = require_checkout(
+        "EPUCK_LIB", "library",
+        "EPUCK_LIB does not name a checkout of GCtronic's e-puck library (git clone "
+        "https://github.com/gctronic/e-puck-library; the folder that holds library/)")
+    return folder / "library"
 
 
 def test_every_library_source_the_makefile_lists_exists(library):
