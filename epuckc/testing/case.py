@@ -25,6 +25,9 @@ KEYS = {
     "c": "true or false: also compare the generated C with NAME.c",
     "expect": "a list of property checks such as \"exit within 5 s\"",
     "tolerance": "a table: pose_mm, heading_deg, time_ms",
+    "constants": "a table of the program's constants and their values, as `-D NAME=VALUE` "
+                 "gives them: NAME = \"400 steps/s\" or NAME = 3",
+    "target": "where the case runs: \"host\" (the simulated e-puck; the only one so far)",
 }
 TOLERANCE_KEYS = ("pose_mm", "heading_deg", "time_ms")
 
@@ -61,6 +64,7 @@ class Case:
     compare_c: bool = False
     expect: list = field(default_factory=list)      # props.Property
     tolerance: Tolerance = field(default_factory=Tolerance)
+    constants: dict = field(default_factory=dict)   # NAME -> VALUE text (`-D`)
 
     @property
     def name(self) -> str:
@@ -188,6 +192,35 @@ def _apply(case: Case, data: dict, text: str, shown: str, folder: Path):
                     line, col = _where(text, item)
                     raise UsageError(f"{shown}:{line}:{col}: error: {exc}") from None
             case.expect = checks
+        elif key == "constants":
+            from ..check.defines import DefineError, check_value, format_value
+            if not isinstance(value, dict):
+                raise _bad(shown, text, key, KEYS[key])
+            from ..check.defines import constants_of
+            constants = dict(case.constants)
+            try:
+                known = constants_of(case.path.read_text(encoding="utf-8"), case.path.name)
+            except (OSError, UnicodeDecodeError):
+                known = None        # the run reports the file itself
+            for name, given in value.items():
+                line, col = _where(text, name)
+                try:
+                    shown_value = format_value(given)
+                    check_value(name, shown_value)
+                except (DefineError, TypeError, ValueError) as exc:
+                    raise UsageError(f"{shown}:{line}:{col}: error: {exc}") from None
+                if known is not None and name not in known:
+                    raise UsageError(f"{shown}:{line}:{col}: error: {case.path.name} has no "
+                                     f"constant {name} (its constants: "
+                                     f"{', '.join(known) or 'none'})")
+                constants[name] = shown_value
+            case.constants = constants
+        elif key == "target":
+            if value != "host":
+                line, col = _where(text, str(value)) if isinstance(value, str) else _where(text, key)
+                raise UsageError(f"{shown}:{line}:{col}: error: cases run on the host harness "
+                                 f"(the simulated e-puck, alone or in a world): write target = "
+                                 f"\"host\"; the robots' builds are `epuckc build`'s")
         elif key == "tolerance":
             if not isinstance(value, dict):
                 raise _bad(shown, text, key, KEYS[key])

@@ -69,7 +69,15 @@ def _front_end(case: Case):
     report = Report()
     with _FRONT_END:
         try:
-            result = check_file(case.path, report, shown_name=case.path.name)
+            text = None
+            if case.constants:      # as `epuckc run -D NAME=VALUE` gives them
+                from ..check.defines import DefineError, apply_defines
+                try:
+                    text = apply_defines(case.path.read_text(encoding="utf-8"), case.constants,
+                                         case.path.name)
+                except (DefineError, UnicodeDecodeError, OSError) as exc:
+                    return f"{case.path.name}: error: {exc}\n", None, True
+            result = check_file(case.path, report, shown_name=case.path.name, text=text)
         except InputError as exc:
             report.diagnostics.append(exc.diagnostic(case.path.name))
             return render_report(report, "human", colour=False), None, True
@@ -88,6 +96,8 @@ def _run(case: Case, trace_path: Path) -> subprocess.CompletedProcess:
     command = [sys.executable, "-m", "epuckc", "run", case.path.name,
                "--time-limit", f"{case.time_limit_ms}ms", "--seed", str(case.seed),
                "--trace", str(trace_path)]
+    for name, value in case.constants.items():
+        command += ["-D", f"{name}={value}"]
     if case.scenario is not None:
         command += ["--scenario", os.path.relpath(case.scenario, case.folder)]
     if case.world is not None:

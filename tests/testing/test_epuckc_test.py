@@ -178,3 +178,31 @@ def test_cases_run_in_parallel_and_report_in_a_stable_order(tmp_path):
     one = epuckc("test", "-j", "1", tmp_path)
     assert one.stdout == first.stdout
     assert first.stdout.rstrip().endswith("0 passed, 4 failed")
+
+
+def test_constants_of_a_case_are_the_runs_and_the_checkers(tmp_path):
+    """`[constants]` in NAME.toml gives the program's constants as
+    `epuckc run -D` does: the run drives at the new speed, a value of the
+    wrong unit is the checker's error in the diagnostics golden, and a name
+    the program lacks fails the case with what to fix."""
+    make_case(tmp_path / "fast", toml='[constants]\nCRUISE = "600 steps/s"\n')
+    r = epuckc("test", "--bless", "fast", cwd=tmp_path)
+    assert r.returncode == 0, r.stdout + r.stderr
+    trace = (tmp_path / "fast" / "avoid.trace").read_text()
+    run = epuckc("run", "avoid.epk", "--scenario", "avoid.scn", "--seed", "1",
+                 "-D", "CRUISE=600steps/s", cwd=tmp_path / "fast")
+    assert trace == run.stdout
+    default = epuckc("run", "avoid.epk", "--scenario", "avoid.scn", "--seed", "1",
+                     cwd=tmp_path / "fast")
+    assert trace != default.stdout          # the constant took effect
+    make_case(tmp_path / "unit", toml='[constants]\nCRUISE = "20 cm"\n')
+    r = epuckc("test", "--bless", "unit", cwd=tmp_path)
+    diag = (tmp_path / "unit" / "avoid.diag").read_text()
+    assert "error[E" in diag and "20 cm" in diag, diag
+    make_case(tmp_path / "none", toml='[constants]\nSPEED = 3\n')
+    r = epuckc("test", "none", cwd=tmp_path)
+    assert r.returncode == 2 and "avoid.toml:2:1: error: avoid.epk has no constant SPEED" \
+        in r.stdout + r.stderr, r.stdout + r.stderr
+    make_case(tmp_path / "target", toml='target = "epuck2"\n')
+    r = epuckc("test", "target", cwd=tmp_path)
+    assert r.returncode == 2 and "avoid.toml:1:" in r.stderr + r.stdout
