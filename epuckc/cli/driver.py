@@ -20,6 +20,16 @@ from ..sim.harness import run_executable
 from ..base.output import is_stdout
 
 
+def _read_text(path: Path, shown: str) -> str:
+    """A file's text, or InputError that says why it cannot be read."""
+    try:
+        return path.read_text(encoding="utf-8")
+    except OSError as exc:
+        raise read_error(shown, exc) from None
+    except UnicodeDecodeError:
+        raise InputError(f"cannot read {shown}: it is not UTF-8 text") from None
+
+
 def _program_name(path: Path) -> str:
     return re.sub(r"[^A-Za-z0-9_-]", "_", path.stem) or "program"
 
@@ -38,24 +48,13 @@ def load_program(path: Path, report: Report, max_actions: Optional[int] = None,
             from ..check.defines import DefineError
             raise DefineError(f"-D {next(iter(defines))}: {shown} is C, which has no "
                               f"constants of the language to override")
-        try:
-            text = path.read_text(encoding="utf-8")
-        except OSError as exc:
-            raise read_error(shown, exc) from None
-        except UnicodeDecodeError:
-            raise InputError(f"cannot read {shown}: it is not UTF-8 text") from None
+        text = _read_text(path, shown)
         return Program(name, text, path.parent, [], max_actions, max_events,
                        generated=False, source_path=path, inputs=[path])
     text = None
     if defines:
         from ..check.defines import apply_defines
-        try:
-            text = path.read_text(encoding="utf-8")
-        except OSError as exc:
-            raise read_error(shown, exc) from None
-        except UnicodeDecodeError:
-            raise InputError(f"cannot read {shown}: it is not UTF-8 text") from None
-        text = apply_defines(text, defines, shown)
+        text = apply_defines(_read_text(path, shown), defines, shown)
     result = check_file(path, report, shown_name=shown, text=text)
     if result.checked is None:
         return None
