@@ -170,3 +170,42 @@ def test_a_bad_character_before_a_statement_gives_the_same_errors():
     analyzer.analyse("initial mode home { on enter do stop_motor }\n")
     assert analyzer.analyse(text).diagnostics == full_check(text)
     assert [d.code for d in full_check(text)].count("E001") == 1
+
+
+# pieces that change what variables can hold, who assigns them and who reads them
+VARIABLE_FRAGMENTS = ["v0", "v1", " + 1", " - 7", " * 3", " / 2", "max(", "clamp(", ", 5)", "7",
+                      "var v9 = 4\n", "var v0 = 2\n", "v1 += 1, ", "v0 = v1, ", " if v0 > 3",
+                      "when v1 < 0 do stop_motor\n", "every 10 ms do v0 = v0 + 1\n", "=", "+=",
+                      "(", ")", "\n", "abs(", "ir0", "set_speed(v0 * 1 steps/s, 0 steps/s)"]
+
+
+def _programs_with_variables() -> list:
+    import random as _random
+    import sys
+    sys.path.insert(0, str(REPO / "bench"))
+    from lsp_bench import expression_program
+    from tests.support.language import RandomChoices, language_program
+    out = [expression_program(40, seed=s) for s in range(3)]
+    out += [language_program(RandomChoices(_random.Random(s))).text for s in range(12)]
+    return out
+
+
+@settings(max_examples=120, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.integers(0, 14), st.lists(st.tuples(st.integers(0, 10_000), st.integers(0, 12),
+                                              st.lists(st.sampled_from(VARIABLE_FRAGMENTS),
+                                                       max_size=3)),
+                                    min_size=1, max_size=8))
+def test_random_edits_of_programs_with_variables_equal_a_full_check(which, edits):
+    """Issue 31: the intervals solved again only where an edit reaches
+    (check/ranges.py) give every diagnostic a from-scratch check gives."""
+    program = _PROGRAMS_WITH_VARIABLES[which]
+    analyzer = Analyzer("prog.epk")
+    text = program
+    analyzer.analyse(text)
+    for at, length, pieces in edits:
+        at %= len(text) + 1
+        text = text[:at] + "".join(pieces) + text[at + length:]
+        assert analyzer.analyse(text).diagnostics == full_check(text)
+
+
+_PROGRAMS_WITH_VARIABLES = _programs_with_variables()
