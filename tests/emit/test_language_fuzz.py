@@ -12,20 +12,19 @@ EPUCKC_FUZZ_SEED=N runs it again):
 bench/fuzz_campaign.py --language runs the same checks on many more."""
 from __future__ import annotations
 
-import itertools
 import os
 from pathlib import Path
 
 import pytest
 from hypothesis import HealthCheck, given, seed, settings
 
-from conftest import FUZZ_FIXED_SEED, FUZZ_SEED, require_tool
+from conftest import FUZZ_FIXED_SEED, FUZZ_SEED
 from epuckc.check.frontend import check_file
 from epuckc.diagnostics import Report
 from epuckc.emit.program import emit_program
 from epuckc.ide.incremental import Analyzer
 
-from tests.support.hostile import Outcome, check_one, runtime_objects
+from tests.support.hostile import Outcome, build_outcomes
 from tests.support.language import language_programs
 
 SEEDS = [FUZZ_FIXED_SEED, FUZZ_SEED]
@@ -68,19 +67,6 @@ def test_no_internal_error_and_the_editor_agrees(fuzz_seed):
 
 @pytest.mark.parametrize("fuzz_seed", SEEDS, ids=["fixed", "new"])
 def test_accepted_programs_build_for_16_and_32_bits_and_run_clean(tmp_path_factory, fuzz_seed):
-    cc = require_tool("cc")
-    avr = require_tool("avr-gcc")
-    runtime = runtime_objects(tmp_path_factory.mktemp("runtime"), cc)
-    counter = itertools.count()
-    outcomes = []
-
-    @seed(fuzz_seed)
-    @settings(max_examples=BUILT, deadline=None, database=None,
-              suppress_health_check=list(HealthCheck))
-    @given(language_programs())
-    def prop(program):
-        work = tmp_path_factory.getbasetemp() / "language" / str(next(counter))
-        outcomes.append(check_one(program, work, cc, avr, runtime))
-
-    prop()
+    outcomes = build_outcomes(tmp_path_factory, language_programs(), BUILT, "language",
+                              fuzz_seed)
     assert outcomes.count(Outcome.BUILT) > 0, outcomes

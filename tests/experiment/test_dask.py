@@ -120,7 +120,9 @@ def test_without_dask_the_engine_says_so(tmp_path, capsys, monkeypatch):
 
 def test_an_unreachable_scheduler(tmp_path, capsys):
     if not engines.dask_available():
-        pytest.skip("Dask is not installed")
+        if os.environ.get("EPUCKC_REQUIRE_ALL_TOOLS"):
+            pytest.fail("Dask is not installed (pip install -e '.[cluster]')")
+        pytest.skip("Dask is not installed (pip install -e '.[cluster]')")
     exp = make(tmp_path)
     port = _free_port()
     status, out, err = run_cli(["experiment", str(exp), "--engine", "dask", "--scheduler",

@@ -254,3 +254,26 @@ def check_one(program: Program, work: Path, cc: str, avr: str, runtime: list,
     assert "runtime error" not in run.stderr and "Sanitizer" not in run.stderr, \
         run.stderr + context
     return Outcome.BUILT
+
+
+def build_outcomes(tmp_path_factory, strategy, examples: int, folder: str,
+                   fuzz_seed=None) -> list:
+    """check_one over `examples` programs of a Hypothesis strategy (with a
+    seed, reproducibly): the outcome of each. Needs cc and avr-gcc."""
+    import itertools
+    from conftest import require_tool
+    from hypothesis import HealthCheck, given, seed, settings
+    cc, avr = require_tool("cc"), require_tool("avr-gcc")
+    runtime = runtime_objects(tmp_path_factory.mktemp("runtime"), cc)
+    counter = itertools.count()
+    outcomes = []
+
+    @settings(max_examples=examples, deadline=None, database=None,
+              suppress_health_check=list(HealthCheck))
+    @given(strategy)
+    def prop(program):
+        work = tmp_path_factory.getbasetemp() / folder / str(next(counter))
+        outcomes.append(check_one(program, work, cc, avr, runtime))
+
+    (seed(fuzz_seed)(prop) if fuzz_seed is not None else prop)()
+    return outcomes
