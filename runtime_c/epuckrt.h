@@ -385,21 +385,28 @@ void event_ambient(void *param, void *status);   /* param_event_sensor * */
 
 /* ---- Extension: the rule language's state and continuous control ---------
  * What epuckc's expressions, variables, `when`, `every`, `after`,
- * `set_speed` and `wait` compile to (runtime_c/rt_lang.c).  Values are
- * 16-bit: every operation saturates at -32768..32767 (never overflows, on
- * any int width), division truncates, and division or % by 0 gives 0. */
+ * `set_speed` and `wait` compile to (runtime_c/rt_lang.c).  Inside an
+ * expression a value is exact while it fits 32 bits: generated C computes
+ * in int where the checker proved the result fits 16 bits, in long where it
+ * fits 32, and calls these functions where it may not: each saturates at
+ * -2147483648..2147483647 (never overflows, on any int or long width).
+ * Division truncates, and division or % by 0 gives 0.  A value is stored
+ * (a variable, an argument) saturated to 16 bits: rt_sat16. */
 #define RT_INT_MIN (-32767 - 1)
 #define RT_INT_MAX 32767
-int rt_add(int a, int b);
-int rt_sub(int a, int b);
-int rt_mul(int a, int b);
-int rt_div(int a, int b);
-int rt_mod(int a, int b);
-int rt_neg(int a);
-int rt_abs(int a);
-int rt_min(int a, int b);
-int rt_max(int a, int b);
-int rt_clamp(int x, int lo, int hi);    /* lo when x < lo, else hi when x > hi */
+#define RT_LONG_MIN (-2147483647L - 1)
+#define RT_LONG_MAX 2147483647L
+int rt_sat16(long v);
+long rt_add(long a, long b);
+long rt_sub(long a, long b);
+long rt_mul(long a, long b);
+long rt_div(long a, long b);
+long rt_mod(long a, long b);
+long rt_neg(long a);
+long rt_abs(long a);
+long rt_min(long a, long b);
+long rt_max(long a, long b);
+long rt_clamp(long x, long lo, long hi);    /* lo when x < lo, else hi when x > hi */
 /* A uniform random whole number in lo..hi (lo when hi < lo), from a 32-bit
  * generator that gives the same sequence on every target for a seed. */
 int rt_random(int lo, int hi);

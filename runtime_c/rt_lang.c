@@ -1,71 +1,102 @@
 /*
- * rt_lang.c - what the rule language's expressions compile to: 16-bit
- * saturating arithmetic, the robot's readings (once per poll), odometry,
- * random numbers, variables with their trace, and the `when`, `every` and
- * `after` events.  Part of the runtime behind epuckrt.h; see epuckrt.c.
+ * rt_lang.c - what the rule language's expressions compile to: saturating
+ * arithmetic, the robot's readings (once per poll), odometry, random
+ * numbers, variables with their trace, and the `when`, `every` and `after`
+ * events.  Part of the runtime behind epuckrt.h; see epuckrt.c.
  *
- * Every value is computed in long (at least 32 bits on every target) and
- * saturated back to -32768..32767, so the results are the same where int
- * is 16 bits (the dsPIC) and where it is 32, and no operation overflows.
+ * Inside an expression values are exact while they fit 32 bits; these
+ * operations saturate at -2147483648..2147483647 where they would not (the
+ * generated C calls them only there: elsewhere it computes in plain int or
+ * long).  long has at least 32 bits on every target and 64 on some hosts,
+ * so each result is computed without overflow and then saturated to 32
+ * bits explicitly: the same values on the dsPIC, the AVR and the host.
+ * A value is stored saturated to 16 bits (rt_sat16).
  */
 #include "rt_internal.h"
 
 /* ---- arithmetic ------------------------------------------------------------ */
 
-static int sat(long v)
+int rt_sat16(long v)
 {
     return v < RT_INT_MIN ? RT_INT_MIN : v > RT_INT_MAX ? RT_INT_MAX : (int)v;
 }
 
-int rt_add(int a, int b)
+static long sat32(long v)
 {
-    return sat((long)a + b);
+    return v < RT_LONG_MIN ? RT_LONG_MIN : v > RT_LONG_MAX ? RT_LONG_MAX : v;
 }
 
-int rt_sub(int a, int b)
+long rt_add(long a, long b)
 {
-    return sat((long)a - b);
+    if (b > 0 && a > RT_LONG_MAX - b)
+        return RT_LONG_MAX;
+    if (b < 0 && a < RT_LONG_MIN - b)
+        return RT_LONG_MIN;
+    return sat32(a + b);
 }
 
-int rt_mul(int a, int b)
+long rt_sub(long a, long b)
 {
-    return sat((long)a * b);
+    if (b < 0 && a > RT_LONG_MAX + b)
+        return RT_LONG_MAX;
+    if (b > 0 && a < RT_LONG_MIN + b)
+        return RT_LONG_MIN;
+    return sat32(a - b);
+}
+
+/* |a| * |b| compared with the bound by division, so no product overflows. */
+long rt_mul(long a, long b)
+{
+    unsigned long ua, ub, limit;
+    int negative = (a < 0) != (b < 0);
+    if (a == 0 || b == 0)
+        return 0;
+    ua = a < 0 ? 0ul - (unsigned long)a : (unsigned long)a;
+    ub = b < 0 ? 0ul - (unsigned long)b : (unsigned long)b;
+    limit = negative ? 2147483648ul : 2147483647ul;
+    if (ua > limit / ub)
+        return negative ? RT_LONG_MIN : RT_LONG_MAX;
+    return negative ? -(long)(ua * ub - 1ul) - 1 : (long)(ua * ub);
 }
 
 /* C99 division truncates towards zero, as the language's does. */
-int rt_div(int a, int b)
+long rt_div(long a, long b)
 {
-    return b == 0 ? 0 : sat((long)a / b);
+    if (b == 0)
+        return 0;
+    if (b == -1)
+        return rt_neg(a);
+    return a / b;
 }
 
-int rt_mod(int a, int b)
+long rt_mod(long a, long b)
 {
-    return b == 0 ? 0 : sat((long)a % b);
+    return b == 0 || b == -1 ? 0 : a % b;
 }
 
-int rt_neg(int a)
+long rt_neg(long a)
 {
-    return sat(-(long)a);
+    return a <= RT_LONG_MIN ? RT_LONG_MAX : -a;
 }
 
-int rt_abs(int a)
+long rt_abs(long a)
 {
-    return sat(a < 0 ? -(long)a : (long)a);
+    return a < 0 ? rt_neg(a) : a;
 }
 
-int rt_min(int a, int b)
+long rt_min(long a, long b)
 {
     return a < b ? a : b;
 }
 
-int rt_max(int a, int b)
+long rt_max(long a, long b)
 {
     return a > b ? a : b;
 }
 
-int rt_clamp(int x, int lo, int hi)
+long rt_clamp(long x, long lo, long hi)
 {
-    int v = x < lo ? lo : x;
+    long v = x < lo ? lo : x;
     return v > hi ? hi : v;
 }
 

@@ -1,9 +1,10 @@
 """Expressions: variables, readings, operators and functions, each checked
 for its kind (units) and bounded by an interval (static range analysis).
 
-Every value is a 16-bit int in its kind's natural unit (mm, steps/s, deg,
-ms; a reading is a plain count) with the saturating arithmetic of
-stdlib/arith.py. The kinds combine as quantities do: a count times a
+Every value is an int in its kind's natural unit (mm, steps/s, deg, ms; a
+reading is a plain count) with the arithmetic of stdlib/arith.py: exact
+inside an expression while it fits 32 bits, saturated to 16 bits where it
+is stored (`_store`: a variable, an argument). The kinds combine as quantities do: a count times a
 quantity is that quantity, a quantity divided by a count too, and two
 quantities of one kind divide into a count; adding or comparing two
 different kinds is an error that names both. A number written without a
@@ -34,7 +35,7 @@ def _kind_word(kind: str) -> str:
     return KIND_WORDS.get(kind, kind)
 
 
-_EXACT = dict(arith.BINARY, neg=arith.neg, abs=arith.absolute, clamp=arith.clamp)
+_EXACT = dict(arith.BINARY, neg=arith.neg, abs=arith.absolute, clamp=arith.clamp, sat=arith.sat)
 
 
 def _interval(e: Expr) -> str:
@@ -355,6 +356,7 @@ class Exprs:
         kind = values[0].kind
         bare = all(v.bare for v in values)
         if name == "random":
+            values = [self._store(v) for v in values]
             lo, hi = values[0].lo, values[1].hi
             if values[0].constant and values[1].constant and lo > hi:
                 self.diags.error("E042", node.span,
@@ -366,6 +368,15 @@ class Exprs:
         op = {"abs": "abs"}.get(name, name)
         lo, hi = arith.interval(op, *[(v.lo, v.hi) for v in values])
         return self._fold(Expr(op, kind, lo, hi, tuple(values), node=node, bare=bare))
+
+    def _store(self, e: Expr) -> Expr:
+        """`e` where it is stored (a variable, an array element, an
+        argument): saturated to 16 bits, which overflow.py warns of where
+        `e`'s interval leaves them."""
+        if e.kind == BOOL or arith.fits16(e.lo, e.hi):
+            return e
+        lo, hi = arith.interval("sat", (e.lo, e.hi))
+        return self._fold(Expr("sat", e.kind, lo, hi, (e,), node=e.node, bare=e.bare))
 
     @staticmethod
     def _fold(e: Expr) -> Expr:
@@ -400,7 +411,8 @@ class Exprs:
         # `%`, may be wider than the one value of constant operands); its
         # operands stay: overflow.py looks for an operation that saturated
         v = _EXACT[e.op](*(a.value for a in args))
-        return Expr("num", e.kind, v, v, args, value=v, node=e.node, bare=e.bare)
+        return Expr("num", e.kind, v, v, args, value=v, node=e.node, bare=e.bare,
+                    name="sat" if e.op == "sat" else None)
 
     # -- uses of expressions --
 
@@ -424,8 +436,11 @@ class Exprs:
                              f"`{self._text(value)}` is {_kind_word(e.kind)}",
                              help=self._kind_help(p.kind, p.name))
             return None
+        exact = e
+        e = self._store(e)
         self._overflow(e, top=p.kind != SPEED)      # a speed's own range is W013's
         if p.kind == SPEED:
+            e, stored = exact, e
             top = self.geo.max_speed
             if e.hi > top or e.lo < -top:
                 v = e.hi if e.hi > top else e.lo
@@ -437,6 +452,7 @@ class Exprs:
                     help=Fix(value.span, f"clamp({self._text(value)}, -{top:.0f}, {top:.0f})",
                              f"clamp it to -{top:.0f}..{top:.0f}: `clamp(..., -{top:.0f}, "
                              f"{top:.0f})`"))
+            e = stored
         return e
 
 

@@ -20,7 +20,8 @@ from __future__ import annotations
 
 from typing import Optional
 
-from ..stdlib.arith import INT16_MAX, INT16_MIN
+from ..stdlib import arith
+from ..stdlib.arith import INT16_MAX, INT16_MIN, INT32_MAX, INT32_MIN
 from ..stdlib.units import ANGLE, DISTANCE, DURATION, SPEED
 from ..syntax import ast
 from . import conditions
@@ -36,6 +37,8 @@ def op_of(e: Expr) -> str:
     operation keeps its operands, and its node says which one it was."""
     if e.op != "num" or not e.args:
         return e.op
+    if e.name == "sat":                 # a constant saturated where it is stored
+        return "sat"
     node = e.node
     if isinstance(node, ast.BinOp):
         return node.op
@@ -49,40 +52,13 @@ def op_of(e: Expr) -> str:
 def exact(op: str, args) -> Optional[tuple]:
     """The interval of `op` over its operands' intervals, unsaturated: the
     mathematical result; None for the operations that cannot overflow."""
-    if op in ("+", "-", "*"):
-        (a0, a1), (b0, b1) = [(a.lo, a.hi) for a in args]
-        if op == "+":
-            return a0 + b0, a1 + b1
-        if op == "-":
-            return a0 - b1, a1 - b0
-        corners = [x * y for x in (a0, a1) for y in (b0, b1)]
-        return min(corners), max(corners)
-    if op == "neg":
-        return -args[0].hi, -args[0].lo
-    if op == "abs":
-        a = args[0]
-        if a.lo >= 0:
-            return a.lo, a.hi
-        if a.hi <= 0:
-            return -a.hi, -a.lo
-        return 0, max(-a.lo, a.hi)
-    if op == "/":
-        a, b = args
-        divisors = [d for d in (b.lo, b.hi, -1, 1) if b.lo <= d <= b.hi and d != 0]
-        values = [_div(x, d) for x in (a.lo, a.hi) for d in divisors] or [0]
-        if b.lo <= 0 <= b.hi:
-            values.append(0)
-        return min(values), max(values)
-    return None                         # `%`, min, max, clamp, random, comparisons
+    if op not in ("+", "-", "*", "neg", "abs", "/"):
+        return None                     # `%`, min, max, clamp, random, comparisons
+    return arith.exact(op, *[(a.lo, a.hi) for a in args])
 
 
-def _div(a: int, b: int) -> int:
-    q = abs(a) // abs(b)
-    return q if (a < 0) == (b < 0) else -q
-
-
-def _outside(interval) -> bool:
-    return interval[0] < INT16_MIN or interval[1] > INT16_MAX
+def _outside(interval, bits: int = 32) -> bool:
+    return not (arith.fits32 if bits == 32 else arith.fits16)(*interval)
 
 
 def _range(lo: int, hi: int, kind: str) -> str:
@@ -147,28 +123,47 @@ class Overflow:
             if node is e and not top:
                 continue
             op = op_of(node)
+            if op == "sat":             # a value stored: saturated to 16 bits
+                inner = node.args[0]
+                if _outside((inner.lo, inner.hi), 16):
+                    saturating.add(id(node))
+                    self._report_overflow(inner, op_of(inner), (inner.lo, inner.hi), 16)
+                continue
             interval = exact(op, node.args) if node.args else None
             if interval is not None and _outside(interval):
                 saturating.add(id(node))
-                self._report_overflow(node, op, interval)
+                self._report_overflow(node, op, interval, 32)
 
-    def _report_overflow(self, e: Expr, op: str, interval: tuple) -> None:
+    def _report_overflow(self, e: Expr, op: str, interval: tuple, bits: int) -> None:
+        """W020 at `e`: its value can leave the 16 bits of where it is
+        stored (bits 16), or an operation the 32 bits of an expression's
+        values (bits 32)."""
         text = _text_of(e)
         lo, hi = interval
-        edge = INT16_MAX if hi > INT16_MAX else INT16_MIN
-        if hi > INT16_MAX and lo < INT16_MIN:
-            where = f"it saturates at {INT16_MIN} and {INT16_MAX}"
+        low, high = (INT16_MIN, INT16_MAX) if bits == 16 else (INT32_MIN, INT32_MAX)
+        if hi > high and lo < low:
+            where = f"it saturates at {low} and {high}"
         else:
-            where = f"it saturates at {edge}"
-        operands = ", ".join(f"`{_text_of(a)}` is {_range(a.lo, a.hi, a.kind)}" for a in e.args
-                             if not isinstance(a.node, ast.Number))
-        witness = _witness(e, op, hi if hi > INT16_MAX else lo) if lo != hi else ""
+            where = f"it saturates at {high if hi > high else low}"
+        if bits == 16:
+            what = f"outside the 16-bit range of a stored value ({low}..{high})"
+            where += " where it is stored"
+        else:
+            what = f"outside the 32-bit range of a value inside an expression ({low}..{high})"
+        # the operands' intervals; for a stored value, those of its
+        # variables and readings only (a long sum's parts say little)
+        shown = [a for a in e.args if not isinstance(a.node, ast.Number)
+                 and (bits == 32 or a.op in ("var", "read"))]
+        operands = "" if isinstance(e.node, ast.Assign) or op == "sat" else \
+            ", ".join(f"`{_text_of(a)}` is {_range(a.lo, a.hi, a.kind)}" for a in shown)
+        leaves = all(a.op in ("var", "read", "num") for a in e.args)
+        witness = _witness(e, op, hi if hi > high else lo) if lo != hi and (
+            bits == 32 or leaves) else ""
         self.diags.warning(
             "W020", e.node.span,
-            f"`{text}` can be {_range(lo, hi, e.kind)}, outside the 16-bit range "
-            f"({INT16_MIN}..{INT16_MAX}){witness}: {where}"
+            f"`{text}` can be {_range(lo, hi, e.kind)}, {what}{witness}: {where}"
             + (f" ({operands})" if operands else ""),
-            help=_fix(e, op, interval))
+            help=_fix(e, op, interval, bits))
 
 
 def _witness(e: Expr, op: str, extreme: int) -> str:
@@ -206,12 +201,12 @@ def _parens(e: Expr) -> str:
                                        ast.FuncCall)) else f"({text})"
 
 
-def _fix(e: Expr, op: str, interval: tuple) -> str:
-    """The fix that fits the operation: divide first, or bound it."""
+def _fix(e: Expr, op: str, interval: tuple, bits: int) -> str:
+    """The fix that fits: bound a variable that keeps growing, divide what
+    is stored where it is stored, or make the saturation explicit."""
     lo, hi = interval
     worst = max(hi, -lo)
-    d = -(-worst // INT16_MAX)                  # the smallest divisor that fits
-    if isinstance(e.node, ast.Assign):
+    if isinstance(e.node, ast.Assign) and arith.fits16(*exact("+", e.args[1:] * 2) or (0, 0)):
         name, value = e.node.target.name, _shown(e.node.value)
         b = e.args[1]
         if op == "+":
@@ -220,36 +215,17 @@ def _fix(e: Expr, op: str, interval: tuple) -> str:
             bound = f"max({name} - {value}, {INT16_MIN + max(b.hi, 0)})"
         return (f"`{name}` keeps growing: bound it where it is given its value "
                 f"(`{name} = {bound}`), or reset it")
-    if op in ("+", "-", "*"):
-        a, b = e.args
-        clamp = "clamp an operand to the range that fits (`clamp(..., lo, hi)`)"
-        if op == "*":
-            scaled = b if a.op == "num" and not a.args else a
-            if scaled.op == "num" and not scaled.args:
-                return f"compute with smaller numbers: the product is {worst}"
-            other = a if scaled is b else b
-            shown = (f"{_parens(other)} * ({_parens(scaled)} / {d})" if scaled is b
-                     else f"({_parens(scaled)} / {d}) * {_parens(other)}")
-            return (f"divide first: `{shown}` stays inside (the result {d} times smaller), "
-                    f"or {clamp}")
-        fixed = [x for x in (a, b) if x.op == "num" and not x.args]
-        if len(fixed) == 1:
-            c, x = fixed[0].value, (b if fixed[0] is a else a)
-            sign = -1 if (op == "-" and x is b) else 1       # c - x
-            shift = c if op == "+" else (-c if x is a else c)
-            # x (or -x) + shift within the range
-            lo_x, hi_x = INT16_MIN - shift, INT16_MAX - shift
-            if sign < 0:
-                lo_x, hi_x = -hi_x, -lo_x
-            lo_x, hi_x = max(lo_x, x.lo), min(hi_x, x.hi)
-            bound = f"clamp({_text_of(x)}, {lo_x}, {hi_x})"
-            shown = f"{bound} {op} {_text_of(b)}" if x is a else f"{_text_of(a)} {op} {bound}"
-            return f"bound `{_text_of(x)}` first: `{shown}` stays inside"
-        return (f"divide the operands first: `{_parens(a)} / {d} {op} {_parens(b)} / {d}` stays "
-                f"inside (the result {d} times smaller), or {clamp}")
-    return (f"clamp the operand first: `{op if op != 'neg' else '-'}"
-            f"{'(' if op != 'neg' else ''}clamp({_text_of(e.args[0])}, {INT16_MIN + 1}, "
-            f"{INT16_MAX}){')' if op != 'neg' else ''}`"
-            if op in ("neg", "abs") else
-            f"`{INT16_MIN} / -1` is {INT16_MAX + 1}: keep the dividend above {INT16_MIN} "
-            f"(`clamp(..., {INT16_MIN + 1}, {INT16_MAX})`) or the divisor away from -1")
+    text = _text_of(e)
+    d = -(-worst // INT16_MAX)                  # the smallest divisor that fits
+    if isinstance(e.node, ast.Assign):          # `t += ...` whose increment is too large
+        name, value = e.node.target.name, _shown(e.node.value)
+        sign = "+" if e.node.op == "+=" else "-"
+        return (f"what is added can leave 16 bits alone: divide it (`{name} {e.node.op} "
+                f"({value}) / {d}`), or bound the sum (`{name} = clamp({name} {sign} {value}, "
+                f"{INT16_MIN}, {INT16_MAX})`)")
+    if bits == 32:
+        return (f"the exact value ({worst} at most) needs more than 32 bits: divide an "
+                f"operand first, or clamp it (`clamp(..., lo, hi)`)")
+    return (f"divide it before it is stored: `{_parens(e)} / {d}` fits (inside the expression "
+            f"the value is exact up to 32 bits); or say that saturating is meant: "
+            f"`clamp({text}, {INT16_MIN}, {INT16_MAX})`")

@@ -32,14 +32,16 @@ class Variables:
                                   len(self.vars), stmt)
 
     def _assigned(self, call: ast.Assign, info: VarInfo) -> Optional[Expr]:
-        """The value an assignment gives its variable (`x += e` is x + e)."""
+        """The value an assignment gives its variable (`x += e` is x + e),
+        as it is stored: saturated to 16 bits."""
         value = self._expr(call.value)
         if value is None:
             return None
         if call.op == "=":
-            return self._adapt(value, info.kind)
+            return self._store(self._adapt(value, info.kind))
         current = Expr("var", info.kind, info.lo, info.hi, name=info.name, node=call.target)
-        return self._binary("+" if call.op == "+=" else "-", current, value, call)
+        total = self._binary("+" if call.op == "+=" else "-", current, value, call)
+        return None if total is None else self._store(total)
 
     def _assign(self, call: ast.Assign) -> Optional[ResolvedCall]:
         name = call.target.name

@@ -80,7 +80,7 @@ CODES = {
     "W015": "variable never used",
     "W016": "condition that never changes",
     "W017": "variable never assigned",
-    "W020": "an operation that can leave the 16-bit range and saturate",
+    "W020": "a value that can leave its range and saturate",
 }
 
 _EXPLANATIONS = Path(__file__).resolve().parent / "explanations"

@@ -1,19 +1,34 @@
 """Expressions as C: each checked Expr becomes one C expression over the
 program's variables (`epk_v_NAME`) and the runtime's readings and
-saturating operations (runtime_c/rt_lang.c), so that the values are the
-same on every target and no operation is undefined."""
+operations (runtime_c/rt_lang.c), so that the values are the same on every
+target and no operation is undefined.
+
+Inside an expression a value is exact while it fits 32 bits (stdlib/
+arith.py). Each operation is printed in the cheapest C that gives that
+value, decided from the checker's intervals: plain `int` arithmetic where
+the exact result fits 16 bits (an int on every target), `long` where it
+fits 32 (`(long)a * b`), and the runtime's saturating call where it may
+not, or where C would be undefined (`/` or `%` by a divisor that can be 0
+or -1 of the smallest value). A stored value that can leave 16 bits is
+saturated by `rt_sat16`.
+"""
 from __future__ import annotations
 
+import re
+
 from ..check.program import Expr
+from ..stdlib import arith
 from ..stdlib.table import STANDARD_READINGS
 
 VAR_PREFIX = "epk_v_"
 
 _CALLS = {"+": "rt_add", "-": "rt_sub", "*": "rt_mul", "/": "rt_div", "%": "rt_mod",
           "neg": "rt_neg", "abs": "rt_abs", "min": "rt_min", "max": "rt_max",
-          "clamp": "rt_clamp", "random": "rt_random"}
+          "clamp": "rt_clamp", "random": "rt_random", "sat": "rt_sat16"}
 _C_OPS = {"<": "<", "<=": "<=", ">": ">", ">=": ">=", "==": "==", "!=": "!=",
-          "and": "&&", "or": "||"}
+          "and": "&&", "or": "||", "+": "+", "-": "-", "*": "*", "/": "/", "%": "%"}
+# functions whose result is an int whatever their arguments
+_INT_RESULT = {"random", "sat"}
 
 
 def var_name(name: str) -> str:
@@ -21,29 +36,98 @@ def var_name(name: str) -> str:
 
 
 def c_int(value: int) -> str:
-    """An int literal that is an int on a 16-bit target too."""
-    return "RT_INT_MIN" if value == -32768 else str(value)
+    """An int literal that is an int on a 16-bit target too, or a long."""
+    if value == arith.INT16_MIN:
+        return "RT_INT_MIN"
+    if arith.fits16(value, value):
+        return str(value)
+    return "RT_LONG_MIN" if value == arith.INT32_MIN else f"{value}L"
 
 
 def c_expr(e: Expr, top: bool = True, readings: dict = None) -> str:
-    """The C text of `e`; `top`: no parentheses around a comparison;
+    """The C text of `e`; `top`: no parentheses around its operation;
     `readings`: C names that hold readings already read (name -> C)."""
-    op = e.op
-    if op == "num":
-        return c_int(e.value)
-    if op == "var":
-        return var_name(e.name)
-    if op == "read":
-        if readings and e.name in readings:
-            return readings[e.name]
-        return STANDARD_READINGS[e.name].c
-    if op == "not":
-        return f"!{c_expr(e.args[0], False, readings)}"
-    if op in _C_OPS:
-        text = (f"{c_expr(e.args[0], False, readings)} {_C_OPS[op]} "
-                f"{c_expr(e.args[1], False, readings)}")
-        return text if top else f"({text})"
-    return f"{_CALLS[op]}({', '.join(c_expr(a, True, readings) for a in e.args)})"
+    text, _, level = _Printer(readings).c(e, top)
+    return text if top or level == 0 else f"({text})"
+
+
+_MUL, _ADD = ("*", "/", "%"), ("+", "-")
+
+
+class _Printer:
+    """Prints an Expr; each part gives (text, is_long, level): level 0 an
+    operand that needs no parentheses, 1 a product, 2 a sum (C's
+    precedence: a part is parenthesised where its parent binds tighter)."""
+
+    def __init__(self, readings):
+        self.readings = readings or {}
+
+    def c(self, e: Expr, top: bool) -> tuple:
+        op = e.op
+        if op == "num":
+            return c_int(e.value), not arith.fits16(e.value, e.value), 0
+        if op == "var":
+            return var_name(e.name), False, 0
+        if op == "read":
+            return self.readings.get(e.name) or STANDARD_READINGS[e.name].c, False, 0
+        if op == "not":
+            return f"!{self.c(e.args[0], False)[0]}", False, 0
+        if op in _MUL + _ADD + ("neg",) and self._plain(e):
+            return self._infix(e)
+        if op in _C_OPS and op not in _MUL + _ADD:      # comparisons, and, or
+            a, b = (self.c(x, False)[0] for x in e.args)
+            text = f"{a} {_C_OPS[op]} {b}"
+            return (text if top else f"({text})"), False, 0
+        args = ", ".join(self.c(a, True)[0] for a in e.args)
+        return f"{_CALLS[op]}({args})", op not in _INT_RESULT, 0
+
+    @staticmethod
+    def _plain(e: Expr) -> bool:
+        """Whether C's own operator gives the exact value: the result fits
+        32 bits, and no division by 0 (or of the smallest value by -1)."""
+        op, args = e.op, e.args
+        ranges = [(a.lo, a.hi) for a in args]
+        if op in ("/", "%"):
+            b = ranges[1]
+            if b[0] <= 0 <= b[1]:
+                return False
+            if op == "%":       # C's `%` of the smallest value by -1 is undefined
+                return not (b[0] <= -1 <= b[1]) or ranges[0][0] > arith.INT32_MIN
+        exact = arith.exact(op, *ranges)
+        return exact is not None and arith.fits32(*exact)
+
+    def _infix(self, e: Expr) -> tuple:
+        op = e.op
+        exact = arith.exact(op, *[(a.lo, a.hi) for a in e.args]) if op != "%" else (e.lo, e.hi)
+        level = 2 if op in _ADD else 1
+        parts = []
+        for i, a in enumerate(e.args):
+            text, is_long, inner = self.c(a, False)
+            # a right operand of the parent's level keeps its parentheses:
+            # C groups from the left, and each part has its own C type
+            if inner > level or (inner == level and i == 1) or (op == "neg" and inner):
+                text = f"({text})"
+            parts.append((text, is_long, a))
+        wide = any(is_long for _, is_long, _ in parts)
+        if not wide and not arith.fits16(*exact):
+            # int operands whose result needs long: the first one is widened
+            text, _, a = parts[0]
+            if a.op == "num":
+                text = f"{a.value}L"
+            elif not (text.startswith("(") and text.endswith(")")) and not _simple(text):
+                text = f"({text})"
+            parts[0] = (f"(long){text}" if a.op != "num" else text, True, a)
+            wide = True
+        if op == "neg":
+            operand = parts[0][0]
+            return f"-({operand})" if operand.startswith("-") else f"-{operand}", wide, 0
+        return f"{parts[0][0]} {_C_OPS[op]} {parts[1][0]}", wide, level
+
+
+def _simple(text: str) -> bool:
+    """A name or a call: a cast applies to all of it."""
+    return re.fullmatch(r"[A-Za-z_][A-Za-z_0-9]*(\(.*\))?", text) is not None and \
+        text.count("(") == text.count(")")
 
 
 ODOMETRY = frozenset({"x", "y", "heading"})

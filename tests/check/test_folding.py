@@ -87,7 +87,7 @@ def test_folding_equals_running(tmp_path, seed):
         n_leaf += len(leaves)
         lines += [f"var f{i} = 0", f"var g{i} = 0"]
         assigns += [f"f{i} = {numbers}", f"g{i} = {names}"]
-        expected[i] = value
+        expected[i] = arith.sat(value)      # stored: saturated to 16 bits
     program = "\n".join(lines) + "\non immediate do " + ",\n    ".join(assigns) + \
         "\nafter 10 ms do exit_main\n"
     path = tmp_path / "fold.epk"

@@ -1,8 +1,9 @@
 """W020 against brute force: random expressions over variables with small
 intervals (far from 0 or not), each variable used once; every choice of
 the variables' values is evaluated as the runtime does (each operation
-saturated), and an operation whose exact result leaves -32768..32767 is
-an overflow. The checker must warn on the expression iff some choice
+exact while it fits 32 bits, saturated there), and an operation whose
+exact result leaves 32 bits is an overflow, and so is the whole expression
+where the value it stores leaves -32768..32767. The checker must warn on the expression iff some choice
 overflows, and each warning must be at an operation that overflows for
 some choice."""
 from __future__ import annotations
@@ -111,9 +112,9 @@ def evaluate(t, env, overflowed: set) -> int:
         exact = max(args)
     else:
         exact = arith.clamp(*args)
-    if not LO <= exact <= HI:
+    if not arith.fits32(exact, exact):
         overflowed.add(id(t))
-    return arith.sat(exact)
+    return arith.sat32(exact)
 
 
 intervals = st.tuples(st.sampled_from([-32768, -32700, -20000, -5000, -3, 0, 5, 200, 4000,
@@ -139,7 +140,9 @@ def test_w020_iff_some_values_overflow(tree, ranges):
 
     overflowed: set = set()
     for values in itertools.product(*(range(lo, hi + 1) for lo, hi in bounds.values())):
-        evaluate(tree, dict(zip(bounds, values)), overflowed)
+        stored = evaluate(tree, dict(zip(bounds, values)), overflowed)
+        if not LO <= stored <= HI:      # saturated where `r` stores it
+            overflowed.add(id(tree))
 
     assert bool(warned) == bool(overflowed), (expr, bounds, [d.message for d in warned])
     by_span = {(start, end): t for start, end, t in spans}
@@ -155,13 +158,15 @@ def test_w020_iff_some_values_overflow(tree, ranges):
 
 
 def test_the_issue_s_programs():
-    """`area = 300 * 200` and GCtronic's weighted sum warn; what is proven
-    inside does not."""
+    """`area = 300 * 200` and GCtronic's weighted sum warn where they are
+    stored; what is proven inside does not, and a sum that leaves 16 bits
+    inside the expression but is divided before it is stored does not."""
     found = _diags("var area = 0\nevery 1 s do area = 300 * 200\n")
     assert [d.code for d in found] == ["W020"] and "60000" in found[0].message
     found = _diags("var t = 0\nevery 10 ms do t = 8 * ir0 + 4 * ir1 - 4 * ir6 - 16 * ir7\n")
     assert {d.code for d in found} == {"W020"}
     assert _diags("var t = 0\nevery 10 ms do t = ir0 / 2 + ir1 / 4 - ir6 / 4 - ir7\n") == []
+    assert _diags("var t = 0\nevery 10 ms do t = (16 * ir7 + 16 * ir0) / 4\n") == []
     # a guard bounds the first step; a bound where it is given keeps it inside
     assert _diags("var n = 0\non sensor(ir0 > 9) repeat if n < 3 do n += 1\n"
                   "on immediate do start_sensor\n") == []

@@ -66,36 +66,39 @@ ARITH_HARNESS = r"""
 #include "epuckrt.h"
 int main(void)
 {
-    int a, b, c;
-    while (scanf("%d %d %d", &a, &b, &c) == 3)
-        printf("%d %d %d %d %d %d %d %d %d %d\n", rt_add(a, b), rt_sub(a, b), rt_mul(a, b),
-               rt_div(a, b), rt_mod(a, b), rt_neg(a), rt_abs(a), rt_min(a, b), rt_max(a, b),
-               rt_clamp(a, b, c));
+    long a, b, c;
+    while (scanf("%ld %ld %ld", &a, &b, &c) == 3)
+        printf("%ld %ld %ld %ld %ld %ld %ld %ld %ld %ld %d\n", rt_add(a, b), rt_sub(a, b),
+               rt_mul(a, b), rt_div(a, b), rt_mod(a, b), rt_neg(a), rt_abs(a), rt_min(a, b),
+               rt_max(a, b), rt_clamp(a, b, c), rt_sat16(a));
     return 0;
 }
 """
 
 
 def test_runtime_arithmetic_is_the_checkers(tmp_path):
-    """Saturation, truncating division, division by 0: the C runtime and
-    stdlib/arith.py (which the checker folds and bounds with) agree on the
-    corners and on random operands, with UBSan watching the C."""
+    """Saturation at 32 bits, truncating division, division by 0, and the
+    16-bit saturation of a stored value: the C runtime and stdlib/arith.py
+    (which the checker folds and bounds with) agree on the corners of 16 and
+    32 bits and on random operands, with UBSan watching the C."""
     cc = require_tool("cc")
     src = _write(tmp_path, "arith.c", ARITH_HARNESS)
     exe = tmp_path / "arith"
     subprocess.run([cc, *STRICT, *UBSAN, *INCLUDES, str(src), *map(str, HOST), "-o", str(exe)],
                    check=True)
-    corners = [-32768, -32767, -30000, -256, -3, -1, 0, 1, 2, 3, 181, 182, 255, 30000, 32767]
+    corners = [-2**31, -2**31 + 1, -46341, -32769, -32768, -32767, -30000, -256, -3, -1, 0, 1,
+               2, 3, 181, 182, 255, 30000, 32767, 32768, 46340, 46341, 2**31 - 1]
     rng = random.Random(16)
     cases = [(a, b, c) for a in corners for b in corners for c in corners[::4]]
     cases += [tuple(rng.randint(-32768, 32767) for _ in range(3)) for _ in range(3000)]
+    cases += [tuple(rng.randint(-2**31, 2**31 - 1) for _ in range(3)) for _ in range(3000)]
     result = subprocess.run([str(exe)], input="".join(f"{a} {b} {c}\n" for a, b, c in cases),
                             capture_output=True, text=True, check=True)
     assert "runtime error" not in result.stderr
     for (a, b, c), line in zip(cases, result.stdout.splitlines()):
         expected = [arith.add(a, b), arith.sub(a, b), arith.mul(a, b), arith.div(a, b),
                     arith.mod(a, b), arith.neg(a), arith.absolute(a), min(a, b), max(a, b),
-                    arith.clamp(a, b, c)]
+                    arith.clamp(a, b, c), arith.sat(a)]
         assert list(map(int, line.split())) == expected, (a, b, c)
 
 
@@ -103,7 +106,7 @@ def test_intervals_hold_every_value():
     """The checker's intervals (arith.interval) contain every result of
     their operation over operands drawn from the operands' intervals."""
     rng = random.Random(7)
-    ends = [-32768, -1000, -1, 0, 1, 3, 4095, 32767]
+    ends = [-2**31, -32768, -1000, -1, 0, 1, 3, 4095, 32767, 2**31 - 1]
     for op in ("+", "-", "*", "/", "%", "min", "max", "neg", "abs", "clamp"):
         for _ in range(400):
             ivs = [tuple(sorted((rng.choice(ends + [rng.randint(-99, 99)]),
