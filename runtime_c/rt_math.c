@@ -146,6 +146,8 @@ static int rt_deg360(long deg)
 {
     int d;
 
+    if (deg >= 0 && deg < 360)
+        return (int)deg;
     if (deg >= -32768L && deg <= 32767L) {   /* a 16-bit division where int is 16 bits */
         d = (int)deg % 360;   /* C99: the sign of deg */
         return d < 0 ? d + 360 : d;
