@@ -99,6 +99,13 @@ def test_avr_cycles_per_call_are_measured_and_small(avr_run):
     assert worst["hypot"] < 12000
 
 
+def test_the_c_compiles_for_the_e_puck2_arm_under_werror(tmp_path):
+    require_tool("arm-none-eabi-gcc")
+    subprocess.run(["arm-none-eabi-gcc", "-mcpu=cortex-m4", "-mthumb", *FLAGS, "-Os", *INCLUDES,
+                    "-c", str(RUNTIME / "rt_math.c"), "-o", str(tmp_path / "rt_math.o")],
+                   check=True)
+
+
 # ---- the model against math --------------------------------------------------
 
 def test_the_tables_are_math_correctly_rounded_and_the_c_holds_them():
