@@ -10,8 +10,9 @@
  * and both with Python's math.  Conventions and error bounds: docs/runtime.md,
  * "Integer math".
  *
- * Arguments are 32-bit values: a long beyond +-(2^31 - 1) (LONG_MIN on the
- * dsPIC, wider longs on a 64-bit host) counts as +-(2^31 - 1).
+ * sqrt, hypot and atan2 take 32-bit values: a long beyond +-(2^31 - 1)
+ * (LONG_MIN on the dsPIC, wider longs on a 64-bit host) counts as
+ * +-(2^31 - 1).  sin and cos reduce any long modulo 360 exactly.
  */
 #include "rt_internal.h"
 

@@ -5,7 +5,8 @@ tests/runtime/test_math.py runs them against the C (gcc and 16-bit avr-gcc
 under simavr) and against Python's math. Conventions and error bounds:
 docs/runtime.md, "Integer math".
 
-Arguments are 32-bit values: beyond +-(2^31 - 1) they count as +-(2^31 - 1).
+sqrt, hypot and atan2 take 32-bit values: beyond +-(2^31 - 1) an argument
+counts as +-(2^31 - 1). sin and cos reduce any integer modulo 360 exactly.
 """
 from __future__ import annotations
 
