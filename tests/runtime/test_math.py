@@ -88,8 +88,8 @@ def test_the_c_where_int_is_16_bits_is_the_model(avr_run, host_run):
 
 
 def test_avr_cycles_per_call_are_measured_and_small(avr_run):
-    """The figures of docs/performance.md; a bound that fails if a change
-    makes a call several times slower (1 ms poll = 16,000 cycles)."""
+    """The figures of docs/performance.md, each under the bound that page
+    gives (a 1 ms poll is 16,000 cycles)."""
     worst = {}
     for name, *_, cycles in avr_run["cycles"]:
         worst[name] = max(worst.get(name, 0), int(cycles.lstrip("@")))
