@@ -71,7 +71,8 @@ long rt_sqrt(long v)
 }
 
 /* sqrt(x*x + y*y) rounded to nearest, exact over the whole 32-bit range;
- * a result above 2^31 - 1 (both arguments beyond 1.5e9) saturates there. */
+ * a result above 2^31 - 1 (only when an argument is beyond 1.5e9)
+ * saturates there. */
 long rt_hypot(long x, long y)
 {
     unsigned long ax = rt_mag32(x), ay = rt_mag32(y);
