@@ -15,7 +15,8 @@ _PACKAGE = Path(__file__).resolve().parent.parent   # epuckc/
 # epuckrt.h; rt_internal.h is what they share. Every build (host, Enki, the
 # robot's projects), cache key and test takes the list from here;
 # runtime_c/Makefile repeats it (CORE), and a test keeps the two equal.
-RUNTIME_CORE = ("epuckrt.c", "rt_motion.c", "rt_sensors.c", "rt_modes.c", "rt_lang.c")
+RUNTIME_CORE = ("epuckrt.c", "rt_motion.c", "rt_sensors.c", "rt_modes.c", "rt_lang.c",
+                "rt_math.c")
 RUNTIME_CORE_HEADERS = ("epuckrt.h", "rt_internal.h", "rt_platform.h", "utility.h")
 
 
