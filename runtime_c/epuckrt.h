@@ -407,6 +407,16 @@ long rt_abs(long a);
 long rt_min(long a, long b);
 long rt_max(long a, long b);
 long rt_clamp(long x, long lo, long hi);    /* lo when x < lo, else hi when x > hi */
+/* Integer math, no floating point, the same on every target (rt_math.c;
+ * docs/runtime.md gives each one's error bound): atan2 in whole degrees
+ * -180..180 counter-clockwise (atan2(0, 0) is 0), hypot and sqrt rounded to
+ * nearest (sqrt of v <= 0 is 0), sin and cos of whole degrees in thousandths
+ * -1000..1000. */
+int rt_atan2(long y, long x);
+long rt_hypot(long x, long y);
+long rt_sqrt(long v);
+int rt_sin(long deg);
+int rt_cos(long deg);
 /* A uniform random whole number in lo..hi (lo when hi < lo), from a 32-bit
  * generator that gives the same sequence on every target for a seed. */
 int rt_random(int lo, int hi);

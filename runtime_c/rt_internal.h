@@ -116,12 +116,7 @@ void rt_sequence_advance(void);
 /* rt_lang.c: the rule language's expressions, odometry, random numbers */
 void rt_odometry(long dl, long dr);   /* the wheels' steps of this poll */
 
-/* rt_math.c: integer atan2, hypot, sqrt, sin, cos (docs/runtime.md) */
-int rt_atan2(long y, long x);   /* whole degrees, -180..180 */
-long rt_hypot(long x, long y);
-long rt_sqrt(long v);   /* 0 for v <= 0 */
-int rt_sin(long deg);   /* thousandths, -1000..1000 */
-int rt_cos(long deg);
+/* rt_math.c: integer atan2, hypot, sqrt, sin, cos: declared in epuckrt.h */
 
 /* rt_sensors.c: standard events, sensors and devices */
 extern int rt_sensors_on;

@@ -17,7 +17,7 @@ from __future__ import annotations
 from typing import Optional
 
 from ..diagnostics import Collector, Fix
-from ..stdlib import arith
+from ..stdlib import arith, imath
 from ..stdlib.table import FUNCTIONS, STANDARD_READINGS
 from ..stdlib.units import (ANGLE, DISTANCE, DURATION, INT, INT16_MAX, INT16_MIN, SPEED,
                             UNITS, describe_kind, quantity, round_nearest)
@@ -35,7 +35,12 @@ def _kind_word(kind: str) -> str:
     return KIND_WORDS.get(kind, kind)
 
 
-_EXACT = dict(arith.BINARY, neg=arith.neg, abs=arith.absolute, clamp=arith.clamp, sat=arith.sat)
+_EXACT = dict(arith.BINARY, neg=arith.neg, abs=arith.absolute, clamp=arith.clamp, sat=arith.sat,
+              **imath.FUNCTIONS)
+# what the math functions take and give: (kind of the arguments, or None:
+# any one kind; kind of the result, or None: the arguments')
+_MATH_KINDS = {"atan2": (None, ANGLE), "hypot": (None, None), "sqrt": (INT, INT),
+               "sin": (ANGLE, INT), "cos": (ANGLE, INT)}
 
 
 def _interval(e: Expr) -> str:
@@ -365,9 +370,30 @@ class Exprs:
                                  f"the upper one", help="write the smaller bound first")
                 return None
             return Expr("random", kind, min(lo, hi), max(lo, hi), tuple(values), node=node)
-        op = {"abs": "abs"}.get(name, name)
-        lo, hi = arith.interval(op, *[(v.lo, v.hi) for v in values])
-        return self._fold(Expr(op, kind, lo, hi, tuple(values), node=node, bare=bare))
+        if name in _MATH_KINDS:
+            return self._math(name, values, node)
+        lo, hi = arith.interval(name, *[(v.lo, v.hi) for v in values])
+        return self._fold(Expr(name, kind, lo, hi, tuple(values), node=node, bare=bare))
+
+    def _math(self, name: str, values: list, node) -> Optional[Expr]:
+        """atan2, hypot, sqrt, sin, cos: their arguments' kind, their
+        result's kind and interval (stdlib/imath.py, as rt_math.c computes)."""
+        takes, gives = _MATH_KINDS[name]
+        if takes is not None:
+            values = [self._adapt(v, takes) for v in values]
+            wrong = next((v for v in values if v.kind != takes), None)
+            if wrong is not None:
+                self.diags.error("E048", wrong.node.span,
+                                 f"{_code(name)} takes {_kind_word(takes)}, but "
+                                 f"`{self._text(wrong.node)}` is {_kind_word(wrong.kind)}",
+                                 help=f"`{name}(...)` of {_kind_word(takes)}"
+                                      + (": write the angle in deg, e.g. `sin(30 deg)`"
+                                         if takes == ANGLE else ""))
+                return None
+        kind = gives or values[0].kind
+        lo, hi = imath.interval(name, *[(v.lo, v.hi) for v in values])
+        return self._fold(Expr(name, kind, lo, hi, tuple(values), node=node,
+                               bare=gives is None and all(v.bare for v in values)))
 
     def _store(self, e: Expr) -> Expr:
         """`e` where it is stored (a variable, an array element, an

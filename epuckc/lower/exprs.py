@@ -24,11 +24,13 @@ VAR_PREFIX = "epk_v_"
 
 _CALLS = {"+": "rt_add", "-": "rt_sub", "*": "rt_mul", "/": "rt_div", "%": "rt_mod",
           "neg": "rt_neg", "abs": "rt_abs", "min": "rt_min", "max": "rt_max",
-          "clamp": "rt_clamp", "random": "rt_random", "sat": "rt_sat16"}
+          "clamp": "rt_clamp", "random": "rt_random", "sat": "rt_sat16",
+          "atan2": "rt_atan2", "hypot": "rt_hypot", "sqrt": "rt_sqrt", "sin": "rt_sin",
+          "cos": "rt_cos"}
 _C_OPS = {"<": "<", "<=": "<=", ">": ">", ">=": ">=", "==": "==", "!=": "!=",
           "and": "&&", "or": "||", "+": "+", "-": "-", "*": "*", "/": "/", "%": "%"}
 # functions whose result is an int whatever their arguments
-_INT_RESULT = {"random", "sat"}
+_INT_RESULT = {"random", "sat", "atan2", "sin", "cos"}
 
 
 def var_name(name: str) -> str:

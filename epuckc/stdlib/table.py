@@ -353,6 +353,13 @@ FUNCTIONS = {
     "clamp": (("x", "lo", "hi"), "`x` kept within `lo`..`hi`"),
     "random": (("lo", "hi"), "a random whole number in `lo`..`hi` (both included), new at each "
                "evaluation"),
+    "atan2": (("y", "x"), "the angle (deg, -180..180, counter-clockwise from the x axis) of the "
+              "point (`x`, `y`), two values of one kind; within 0.51 deg"),
+    "hypot": (("x", "y"), "the length `sqrt(x * x + y * y)` of (`x`, `y`), two values of one "
+              "kind, rounded"),
+    "sqrt": (("v",), "the square root of a plain number, rounded (0 for `v` <= 0)"),
+    "sin": (("a",), "the sine of the angle `a` in thousandths, -1000..1000, rounded"),
+    "cos": (("a",), "the cosine of the angle `a` in thousandths, -1000..1000, rounded"),
 }
 
 
