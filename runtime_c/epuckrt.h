@@ -412,6 +412,12 @@ long rt_clamp(long x, long lo, long hi);    /* lo when x < lo, else hi when x > 
  * -180..180 counter-clockwise (atan2(0, 0) is 0), hypot and sqrt rounded to
  * nearest (sqrt of v <= 0 is 0), sin and cos of whole degrees in thousandths
  * -1000..1000. */
+/* Arrays: an index outside 0..n-1 is taken as the nearest end (never out
+ * of bounds); the index (the first of equals) of the smallest or largest of
+ * n values. */
+int rt_index(long i, int n);
+int rt_argmin(const long *values, int n);
+int rt_argmax(const long *values, int n);
 int rt_atan2(long y, long x);
 long rt_hypot(long x, long y);
 long rt_sqrt(long v);

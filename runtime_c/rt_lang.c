@@ -100,6 +100,31 @@ long rt_clamp(long x, long lo, long hi)
     return v > hi ? hi : v;
 }
 
+/* ---- arrays ------------------------------------------------------------------ */
+
+int rt_index(long i, int n)
+{
+    return i < 0 ? 0 : i >= n ? n - 1 : (int)i;
+}
+
+int rt_argmin(const long *values, int n)
+{
+    int k, best = 0;
+    for (k = 1; k < n; k++)
+        if (values[k] < values[best])
+            best = k;
+    return best;
+}
+
+int rt_argmax(const long *values, int n)
+{
+    int k, best = 0;
+    for (k = 1; k < n; k++)
+        if (values[k] > values[best])
+            best = k;
+    return best;
+}
+
 /* ---- random numbers: xorshift32, the same sequence on every target ------------ */
 
 static unsigned long rng_state = 1;

@@ -42,6 +42,8 @@ class Checker(Names, Externs, RobotSettings, Values, Exprs, Variables, Ranges, C
         self.base_dir = base_dir
         self.geo = Geometry()
         self.consts: dict = {}           # name -> ConstDef
+        self.const_arrays: dict = {}     # name -> (ConstDef, element Exprs) (arrays.py)
+        self._trace_ids = 0              # the trace's ids given to variables (an array: one each)
         self.const_used: set = set()
         self.actions: dict = {}          # name -> ActionDef
         self.externs: dict = {}          # name -> ExternInfo
@@ -72,6 +74,8 @@ class Checker(Names, Externs, RobotSettings, Values, Exprs, Variables, Ranges, C
         out = CheckedProgram(self.program.file, self.geo, robot_given=bool(robot_blocks))
         out.externs = self.externs
         out.variables = self.vars
+        out.const_arrays = {name: tuple(e.value for e in values)
+                            for name, (_, values) in self.const_arrays.items()}
         self._resolve_actions(out)
         out.modes, out.initial_mode = list(self.modes), self.initial_mode
         for rule in self.program.of_type(ast.Rule):

@@ -18,29 +18,20 @@ from typing import Optional
 
 from ..diagnostics import Collector, Fix
 from ..stdlib import arith, imath
-from ..stdlib.table import FUNCTIONS, STANDARD_READINGS
+from ..stdlib.table import READING_ARRAYS, STANDARD_READINGS
 from ..stdlib.units import (ANGLE, DISTANCE, DURATION, INT, INT16_MAX, INT16_MIN, SPEED,
                             UNITS, describe_kind, quantity, round_nearest)
 from ..syntax import ast
-from .messages import _code, _shown, did_you_mean
+from . import arrays, functions
+from .messages import _code, _kind_word, _shown, did_you_mean
 from .program import BOOL, Expr
 
-KIND_WORDS = {INT: "a plain number", DISTANCE: "a distance (mm)", SPEED: "a speed (steps/s)",
-              ANGLE: "an angle (deg)", DURATION: "a duration (ms)", BOOL: "a condition"}
 EXAMPLE_UNIT = {DISTANCE: "mm", SPEED: "steps/s", ANGLE: "deg", DURATION: "ms"}
 COMPARISONS = ("<", "<=", ">", ">=", "==", "!=")
 
 
-def _kind_word(kind: str) -> str:
-    return KIND_WORDS.get(kind, kind)
-
-
 _EXACT = dict(arith.BINARY, neg=arith.neg, abs=arith.absolute, clamp=arith.clamp, sat=arith.sat,
               **imath.FUNCTIONS)
-# what the math functions take and give: (kind of the arguments, or None:
-# any one kind; kind of the result, or None: the arguments')
-_MATH_KINDS = {"atan2": (None, ANGLE), "hypot": (None, None), "sqrt": (INT, INT),
-               "sin": (ANGLE, INT), "cos": (ANGLE, INT)}
 
 
 def _interval(e: Expr) -> str:
@@ -157,6 +148,10 @@ class Exprs:
     def _name(self, node: ast.ConstRef) -> Optional[Expr]:
         name = node.name.name
         info = self.vars.get(name)
+        if (info is not None and info.size) or name in self.const_arrays \
+                or name in READING_ARRAYS:
+            arrays.bare_use(self, node.name, node)
+            return None
         if info is not None:
             self.vars_used.add(name)
             e = Expr("var", info.kind, info.lo, info.hi, name=name, node=node.name)
@@ -191,8 +186,10 @@ class Exprs:
             if left is None or right is None:
                 return None
             return self._binary(node.op, left, right, node)
-        if cls is ast.FuncCall:
-            return self._function(node)
+        if cls is ast.FuncCall:         # (directly: each level of nesting costs stack)
+            return functions.call(self, node)
+        if cls is ast.Index:
+            return arrays.element(self, node)
         self.diags.error("E024", node.span, "a condition such as `ir0 > 300` cannot go here",
                          help="conditions go after `when` or `if`")
         return None
@@ -325,75 +322,6 @@ class Exprs:
                                help=f"if 0 is not what you want then, divide by "
                                     f"`max({text}, 1)`")
         return True
-
-    def _function(self, node: ast.FuncCall) -> Optional[Expr]:
-        name = node.name.name
-        if name not in FUNCTIONS:
-            self.diags.error("E054", node.name.span, f"unknown function {_code(name)}",
-                             help=did_you_mean(node.name, FUNCTIONS) or
-                             "the functions are " + ", ".join(map(_code, FUNCTIONS)))
-            return None
-        params, _ = FUNCTIONS[name]
-        args = node.args or ()
-        if len(args) != len(params) or any(not isinstance(a, ast.PositionalArg) for a in args):
-            self.diags.error("E016" if len(args) > len(params) else "E017", node.span,
-                             f"{_code(name)} takes {len(params)} argument"
-                             f"{'s' if len(params) > 1 else ''}: "
-                             f"`{name}({', '.join(params)})`",
-                             help=f"write `{name}({', '.join(params)})`")
-            return None
-        values = [self._expr(a.value) for a in args]
-        if any(v is None for v in values):
-            return None
-        if not all(self._is_number(v, _code(name)) for v in values):
-            return None
-        if len(values) > 1:
-            kinds = {v.kind for v in values if not v.bare}
-            if len(kinds) > 1:
-                first = next(v for v in values if not v.bare)
-                other = next(v for v in values if not v.bare and v.kind != first.kind)
-                self._kind_clash(node, first.kind, other.kind,
-                                 f"the arguments of {_code(name)} differ:", left=first,
-                                 right=other)
-                return None
-            kind = kinds.pop() if kinds else INT
-            values = [self._adapt(v, kind) for v in values]
-        kind = values[0].kind
-        bare = all(v.bare for v in values)
-        if name == "random":
-            values = [self._store(v) for v in values]
-            lo, hi = values[0].lo, values[1].hi
-            if values[0].constant and values[1].constant and lo > hi:
-                self.diags.error("E042", node.span,
-                                 f"`random({self._text(args[0].value)}, "
-                                 f"{self._text(args[1].value)})`: the lower bound is above "
-                                 f"the upper one", help="write the smaller bound first")
-                return None
-            return Expr("random", kind, min(lo, hi), max(lo, hi), tuple(values), node=node)
-        if name in _MATH_KINDS:
-            return self._math(name, values, node)
-        lo, hi = arith.interval(name, *[(v.lo, v.hi) for v in values])
-        return self._fold(Expr(name, kind, lo, hi, tuple(values), node=node, bare=bare))
-
-    def _math(self, name: str, values: list, node) -> Optional[Expr]:
-        """atan2, hypot, sqrt, sin, cos: their arguments' kind, their
-        result's kind and interval (stdlib/imath.py, as rt_math.c computes)."""
-        takes, gives = _MATH_KINDS[name]
-        if takes is not None:
-            values = [self._adapt(v, takes) for v in values]
-            wrong = next((v for v in values if v.kind != takes), None)
-            if wrong is not None:
-                self.diags.error("E048", wrong.node.span,
-                                 f"{_code(name)} takes {_kind_word(takes)}, but "
-                                 f"`{self._text(wrong.node)}` is {_kind_word(wrong.kind)}",
-                                 help=f"`{name}(...)` of {_kind_word(takes)}"
-                                      + (": write the angle in deg, e.g. `sin(30 deg)`"
-                                         if takes == ANGLE else ""))
-                return None
-        kind = gives or values[0].kind
-        lo, hi = imath.interval(name, *[(v.lo, v.hi) for v in values])
-        return self._fold(Expr(name, kind, lo, hi, tuple(values), node=node,
-                               bare=gives is None and all(v.bare for v in values)))
 
     def _store(self, e: Expr) -> Expr:
         """`e` where it is stored (a variable, an array element, an

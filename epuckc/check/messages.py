@@ -8,6 +8,14 @@ from ..diagnostics import Fix
 from ..stdlib.table import Param
 from ..stdlib.units import ANGLE, DISTANCE, DURATION, INT, SPEED
 from ..syntax import ast
+from .program import BOOL
+
+KIND_WORDS = {INT: "a plain number", DISTANCE: "a distance (mm)", SPEED: "a speed (steps/s)",
+              ANGLE: "an angle (deg)", DURATION: "a duration (ms)", BOOL: "a condition"}
+
+
+def _kind_word(kind: str) -> str:
+    return KIND_WORDS.get(kind, kind)
 
 
 def did_you_mean(ident: ast.Ident, candidates) -> Optional[Fix]:
@@ -40,7 +48,19 @@ def _shown(value) -> str:
         return f"{value.name.name}({', '.join(_shown(a.value) for a in value.args or ())})"
     if cls is ast.Ident:
         return value.name
+    if cls is ast.Index:
+        return f"{value.name.name}[{_shown(value.index)}]"
+    if cls is ast.ArrayLit:
+        return f"[{', '.join(_shown(item) for item in value.items)}]"
+    if cls is ast.Assign:
+        return f"{_target(value)} {value.op} {_shown(value.value)}"
     return "..."
+
+
+def _target(assign) -> str:
+    """What an assignment assigns: `n`, or `a[i]`."""
+    name = assign.target.name
+    return name if assign.index is None else f"{name}[{_shown(assign.index)}]"
 
 
 def _clip(text: str, limit: int = 24) -> str:

@@ -6,7 +6,7 @@ from ..base.source import Span
 from ..diagnostics import Fix, Note
 from ..stdlib.table import ACTION_ALIASES, EVENT_ALIASES, STANDARD_ACTIONS, STANDARD_EVENTS
 from ..syntax import ast
-from . import modes
+from . import arrays, modes
 from .messages import _code
 
 
@@ -15,6 +15,7 @@ class Names:
 
     def _declare(self):
         seen: dict = {}     # (namespace, name) -> first node
+        array_consts = []
 
         def claim(namespace: str, ident: ast.Ident, what: str) -> bool:
             key = (namespace, ident.name)
@@ -33,7 +34,11 @@ class Names:
                 if stmt.name is not None and claim("rule", stmt.name, "rule"):
                     self.rule_names[stmt.name.name] = stmt
             elif isinstance(stmt, ast.ConstDef):
-                if claim("const", stmt.name, "constant"):
+                if not claim("const", stmt.name, "constant"):
+                    continue
+                if isinstance(stmt.value, ast.ArrayLit):
+                    array_consts.append(stmt)
+                else:
                     self.consts[stmt.name.name] = stmt
             elif isinstance(stmt, ast.ActionDef):
                 if self._clashes_with_standard(stmt.name, "action"):
@@ -42,7 +47,9 @@ class Names:
                     self.actions[stmt.name.name] = stmt
             elif isinstance(stmt, ast.ExternDef):
                 self._extern(stmt, claim)
-        for stmt in self.program.statements:        # after the constants they may name
+        for stmt in array_consts:                   # after the constants they may name
+            arrays.declare_const(self, stmt)
+        for stmt in self.program.statements:
             if isinstance(stmt, ast.VarDef):
                 self._declare_var(stmt, claim)
         modes.declare(self, claim)

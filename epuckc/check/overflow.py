@@ -25,7 +25,7 @@ from ..stdlib.arith import INT16_MAX, INT16_MIN, INT32_MAX, INT32_MIN
 from ..stdlib.units import ANGLE, DISTANCE, DURATION, SPEED
 from ..syntax import ast
 from . import conditions
-from .messages import _shown
+from .messages import _shown, _target
 from .program import Expr
 
 _UNIT = {DISTANCE: " mm", SPEED: " steps/s", ANGLE: " deg", DURATION: " ms"}
@@ -190,8 +190,6 @@ class _Point:
 
 def _text_of(e: Expr) -> str:
     node = e.node
-    if isinstance(node, ast.Assign):
-        return f"{node.target.name} {node.op} {_shown(node.value)}"
     return _shown(node)
 
 
@@ -207,7 +205,7 @@ def _fix(e: Expr, op: str, interval: tuple, bits: int) -> str:
     lo, hi = interval
     worst = max(hi, -lo)
     if isinstance(e.node, ast.Assign) and arith.fits16(*exact("+", e.args[1:] * 2) or (0, 0)):
-        name, value = e.node.target.name, _shown(e.node.value)
+        name, value = _target(e.node), _shown(e.node.value)
         b = e.args[1]
         if op == "+":
             bound = f"min({name} + {value}, {INT16_MAX - max(b.hi, 0)})"
@@ -218,7 +216,7 @@ def _fix(e: Expr, op: str, interval: tuple, bits: int) -> str:
     text = _text_of(e)
     d = -(-worst // INT16_MAX)                  # the smallest divisor that fits
     if isinstance(e.node, ast.Assign):          # `t += ...` whose increment is too large
-        name, value = e.node.target.name, _shown(e.node.value)
+        name, value = _target(e.node), _shown(e.node.value)
         sign = "+" if e.node.op == "+=" else "-"
         return (f"what is added can leave 16 bits alone: divide it (`{name} {e.node.op} "
                 f"({value}) / {d}`), or bound the sum (`{name} = clamp({name} {sign} {value}, "

@@ -70,6 +70,8 @@ class VarInfo:
     hi: int
     index: int
     node: ast.VarDef
+    size: int = 0           # an array's number of elements (0: not an array)
+    inits: tuple = ()       # an array's initial values
 
 
 @record
@@ -114,3 +116,4 @@ class CheckedProgram:
     modes: list = field(default_factory=list)     # mode names, in declared order
     initial_mode: Optional[str] = None
     variables: dict = field(default_factory=dict)  # name -> VarInfo, in declared order
+    const_arrays: dict = field(default_factory=dict)   # name -> its values (check/arrays.py)

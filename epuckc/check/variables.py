@@ -7,6 +7,7 @@ from typing import Optional
 from ..diagnostics import Note
 from ..stdlib.table import STANDARD_READINGS
 from ..syntax import ast
+from . import arrays
 from .exprs import _kind_word
 from .messages import _code, did_you_mean
 from .program import Expr, ResolvedCall, VarInfo
@@ -25,21 +26,30 @@ class Variables:
             return
         if not claim("const", stmt.name, "variable"):
             return
+        if isinstance(stmt.value, ast.ArrayLit):
+            info = arrays.declare_var(self, stmt)
+            if info is not None:
+                self.vars[name] = info
+                self._trace_ids += info.size
+            return
         value = self._literal(stmt.value, allow_vars=False)
         if value is None:
             return
         self.vars[name] = VarInfo(name, value.kind, value.value, value.value, value.value,
-                                  len(self.vars), stmt)
+                                  self._trace_ids, stmt)
+        self._trace_ids += 1
 
     def _assigned(self, call: ast.Assign, info: VarInfo) -> Optional[Expr]:
-        """The value an assignment gives its variable (`x += e` is x + e),
-        as it is stored: saturated to 16 bits."""
+        """The value an assignment gives its variable (`x += e` is x + e;
+        `a[i] += e` is the element + e: "cur"), as it is stored: saturated to
+        16 bits."""
         value = self._expr(call.value)
         if value is None:
             return None
         if call.op == "=":
             return self._store(self._adapt(value, info.kind))
-        current = Expr("var", info.kind, info.lo, info.hi, name=info.name, node=call.target)
+        current = Expr("cur" if call.index is not None else "var", info.kind, info.lo, info.hi,
+                       name=info.name, node=call.target)
         total = self._binary("+" if call.op == "+=" else "-", current, value, call)
         return None if total is None else self._store(total)
 
@@ -60,6 +70,18 @@ class Variables:
                                  help=did_you_mean(call.target, self.vars) or
                                  f"declare it first: `var {name} = 0`")
             return None
+        index = None
+        if call.index is not None or info.size:
+            ref = arrays._ref(self, call.target) if info.size else None
+            if ref is None:
+                arrays.not_an_array(self, call.target, "it holds one value")
+                return None
+            if call.index is None:
+                arrays.bare_use(self, call.target, call.target)
+                return None
+            index = arrays.index_value(self, ref, call.index, call)
+            if index is None:
+                return None
         self.vars_used.add(name)
         self.vars_assigned.add(name)
         value = self._assigned(call, info)
@@ -72,6 +94,7 @@ class Variables:
                              f"initial value)", notes=[Note(f"{_code(name)} is declared here",
                                                             info.node.span)])
             return None
-        return ResolvedCall("assign", name, {"value": value}, {"value": self._text(call.value)},
+        values = {"value": value} if index is None else {"value": value, "index": index}
+        return ResolvedCall("assign", name, values, {"value": self._text(call.value)},
                             call, dynamic=True)
 

@@ -62,6 +62,9 @@ CODES = {
     "E054": "unknown function",
     "E055": "`repeat` on `every` or `after`",
     "E056": "expression nested too deeply",
+    "E061": "array index outside the array, or an array of no (or too many) elements",
+    "E062": "an array where one value is wanted, or an index of what is not an array",
+    "E063": "`dot` of arrays of different sizes",
     # warnings
     "W001": "timer rule that can never fire",
     "W002": "sensor rule that can never fire",
@@ -81,6 +84,7 @@ CODES = {
     "W016": "condition that never changes",
     "W017": "variable never assigned",
     "W020": "a value that can leave its range and saturate",
+    "W022": "an array index that can leave the array",
 }
 
 _EXPLANATIONS = Path(__file__).resolve().parent / "explanations"

@@ -192,7 +192,7 @@ def _expression_at(statement, line: int, column: int):
 
 
 def _kind_words(kind: str) -> str:
-    from ..check.exprs import KIND_WORDS
+    from ..check.messages import KIND_WORDS
     return KIND_WORDS.get(kind, kind)
 
 

@@ -14,11 +14,10 @@ saturated by `rt_sat16`.
 """
 from __future__ import annotations
 
-import re
 
 from ..check.program import Expr
 from ..stdlib import arith
-from ..stdlib.table import STANDARD_READINGS
+from ..stdlib.table import READING_ARRAYS, STANDARD_READINGS
 
 VAR_PREFIX = "epk_v_"
 
@@ -30,11 +29,20 @@ _CALLS = {"+": "rt_add", "-": "rt_sub", "*": "rt_mul", "/": "rt_div", "%": "rt_m
 _C_OPS = {"<": "<", "<=": "<=", ">": ">", ">=": ">=", "==": "==", "!=": "!=",
           "and": "&&", "or": "||", "+": "+", "-": "-", "*": "*", "/": "/", "%": "%"}
 # functions whose result is an int whatever their arguments
-_INT_RESULT = {"random", "sat", "atan2", "sin", "cos"}
+_INT_RESULT = {"random", "sat", "atan2", "sin", "cos", "argmin", "argmax"}
+
+
+CONST_PREFIX = "epk_c_"
 
 
 def var_name(name: str) -> str:
+    """The C of a variable, or of an array variable's element `a[3]`."""
     return VAR_PREFIX + name
+
+
+def base_name(name: str) -> str:
+    """The variable of an element: `a` of `a[3]`."""
+    return name.split("[", 1)[0]
 
 
 def c_int(value: int) -> str:
@@ -46,10 +54,13 @@ def c_int(value: int) -> str:
     return "RT_LONG_MIN" if value == arith.INT32_MIN else f"{value}L"
 
 
-def c_expr(e: Expr, top: bool = True, readings: dict = None) -> str:
+def c_expr(e: Expr, top: bool = True, readings: dict = None, consts=(),
+           index_name: str = None) -> str:
     """The C text of `e`; `top`: no parentheses around its operation;
-    `readings`: C names that hold readings already read (name -> C)."""
-    text, _, level = _Printer(readings).c(e, top)
+    `readings`: C names that hold readings already read (name -> C);
+    `consts`: the names of the constant arrays; `index_name`: the C of the
+    index of the element an assignment assigns."""
+    text, _, level = _Printer(readings, index_name, consts).c(e, top)
     return text if top or level == 0 else f"({text})"
 
 
@@ -61,27 +72,60 @@ class _Printer:
     operand that needs no parentheses, 1 a product, 2 a sum (C's
     precedence: a part is parenthesised where its parent binds tighter)."""
 
-    def __init__(self, readings):
+    def __init__(self, readings, index_name=None, consts=()):
         self.readings = readings or {}
+        self.index_name = index_name    # the C of the element an assignment assigns
+        self.consts = consts            # the names of the constant arrays
 
-    def c(self, e: Expr, top: bool) -> tuple:
+    def c(self, e: Expr, top: bool, wide: bool = False) -> tuple:
+        """`wide`: the part is computed in long (its leftmost operand made
+        one: `8L * rt_ir(0)`), as its parent's result needs."""
         op = e.op
         if op == "num":
-            return c_int(e.value), not arith.fits16(e.value, e.value), 0
+            long_ = wide or not arith.fits16(e.value, e.value)
+            text = c_int(e.value)
+            return (f"{text}L" if long_ and arith.fits16(e.value, e.value) else text), long_, 0
+        if wide:
+            if op in _MUL + _ADD + ("neg",) and self._plain(e):
+                return self._infix(e, wide=True)
+            text, is_long, level = self.c(e, True)
+            if is_long:
+                return text, True, level
+            return f"(long){text if level == 0 else f'({text})'}", True, 0
         if op == "var":
             return var_name(e.name), False, 0
         if op == "read":
             return self.readings.get(e.name) or STANDARD_READINGS[e.name].c, False, 0
         if op == "not":
             return f"!{self.c(e.args[0], False)[0]}", False, 0
+        if op == "cur":         # `a[i] += e`: the element being assigned
+            return f"{var_name(e.name)}[{self.index_name}]", False, 0
+        if op == "index":
+            return self._element(e), False, 0
+        if op in ("argmin", "argmax"):
+            items = ", ".join(self.c(a, True)[0] for a in e.args)
+            return f"rt_{op}((const long[]){{{items}}}, {len(e.args)})", False, 0
         if op in _MUL + _ADD + ("neg",) and self._plain(e):
-            return self._infix(e)
+            return self._infix(e, False)
         if op in _C_OPS and op not in _MUL + _ADD:      # comparisons, and, or
             a, b = (self.c(x, False)[0] for x in e.args)
             text = f"{a} {_C_OPS[op]} {b}"
             return (text if top else f"({text})"), False, 0
         args = ", ".join(self.c(a, True)[0] for a in e.args)
         return f"{_CALLS[op]}({args})", op not in _INT_RESULT, 0
+
+    def _element(self, e: Expr) -> str:
+        """`a[i]`: the index as it is where the checker proved it inside
+        the array, else clamped to it by the runtime."""
+        (i,) = e.args
+        size = e.value
+        index = self.c(i, True)[0]
+        if not (0 <= i.lo and i.hi < size):
+            index = f"rt_index({index}, {size})"
+        if e.name in READING_ARRAYS:
+            return f"{READING_ARRAYS[e.name][1]}({index})"
+        prefix = CONST_PREFIX if e.name in self.consts else VAR_PREFIX
+        return f"{prefix}{e.name}[{index}]"
 
     @staticmethod
     def _plain(e: Expr) -> bool:
@@ -98,38 +142,26 @@ class _Printer:
         exact = arith.exact(op, *ranges)
         return exact is not None and arith.fits32(*exact)
 
-    def _infix(self, e: Expr) -> tuple:
+    def _infix(self, e: Expr, wide: bool) -> tuple:
         op = e.op
         exact = arith.exact(op, *[(a.lo, a.hi) for a in e.args]) if op != "%" else (e.lo, e.hi)
         level = 2 if op in _ADD else 1
+        # int operands whose result needs long: the first one is widened
+        # (so is one that a parent widens)
+        wide = wide or not arith.fits16(*exact)
         parts = []
         for i, a in enumerate(e.args):
-            text, is_long, inner = self.c(a, False)
+            text, is_long, inner = self.c(a, False, wide=wide and i == 0)
             # a right operand of the parent's level keeps its parentheses:
             # C groups from the left, and each part has its own C type
             if inner > level or (inner == level and i == 1) or (op == "neg" and inner):
                 text = f"({text})"
             parts.append((text, is_long, a))
         wide = any(is_long for _, is_long, _ in parts)
-        if not wide and not arith.fits16(*exact):
-            # int operands whose result needs long: the first one is widened
-            text, _, a = parts[0]
-            if a.op == "num":
-                text = f"{a.value}L"
-            elif not (text.startswith("(") and text.endswith(")")) and not _simple(text):
-                text = f"({text})"
-            parts[0] = (f"(long){text}" if a.op != "num" else text, True, a)
-            wide = True
         if op == "neg":
             operand = parts[0][0]
             return f"-({operand})" if operand.startswith("-") else f"-{operand}", wide, 0
         return f"{parts[0][0]} {_C_OPS[op]} {parts[1][0]}", wide, level
-
-
-def _simple(text: str) -> bool:
-    """A name or a call: a cast applies to all of it."""
-    return re.fullmatch(r"[A-Za-z_][A-Za-z_0-9]*(\(.*\))?", text) is not None and \
-        text.count("(") == text.count(")")
 
 
 ODOMETRY = frozenset({"x", "y", "heading"})
@@ -141,7 +173,18 @@ def variables_of(e: Expr) -> set:
     found, todo = set(), [e]
     while todo:
         x = todo.pop()
-        if x.op == "var":
+        if x.op in ("var", "cur", "index"):
+            found.add(base_name(x.name))
+        todo.extend(x.args)
+    return found
+
+
+def indexed_arrays(e: Expr) -> set:
+    """The arrays an expression indexes with a computed index."""
+    found, todo = set(), [e]
+    while todo:
+        x = todo.pop()
+        if x.op == "index":
             found.add(x.name)
         todo.extend(x.args)
     return found

@@ -33,8 +33,8 @@ from ..check.program import CheckedProgram, ResolvedCall
 from ..check.splice import splice
 from ..stdlib.table import STANDARD_ACTIONS, STANDARD_EVENTS
 from ..stdlib.units import round_nearest
-from .exprs import (ODOMETRY, c_expr, c_int, proximity_read, readings_of, var_name,
-                    variables_of)
+from .exprs import (CONST_PREFIX, ODOMETRY, c_expr, c_int, indexed_arrays, proximity_read,
+                    readings_of, var_name, variables_of)
 from .model import (CAction, CCondition, CConditionWord, CEvent, CEventFunction, CExtern,
                     CExternStruct, CFunction, CProgram, CSequence, CStruct, CVariable)
 
@@ -140,6 +140,7 @@ class _Lowerer:
         self.when_reads: set = set()     # the proximity readings the `when` conditions read
         self.odometry = False            # an expression reads x, y or heading
         self.variables_in_c: set = set()   # the variables the C reads or assigns
+        self.const_arrays_in_c: set = set()   # the constant arrays the C indexes
         self.mode_ids = {name: i for i, name in enumerate(program.modes, 1)}
         self.rule_modes = {r.name: r.mode for r in program.rules if r.name is not None}
 
@@ -183,8 +184,24 @@ class _Lowerer:
         if call.kind == "assign":
             info = self.program.variables[call.name]
             self.variables_in_c.add(call.name)
-            return _Primitive(None, "", f"rt_assign(&{var_name(call.name)}, {info.index}, "
-                                        f"{self.expr(call.values['value'])});", text)
+            index = call.values.get("index")
+            if index is None:
+                return _Primitive(None, "", f"rt_assign(&{var_name(call.name)}, {info.index}, "
+                                            f"{self.expr(call.values['value'])});", text)
+            if index.constant:      # one element: its own trace id
+                k = index.value
+                return _Primitive(None, "", f"rt_assign(&{var_name(call.name)}[{k}], "
+                                            f"{info.index + k}, "
+                                            f"{self.expr(call.values['value'], index_name=str(k))});",
+                                  text)
+            # the index once, as the element it names (clamped into the array)
+            k = self.expr(index)
+            if not (0 <= index.lo and index.hi < info.size):
+                k = f"rt_index({k}, {info.size})"
+            value = self.expr(call.values["value"], index_name=f"{PREFIX}k")
+            return _Primitive(None, "", f"{{ const int {PREFIX}k = {k}; "
+                                        f"rt_assign(&{var_name(call.name)}[{PREFIX}k], "
+                                        f"{info.index} + {PREFIX}k, {value}); }}", text)
         if call.dynamic:
             function, ctype, fields = STANDARD_ACTIONS[call.name].dynamic
             values = {name: self.expr(v) for name, v in call.values.items()}
@@ -458,7 +475,9 @@ class _Lowerer:
         """The C of an expression; notes whether the program reads the odometry."""
         self.odometry = self.odometry or bool(readings_of(e) & ODOMETRY)
         self.variables_in_c |= variables_of(e)
-        return c_expr(e, **options)
+        consts = self.program.const_arrays
+        self.const_arrays_in_c |= indexed_arrays(e) & set(consts)
+        return c_expr(e, consts=consts, **options)
 
     def guarded(self, rule, index: int, function: str, param: str) -> str:
         """An event function that runs the rule's event, then its guard."""
@@ -475,12 +494,25 @@ class _Lowerer:
         where the C reads or assigns it (once everything else is lowered),
         so that -Werror never meets a variable defined but not used."""
         for info in self.program.variables.values():
-            variable = CVariable(var_name(info.name), c_int(info.init),
-                                 c_comment(f"{self.where(info.node)}: var {info.name}: "
-                                           f"{info.lo}..{info.hi}"), c_string(info.name))
-            self.out.variables.append(variable)
+            comment = c_comment(f"{self.where(info.node)}: var {info.name}: {info.lo}..{info.hi}")
+            if info.size:       # an array: one declaration, a trace name per element
+                variable = CVariable(f"{var_name(info.name)}[{info.size}]",
+                                     "{" + ", ".join(map(c_int, info.inits)) + "}", comment,
+                                     c_string(f"{info.name}[0]"))
+                self.out.variables += [CVariable(variable.name, "", "",
+                                                 c_string(f"{info.name}[{k}]"))
+                                       for k in range(info.size)]
+            else:
+                variable = CVariable(var_name(info.name), c_int(info.init), comment,
+                                     c_string(info.name))
+                self.out.variables.append(variable)
             if info.name in self.variables_in_c:
                 self.out.declared_variables.append(variable)
+        for name in sorted(self.const_arrays_in_c):
+            values = self.program.const_arrays[name]
+            self.out.structs.append(CStruct("int", f"{CONST_PREFIX}{name}[{len(values)}]",
+                                            "{" + ", ".join(map(c_int, values)) + "}",
+                                            c_comment(f"const {name}")))
 
     def cancelled_rules(self) -> set:
         """The rules that some `cancel` names, found in one pass."""

@@ -345,11 +345,30 @@ READINGS = tuple(
                "odometry: degrees turned since the start, counter-clockwise, -180..179")])
 STANDARD_READINGS = {r.name: r for r in READINGS}
 
+# The readings of several sensors as arrays: `ir[3]` is `ir3`; name ->
+# (the readings in order, the runtime call that reads element i).
+READING_ARRAYS = {
+    "ir": (tuple(f"ir{i}" for i in range(SENSOR_COUNT)), "rt_ir"),
+    "ambient": (tuple(f"ambient{i}" for i in range(SENSOR_COUNT)), "rt_ambient"),
+    "mic": (tuple(f"mic{i}" for i in range(3)), "rt_mic"),
+    "acc": (tuple(f"acc_{axis}" for axis in "xyz"), "rt_acc"),
+}
+# Functions of a whole array (`min` and `max` of one argument too).
+AGGREGATES = {
+    "sum": (("a",), "the sum of the elements of the array `a`, exact up to 32 bits"),
+    "argmin": (("a",), "the index of the smallest element of `a` (the first one of equals)"),
+    "argmax": (("a",), "the index of the largest element of `a` (the first one of equals)"),
+    "dot": (("a", "b"), "the sum of the products of the elements of `a` and `b` (arrays of "
+            "one size), exact up to 32 bits"),
+}
+
 # The functions of expressions: name -> (arguments, doc).
 FUNCTIONS = {
     "abs": (("x",), "the absolute value of `x`"),
-    "min": (("a", "b"), "the smaller of `a` and `b`"),
-    "max": (("a", "b"), "the larger of `a` and `b`"),
+    "min": (("a", "b"), "the smaller of `a` and `b`; `min(a)`: the smallest element of the "
+            "array `a`"),
+    "max": (("a", "b"), "the larger of `a` and `b`; `max(a)`: the largest element of the "
+            "array `a`"),
     "clamp": (("x", "lo", "hi"), "`x` kept within `lo`..`hi`"),
     "random": (("lo", "hi"), "a random whole number in `lo`..`hi` (both included), new at each "
                "evaluation"),
@@ -405,7 +424,10 @@ def reference_markdown() -> str:
     lines += [f"| `{r.name}` | {r.kind} | {r.lo}..{r.hi} | {r.doc} |" for r in READINGS]
     lines += ["", "### 3.4 Functions", "", "| function | gives |", "|---|---|"]
     lines += [f"| `{name}({', '.join(params)})` | {doc} |"
-              for name, (params, doc) in FUNCTIONS.items()]
+              for name, (params, doc) in {**FUNCTIONS, **AGGREGATES}.items()]
+    lines += ["", "The readings of several sensors are arrays too: "
+              + ", ".join(f"`{name}` (`{names[0]}`..`{names[-1]}`)"
+                          for name, (names, _) in READING_ARRAYS.items()) + "."]
     for choices in CHOICES:
         lines += ["", f"The {choices.what} values"
                   + (f" (besides the numbers {choices.numbers[0]}..{choices.numbers[1]})"

@@ -246,11 +246,29 @@ class EnterCall(Node):
 
 
 class Assign(Node):
-    """`NAME = EXPR`, `NAME += EXPR`, `NAME -= EXPR`: an action."""
-    __slots__ = ("target", "op", "value", "span")
+    """`NAME = EXPR`, `NAME += EXPR`, `NAME -= EXPR`, and the same of an
+    array's element `NAME[EXPR] = EXPR`: an action."""
+    __slots__ = ("target", "op", "value", "span", "index")
     target: Ident
     op: str                 # "=", "+=" or "-="
     value: object
+    span: Span
+    index: Optional[object]     # the element's index expression, or None
+
+
+class Index(Node):
+    """`NAME[EXPR]`: an element of an array (a constant, a variable, or a
+    reading of several sensors such as `ir`)."""
+    __slots__ = ("name", "index", "span")
+    name: Ident
+    index: object
+    span: Span
+
+
+class ArrayLit(Node):
+    """`[V, V, ...]`: the elements of an array constant or variable."""
+    __slots__ = ("items", "span")
+    items: tuple
     span: Span
 
 

@@ -22,7 +22,7 @@ KEYWORDS = {
 PUNCTUATION = {
     "(": "_LPAR", ")": "_RPAR", "{": "_LBRACE", "}": "_RBRACE", ",": "_COMMA",
     ":": "_COLON", "=": "_EQUAL", "/": "_SLASH", "-": "MINUS", ">": "CMP",
-    "<": "CMP", "+": "_PLUS", "*": "_STAR", "%": "_PERCENT",
+    "<": "CMP", "+": "_PLUS", "*": "_STAR", "%": "_PERCENT", "[": "_LBRACK", "]": "_RBRACK",
     # two characters, the second always `=`
     "<=": "CMP", ">=": "CMP", "==": "CMP", "!=": "CMP", "+=": "_PLUSEQ", "-=": "_MINUSEQ",
 }
@@ -78,12 +78,12 @@ _TOKEN_RE = re.compile(r"""
   | (?P<NUMBER>[0-9]+(?:\.[0-9]+)?)
   | (?P<STRING>"(?:[^"\\\n]|\\.)*")
   | (?P<open_string>"(?:[^"\\\n]|\\.)*)
-  | (?P<punct>[<>=!+\-]=|[(){},:=/\-><+*%])
+  | (?P<punct>[<>=!+\-]=|[(){}\[\],:=/\-><+*%])
     )""", re.VERBOSE)
 _BLANKS_RE = re.compile(r"[ \t\r\f\v]*")
 
 # A run of characters that start no token (every other character starts one).
-_BAD_RE = re.compile(r"""(?:!(?!=)|[^\w \t\r\n\f\v#"(){},:=/\-><+*%!])+""")
+_BAD_RE = re.compile(r"""(?:!(?!=)|[^\w \t\r\n\f\v#"(){}\[\],:=/\-><+*%!])+""")
 
 
 # Symbols that stand for a unit, and the unit's name in rule files.
@@ -100,7 +100,7 @@ def _bad_help(source: SourceFile, text: str, start: int, end: int):
         number = re.search(r"[0-9.]*$", text[:start].rstrip(" \t")).group(0) or "90"
         return Fix(source.span(start, end), spaced,
                    f"units are written as words: `{number} {unit}`")
-    return ("rule files use names, numbers, units and `( ) { } , : = + - * / % > < !=`; "
+    return ("rule files use names, numbers, units and `( ) { } [ ] , : = + - * / % > < !=`; "
             "comments start with `#`")
 
 

@@ -52,6 +52,7 @@ _UnaryOp = ast.maker(ast.UnaryOp)
 _FuncCall = ast.maker(ast.FuncCall)
 _Paren = ast.maker(ast.Paren)
 _Assign = ast.maker(ast.Assign)
+_Index = ast.maker(ast.Index)
 
 
 def _ident(tok) -> ast.Ident:
@@ -179,15 +180,33 @@ class _ToAst:
 
     def assign_call(self, span, children):
         name, value = children
-        return _Assign(_ident(name), "=", value, span)
+        return _Assign(_ident(name), "=", value, span, None)
 
     def add_assign_call(self, span, children):
         name, value = children
-        return _Assign(_ident(name), "+=", value, span)
+        return _Assign(_ident(name), "+=", value, span, None)
 
     def sub_assign_call(self, span, children):
         name, value = children
-        return _Assign(_ident(name), "-=", value, span)
+        return _Assign(_ident(name), "-=", value, span, None)
+
+    def _index_assign(op):
+        def make(self, span, children):
+            name, index, value = children
+            return _Assign(_ident(name), op, value, span, index)
+        return make
+
+    index_assign_call = _index_assign("=")
+    index_add_assign_call = _index_assign("+=")
+    index_sub_assign_call = _index_assign("-=")
+    del _index_assign
+
+    def array_literal(self, span, children):
+        return ast.ArrayLit(tuple(c for c in children if c is not None), span)
+
+    def index_atom(self, span, children):
+        name, index = children
+        return _Index(_ident(name), index, span)
 
     def cancel_call(self, span, children):
         (name,) = children
