@@ -9,8 +9,9 @@ from typing import Optional
 from ..base.source import Span
 from ..check.messages import _shown
 from ..diagnostics import Collector
-from ..stdlib.table import (ACTION_ALIASES, CHOICE, EVENT_ALIASES, FUNCTIONS, READINGS,
-                            SENSOR_NAMES, STANDARD_ACTIONS, STANDARD_EVENTS, kind_name)
+from ..stdlib.table import (ACTION_ALIASES, AGGREGATES, CHOICE, EVENT_ALIASES, FUNCTIONS,
+                            READING_ARRAYS, READINGS, SENSOR_NAMES, STANDARD_ACTIONS,
+                            STANDARD_EVENTS, STANDARD_READINGS, kind_name)
 from ..stdlib.units import KIND_UNITS, UNITS
 from ..syntax import ast
 from ..syntax.lexer import KEYWORDS
@@ -124,23 +125,40 @@ def _const_items(analysis: Analysis, kind: Optional[str] = None) -> list:
 
 def _var_items(analysis: Analysis, kind: Optional[str] = None) -> list:
     return [Completion(name, "variable", f"var: {info.kind}, {info.lo}..{info.hi}")
+            if not info.size else
+            Completion(name, "variable", f"var: array of {info.size} {info.kind}, "
+                                         f"{info.lo}..{info.hi}", insert=f"{name}[")
             for name, info in analysis.checker.vars.items() if kind in (None, info.kind)]
+
+
+def _array_items(analysis: Analysis) -> list:
+    """The constant arrays and the readings' arrays, inserted with `[`."""
+    out = [Completion(name, "const", f"array of {len(values)}: "
+                                     f"[{', '.join(str(v.value) for v in values)}]",
+                      insert=f"{name}[")
+           for name, (_, values) in analysis.checker.const_arrays.items()]
+    for name, (names, _) in READING_ARRAYS.items():
+        first = STANDARD_READINGS[names[0]]
+        out.append(Completion(name, "sensor", f"array of {len(names)}: {names[0]}..{names[-1]}",
+                              doc=f"{first.doc}, as an array", insert=f"{name}["))
+    return out
 
 
 def _value_items(analysis: Analysis, kind: Optional[str] = None) -> list:
     """What an expression may name: constants, variables, readings, functions."""
-    return (_const_items(analysis, kind) + _var_items(analysis)
+    return (_const_items(analysis, kind) + _var_items(analysis) + _array_items(analysis)
             + [Completion(r.name, "sensor", f"{r.kind}, {r.lo}..{r.hi}", doc=r.doc)
                for r in READINGS]
             + [Completion(name, "function", f"{name}({', '.join(params)})", doc=doc,
-                          insert=f"{name}(") for name, (params, doc) in FUNCTIONS.items()])
+                          insert=f"{name}(")
+               for name, (params, doc) in {**FUNCTIONS, **AGGREGATES}.items()])
 
 
 _STARTS = {"_ROBOT", "_CONST", "_VAR", "_ACTION", "_EXTERN", "_ON", "_RULE", "_WHEN", "_EVERY",
            "_AFTER"}
 # after these, an expression's operand comes
 _OPERAND_BEFORE = {"_PLUS", "_STAR", "_SLASH", "_PERCENT", "CMP", "_AND", "_OR", "_NOT", "_WHEN",
-                   "_IF", "_PLUSEQ", "_MINUSEQ"}
+                   "_IF", "_PLUSEQ", "_MINUSEQ", "_LBRACK"}
 
 
 def _unit_items(kind: Optional[str]) -> list:

@@ -284,6 +284,10 @@ class _Builder:
     def call(self, node):
         if isinstance(node, ast.Assign):
             self.token("NAME")
+            if node.index is not None:
+                self.token("_LBRACK")
+                self.expr(node.index)
+                self.token("_RBRACK")
             self.sep(" ")
             self.token(_ASSIGN_TOKENS[node.op])
             self.sep(" ")
@@ -301,10 +305,11 @@ class _Builder:
         if node.args is not None:
             self.arguments(node.args, self.arg)
 
-    def arguments(self, items, each):
-        """`(a, b, c)`, breaking after the commas when it does not fit."""
+    def arguments(self, items, each, brackets=("_LPAR", "_RPAR")):
+        """`(a, b, c)` (or `[a, b, c]`), breaking after the commas when it
+        does not fit."""
         self.open(_Group())
-        self.token("_LPAR")
+        self.token(brackets[0])
         self.open(_Indent())
         self.open(_Fill())
         for k, item in enumerate(items):
@@ -314,7 +319,7 @@ class _Builder:
             each(item)
         self.close()
         self.close()
-        self.token("_RPAR")
+        self.token(brackets[1])
         self.close()
 
     def arg(self, node):
@@ -356,10 +361,18 @@ class _Builder:
         elif cls is ast.FuncCall:
             self.token("NAME")
             self.arguments(node.args or (), self.arg)
+        elif cls is ast.Index:
+            self.token("NAME")
+            self.token("_LBRACK")
+            self.expr(node.index)
+            self.token("_RBRACK")
         else:
             self.value(node)
 
     def value(self, node):
+        if isinstance(node, ast.ArrayLit):
+            self.arguments(node.items, self.value, ("_LBRACK", "_RBRACK"))
+            return
         if isinstance(node, ast.Number):
             if node.text.startswith("-"):
                 self.token("MINUS")

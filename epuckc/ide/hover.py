@@ -6,8 +6,8 @@ from typing import Iterator, Optional
 
 from ..check.messages import _shown
 from ..diagnostics import Collector
-from ..stdlib.table import (ACTION_ALIASES, CHOICE, EVENT_ALIASES, FUNCTIONS,
-                            SENSOR_CONDITION_DOC, STANDARD_ACTIONS, STANDARD_EVENTS,
+from ..stdlib.table import (ACTION_ALIASES, AGGREGATES, CHOICE, EVENT_ALIASES, FUNCTIONS,
+                            READING_ARRAYS, SENSOR_CONDITION_DOC, STANDARD_ACTIONS, STANDARD_EVENTS,
                             STANDARD_READINGS, Param)
 from ..stdlib.units import (ANGLE, ARTICLE, DISTANCE, DURATION, INT, KIND_UNITS, NATURAL_UNIT,
                             SPEED, UNITS)
@@ -143,7 +143,8 @@ def _const_markdown(analysis: Analysis, const: ast.ConstDef) -> str:
     return "\n\n".join(out)
 
 
-_EXPRESSIONS = (ast.BinOp, ast.UnaryOp, ast.FuncCall, ast.Paren, ast.ConstRef, ast.Number)
+_EXPRESSIONS = (ast.BinOp, ast.UnaryOp, ast.FuncCall, ast.Paren, ast.ConstRef, ast.Number,
+                ast.Index)
 
 
 def _children(node) -> Iterator:
@@ -162,7 +163,12 @@ def _children(node) -> Iterator:
                 yield arg.value
     elif isinstance(node, ast.Assign):
         yield node.target
+        if node.index is not None:
+            yield node.index
         yield node.value
+    elif isinstance(node, ast.Index):
+        yield node.name
+        yield node.index
     elif isinstance(node, ast.ActionDef):
         yield node.body
     elif isinstance(node, ast.BinOp):
@@ -203,6 +209,22 @@ def _expression_hover(analysis: Analysis, node) -> Optional[str]:
         node.name.name if isinstance(node, ast.ConstRef) else None
     if name is not None and name not in checker.consts:
         info = checker.vars.get(name)
+        if info is not None and info.size:
+            return (f"```epuck\nvar {name}\n```\n\nArray variable of {info.size} elements: "
+                    f"{_kind_words(info.kind)}, [{', '.join(map(str, info.inits))}] at start; "
+                    f"every value an element is given lies in {info.lo}..{info.hi}.")
+        if name in checker.const_arrays:
+            elements = checker.const_arrays[name][1]
+            values = [e.value for e in elements]
+            return (f"```epuck\nconst {name} = [{', '.join(map(str, values))}]\n```\n\n"
+                    f"Constant array of {len(values)} elements: "
+                    f"{_kind_words(elements[0].kind)}, {min(values)}..{max(values)}.")
+        if name in READING_ARRAYS:
+            names = READING_ARRAYS[name][0]
+            first = STANDARD_READINGS[names[0]]
+            return (f"```epuck\n{name}\n```\n\nReadings as an array of {len(names)}: "
+                    f"`{name}[0]` is `{names[0]}`, ..., `{name}[{len(names) - 1}]` is "
+                    f"`{names[-1]}`; {_kind_words(first.kind)}, {first.lo}..{first.hi}.")
         if info is not None:
             return (f"```epuck\nvar {name}\n```\n\nVariable: {_kind_words(info.kind)}, "
                     f"{info.init} at start; every value it is given lies in "
@@ -229,11 +251,14 @@ def _expression_hover(analysis: Analysis, node) -> Optional[str]:
             "true or false"
         return f"```epuck\n{text}\n```\n\nA condition: {value}."
     head = f"```epuck\n{text}\n```\n\n{_kind_words(e.kind).capitalize()}"
-    if isinstance(node, ast.FuncCall) and node.name.name in FUNCTIONS:
-        head += f"; `{node.name.name}`: {FUNCTIONS[node.name.name][1]}"
+    functions = {**FUNCTIONS, **AGGREGATES}
+    if isinstance(node, ast.FuncCall) and node.name.name in functions:
+        head += f"; `{node.name.name}`: {functions[node.name.name][1]}"
     if e.constant:
         return f"{head}: always {e.value}."
-    return f"{head}, within {e.lo}..{e.hi} (16-bit, saturating)."
+    stored = "" if -32768 <= e.lo and e.hi <= 32767 else \
+        " (exact here; saturated to -32768..32767 where it is stored)"
+    return f"{head}, within {e.lo}..{e.hi}{stored}."
 
 
 def hover(analysis: Analysis, line: int, column: int) -> Optional[tuple]:

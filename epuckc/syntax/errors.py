@@ -15,7 +15,8 @@ from .lexer import KEYWORDS, STATEMENT_STARTS
 _FRIENDLY = {
     "NAME": "a name", "NUMBER": "a number", "STRING": 'a file name in quotes ("blink.c")',
     "CMP": "`>` or `<`", "MINUS": "`-`", "$END": "the end of the statement",
-    "_LPAR": "`(`", "_RPAR": "`)`", "_LBRACE": "`{`", "_RBRACE": "`}`", "_COMMA": "`,`",
+    "_LPAR": "`(`", "_RPAR": "`)`", "_LBRACK": "`[`", "_RBRACK": "`]`", "_LBRACE": "`{`",
+    "_RBRACE": "`}`", "_COMMA": "`,`",
     "_COLON": "`:`", "_EQUAL": "`=`", "_SLASH": "`/`", "_PLUS": "`+`", "_STAR": "`*`",
     "_PERCENT": "`%`", "_PLUSEQ": "`+=`", "_MINUSEQ": "`-=`",
 }

@@ -3,9 +3,12 @@ largest draw, since Hypothesis leans towards the smallest): variables of every k
 constants (the 16-bit edges included), expressions of every operator and
 function over numbers, constants, variables and readings, `when` rules,
 guards, `every`/`after`, `wait` in sequences, `set_speed`, `random`,
-odometry, modes with their own rules and variables, priorities, and now
-and then an expression nested or chained right at or beyond the depth
-limit (syntax/limits.py).
+odometry, modes with their own rules and variables, priorities, arrays
+(constant and variable ones, the readings' arrays, elements with fixed and
+computed indices, `sum`/`min`/`max`/`argmin`/`argmax`/`dot`), the math
+functions (`atan2`, `hypot`, `sqrt`, `sin`, `cos`), and now and then an
+expression nested or chained right at or beyond the depth limit
+(syntax/limits.py).
 
 Most programs are well-kinded so that most are accepted and go on to the
 C compilers; some mix kinds or break the rules on purpose, so that the
@@ -87,6 +90,38 @@ def language_program(r: Choices) -> Program:
         value = r.choice(INT_NUMBERS if kind == "int" else UNIT_NUMBERS[kind])
         variables[f"v{i}"] = kind
         lines.append(f"var v{i} = {value}")
+    arrays: dict = {"ir": 8, "ambient": 8, "mic": 3, "acc": 3}     # name -> size (int ones)
+    var_arrays: list = []
+    for i in range(r.integers(0, 2)):
+        size = r.choice([1, 3, 8])
+        arrays[f"W{i}"] = size
+        lines.append(f"const W{i} = [{', '.join(r.choice(INT_NUMBERS) for _ in range(size))}]")
+    for i in range(r.integers(0, 2)):
+        size = r.choice([1, 3, 8])
+        arrays[f"a{i}"] = size
+        var_arrays.append(f"a{i}")
+        lines.append(f"var a{i} = [{', '.join(r.choice(INT_NUMBERS) for _ in range(size))}]")
+
+    def array_form(depth):
+        """An int from arrays: an element, or a function of a whole array."""
+        name = r.choice(sorted(arrays))
+        form = r.integers(0, 3)
+        if form == 0:
+            index = r.choice([str(r.integers(0, arrays[name] - 1)), number("int", depth - 1)])
+            return f"{name}[{index}]"
+        if form == 1:
+            return f"{r.choice(['sum', 'min', 'max', 'argmin', 'argmax'])}({name})"
+        same = [n for n in sorted(arrays) if arrays[n] == arrays[name]]
+        return f"dot({name}, {r.choice(same)})"
+
+    def math_form(kind, depth):
+        if kind == "angle":
+            other = r.choice(["int", "distance"])
+            return f"atan2({number(other, depth - 1)}, {number(other, depth - 1)})"
+        if kind != "int":
+            return f"hypot({number(kind, depth - 1)}, {number(kind, depth - 1)})"
+        f = r.choice(["sqrt", "sin", "cos"])
+        return f"{f}({number('int' if f == 'sqrt' else 'angle', depth - 1)})"
 
     def leaf(kind):
         options = [lambda: r.choice(INT_NUMBERS if kind == "int"
@@ -102,7 +137,12 @@ def language_program(r: Choices) -> Program:
     def number(kind, depth):
         if depth <= 0 or r.integers(0, 3) == 0:
             return leaf(kind)
-        form = r.integers(0, 9)
+        form = r.integers(0, 11)
+        if form == 10:
+            return array_form(depth) if kind == "int" else f"({array_form(depth)}) * " \
+                f"({number(kind, depth - 1)})"
+        if form == 11:
+            return math_form(kind, depth)
         if form <= 3:
             op = r.choice(["+", "-"])
             return f"{number(kind, depth - 1)} {op} {number(kind, depth - 1)}"
@@ -154,6 +194,10 @@ def language_program(r: Choices) -> Program:
 
     def action():
         form = r.integers(0, 9)
+        if form == 0 and var_arrays:
+            name = r.choice(var_arrays)
+            index = r.choice([str(r.integers(0, arrays[name] - 1)), expression("int")])
+            return f"{name}[{index}] {r.choice(['=', '+=', '-='])} {expression('int')}"
         if form <= 3 and variables:
             name = r.choice(sorted(variables))
             kind = variables[name] if r.integers(0, 19) < 19 else r.choice(KINDS)
