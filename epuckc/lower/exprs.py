@@ -82,9 +82,9 @@ class _Printer:
         one: `8L * rt_ir(0)`), as its parent's result needs."""
         op = e.op
         if op == "num":
-            long_ = wide or not arith.fits16(e.value, e.value)
-            text = c_int(e.value)
-            return (f"{text}L" if long_ and arith.fits16(e.value, e.value) else text), long_, 0
+            if wide and arith.fits16(e.value, e.value):
+                return f"{e.value}L", True, 0       # (-32768L too: a long's minus)
+            return c_int(e.value), not arith.fits16(e.value, e.value), 0
         if wide:
             if op in _MUL + _ADD + ("neg",) and self._plain(e):
                 return self._infix(e, wide=True)

@@ -199,9 +199,10 @@ class _Lowerer:
             if not (0 <= index.lo and index.hi < info.size):
                 k = f"rt_index({k}, {info.size})"
             value = self.expr(call.values["value"], index_name=f"{PREFIX}k")
+            trace_id = f"{info.index} + {PREFIX}k" if info.index else f"{PREFIX}k"
             return _Primitive(None, "", f"{{ const int {PREFIX}k = {k}; "
                                         f"rt_assign(&{var_name(call.name)}[{PREFIX}k], "
-                                        f"{info.index} + {PREFIX}k, {value}); }}", text)
+                                        f"{trace_id}, {value}); }}", text)
         if call.dynamic:
             function, ctype, fields = STANDARD_ACTIONS[call.name].dynamic
             values = {name: self.expr(v) for name, v in call.values.items()}
