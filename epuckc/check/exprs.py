@@ -38,18 +38,36 @@ def _interval(e: Expr) -> str:
     return str(e.lo) if e.lo == e.hi else f"{e.lo}..{e.hi}"
 
 
+_COMMUTATIVE = {"+", "*", "min", "max", "==", "!=", "and", "or", "hypot"}
+
+
 def _same_value(a: Expr, b: Expr) -> bool:
     """Whether two expressions always have the same value: the same tree
-    of operations over the same variables, readings and numbers, with no
-    `random` (each call draws anew). A loop, not recursion (limits.py)."""
-    pairs = [(a, b)]
-    while pairs:
-        x, y = pairs.pop()
-        if (x.op != y.op or x.value != y.value or x.name != y.name
-                or len(x.args) != len(y.args) or x.op == "random"):
-            return False
-        pairs.extend(zip(x.args, y.args))
-    return True
+    of operations over the same variables, readings and numbers, up to the
+    order of the operands of `+`, `*`, `min`, ... (as C compilers see it:
+    `v + -v > -v + v` compares a value with itself), with no `random` (each
+    call draws anew)."""
+    return _canonical(a) == _canonical(b) is not None
+
+
+def _canonical(e: Expr):
+    """A key of `e`'s tree, the operands of commutative operations sorted;
+    None with a `random` in it. A loop, not recursion (limits.py)."""
+    keys: dict = {}
+    stack = [(e, False)]
+    while stack:
+        x, done = stack.pop()
+        if not done:
+            if x.op == "random":
+                return None
+            stack.append((x, True))
+            stack.extend((arg, False) for arg in x.args)
+            continue
+        parts = [keys[id(arg)] for arg in x.args]
+        if x.op in _COMMUTATIVE:
+            parts.sort()
+        keys[id(x)] = repr((x.op, x.value, x.name, tuple(parts)))
+    return keys[id(e)]
 
 
 class Exprs:
