@@ -334,6 +334,16 @@ typedef struct {
     int value;
 } param_set_led;
 void action_set_led(void *param);            /* param_set_led * */
+/* A number on the ring: LEDs 0..count-1 on and the others off (count
+ * clamped to 0..8), or LED k on where bit k of bits is 1 (bits 0..255). */
+typedef struct {
+    int count;
+} param_led_ring;
+void action_led_ring(void *param);           /* param_led_ring * */
+typedef struct {
+    int bits;
+} param_led_bits;
+void action_led_bits(void *param);           /* param_led_bits * */
 
 /* The five samples of the library (e_play_sound; e_init_sound at the first
  * play). */

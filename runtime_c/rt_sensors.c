@@ -173,6 +173,32 @@ void action_set_led(void *param)
         e_set_front_led((unsigned)p->value);
 }
 
+static void ring(unsigned bits)
+{
+    unsigned k;
+    for (k = 0; k < 8; k++)
+        e_set_led(k, (bits >> k) & 1u);
+}
+
+void action_led_ring(void *param)
+{
+    const param_led_ring *p = (const param_led_ring *)param;
+    int count;
+
+    if (p == NULL)
+        return;
+    count = p->count < 0 ? 0 : p->count > 8 ? 8 : p->count;
+    ring((1u << count) - 1u);
+}
+
+void action_led_bits(void *param)
+{
+    const param_led_bits *p = (const param_led_bits *)param;
+
+    if (p != NULL)
+        ring((unsigned)p->bits & 0xFFu);
+}
+
 /* [offset, length] in words of the library's samples (codec/e_const_sound.s) */
 static const int sound_samples[5][2] = {
     { 0, 2112 }, { 2116, 1760 }, { 3878, 3412 }, { 7294, 3732 }, { 11028, 8016 }
