@@ -428,6 +428,8 @@ long rt_clamp(long x, long lo, long hi);    /* lo when x < lo, else hi when x > 
 int rt_index(long i, int n);
 int rt_argmin(const long *values, int n);
 int rt_argmax(const long *values, int n);
+int rt_argmin_int(const int *values, int n);      /* the same over ints */
+int rt_argmax_int(const int *values, int n);
 int rt_atan2(long y, long x);
 long rt_hypot(long x, long y);
 long rt_sqrt(long v);

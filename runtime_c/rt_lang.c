@@ -125,6 +125,24 @@ int rt_argmax(const long *values, int n)
     return best;
 }
 
+int rt_argmin_int(const int *values, int n)
+{
+    int k, best = 0;
+    for (k = 1; k < n; k++)
+        if (values[k] < values[best])
+            best = k;
+    return best;
+}
+
+int rt_argmax_int(const int *values, int n)
+{
+    int k, best = 0;
+    for (k = 1; k < n; k++)
+        if (values[k] > values[best])
+            best = k;
+    return best;
+}
+
 /* ---- random numbers: xorshift32, the same sequence on every target ------------ */
 
 static unsigned long rng_state = 1;
@@ -180,9 +198,15 @@ static void new_poll(void)
 
 int rt_ir(int sensor)
 {
+    unsigned bit;
+
     if (sensor < 0 || sensor > 7)
         return 0;
-    rt_read_prox(1u << sensor);
+    bit = 1u << sensor;     /* read once per poll (rt_read_prox's cache), without its loop */
+    if (!(rt_prox_valid & bit)) {
+        rt_prox[sensor] = e_get_prox((unsigned)sensor);
+        rt_prox_valid |= bit;
+    }
     return rt_prox[sensor];
 }
 

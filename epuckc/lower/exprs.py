@@ -102,8 +102,10 @@ class _Printer:
             return f"{var_name(e.name)}[{self.index_name}]", False, 0
         if op == "index":
             return self._element(e), False, 0
-        if op in ("argmin", "argmax"):
+        if op in ("argmin", "argmax"):      # over ints where every element fits one
             items = ", ".join(self.c(a, True)[0] for a in e.args)
+            if all(arith.fits16(a.lo, a.hi) for a in e.args):
+                return f"rt_{op}_int((const int[]){{{items}}}, {len(e.args)})", False, 0
             return f"rt_{op}((const long[]){{{items}}}, {len(e.args)})", False, 0
         if op in _MUL + _ADD + ("neg",) and self._plain(e):
             return self._infix(e, False)

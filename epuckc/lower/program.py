@@ -186,8 +186,11 @@ class _Lowerer:
             self.variables_in_c.add(call.name)
             index = call.values.get("index")
             if index is None:
-                return _Primitive(None, "", f"rt_assign(&{var_name(call.name)}, {info.index}, "
-                                            f"{self.expr(call.values['value'])});", text)
+                readings, head = self.proximity(call.values["value"])
+                return _Primitive(None, "", head + f"rt_assign(&{var_name(call.name)}, "
+                                                   f"{info.index}, "
+                                                   f"{self.expr(call.values['value'], readings=readings)});"
+                                  + (" }" if head else ""), text)
             if index.constant:      # one element: its own trace id
                 k = index.value
                 return _Primitive(None, "", f"rt_assign(&{var_name(call.name)}[{k}], "
@@ -205,10 +208,12 @@ class _Lowerer:
                                         f"{trace_id}, {value}); }}", text)
         if call.dynamic:
             function, ctype, fields = STANDARD_ACTIONS[call.name].dynamic
-            values = {name: self.expr(v) for name, v in call.values.items()}
+            readings, head = self.proximity(_Together(tuple(call.values.values())))
+            values = {name: self.expr(v, readings=readings) for name, v in call.values.items()}
             init = ", ".join(f.format(**values) for f in fields)
-            return _Primitive(None, "", f"{{ {ctype} {PREFIX}arg = {{{init}}}; "
-                                        f"{function}(&{PREFIX}arg); }}", text)
+            return _Primitive(None, "", head + f"{{ {ctype} {PREFIX}arg = {{{init}}}; "
+                                               f"{function}(&{PREFIX}arg); }}"
+                              + (" }" if head else ""), text)
         function = STANDARD_ACTIONS[call.name].runtime if call.kind == "standard" else call.name
         if not call.values:       # stop_motor, exit_main, an extern without parameters...
             return _Primitive(function, "NULL", f"{function}(NULL);", text)
@@ -472,6 +477,18 @@ class _Lowerer:
                             f"{round_nearest(geo.axle_mm * 1000)}L, {geo.steps_per_rev}L")
         return out
 
+    def proximity(self, e) -> tuple:
+        """(readings, C before the statement) for a statement whose value
+        reads several proximity sensors: they are read with one call
+        (`rt_proximity`, the values of this poll) into `epk_p`, rather than
+        one `rt_ir` call each; ({}, "") for fewer than three."""
+        sensors = sorted(proximity_read(e))
+        if len(sensors) < 3:
+            return {}, ""
+        mask = sum(1 << n for n in sensors)
+        return ({f"ir{n}": f"{PREFIX}p[{n}]" for n in sensors},
+                f"{{ const int *{PREFIX}p = rt_proximity(0x{mask:02x}u); ")
+
     def expr(self, e, **options) -> str:
         """The C of an expression; notes whether the program reads the odometry."""
         self.odometry = self.odometry or bool(readings_of(e) & ODOMETRY)
@@ -521,6 +538,14 @@ class _Lowerer:
         for steps in [r.body for r in self.program.rules] + list(self.program.actions.values()):
             names.update(c.name for step in steps for c in step if c.kind == "cancel")
         return names
+
+
+class _Together:
+    """Several expressions as one, for what they read."""
+    op, name = "args", None
+
+    def __init__(self, args):
+        self.args = args
 
 
 def event_flags(rule) -> str:
