@@ -12,7 +12,7 @@ from pathlib import Path
 from typing import Optional
 
 from ..base.output import write_atomic
-from ..base.resources import RUNTIME_CORE, RUNTIME_CORE_HEADERS
+from ..base.resources import RUNTIME_CORE, RUNTIME_CORE_HEADERS, RUNTIME_DEVICES
 
 # -O1 as on the robot (the dspic Makefile; XC16's free edition stops there)
 # and in the sanitizer builds of the tests: the harness runs no slower than
@@ -36,7 +36,8 @@ BUILD_FLAGS = ["-pipe"]
 
 
 # The runtime's files for each target, relative to runtime_c/.
-HOST_SOURCES = [*RUNTIME_CORE, "host/platform_host.c", "host/epuck_stub.c"]
+HOST_SOURCES = [*RUNTIME_CORE, *RUNTIME_DEVICES, "host/platform_host.c", "host/epuck_stub.c",
+                "host/stub_devices.c"]
 
 
 HOST_INCLUDES = [".", "epuck_api", "host"]

@@ -36,8 +36,10 @@ class Checker(Names, Externs, RobotSettings, Values, Exprs, Variables, Ranges, C
     arbitration.py."""
 
     def __init__(self, program: ast.Program, diags: Collector,
-                 base_dir: Optional[Path] = None):
+                 base_dir: Optional[Path] = None, target: str = "host"):
         self.program = program
+        self.target = target             # what it is built for: the devices it has
+        self.device_reported: set = set()   # (device, name) reported [E070]
         self.diags = diags
         self.base_dir = base_dir
         self.geo = Geometry()

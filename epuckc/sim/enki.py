@@ -29,10 +29,11 @@ from typing import Optional
 from ..build.common import BuildError, Program, _run_compiler, c_compiler
 
 from ..build.host import compile_objects, host_build_key, runtime_cache_dir, runtime_flags
-from ..base.resources import RUNTIME_CORE, cache_dir, runtime_dir
+from ..base.resources import RUNTIME_CORE, RUNTIME_DEVICES, cache_dir, runtime_dir
 from .world import World, runner_spec
 
-ROBOT_SOURCES = [*RUNTIME_CORE, "host/platform_host.c", "host/epuck_stub.c", "enki/robot_glue.c"]
+ROBOT_SOURCES = [*RUNTIME_CORE, *RUNTIME_DEVICES, "host/platform_host.c", "host/epuck_stub.c",
+                 "host/stub_devices.c", "enki/robot_glue.c"]
 ROBOT_INCLUDES = [".", "epuck_api", "host", "enki"]
 # robot_glue.c's header comment says why each of these is wrapped
 WRAPPED = ["stub_motors_1ms", "stub_pose", "stub_set_geometry", "getenv", "exit"]

@@ -86,6 +86,7 @@ class ActionSpec:
     # runs) becomes: (function, struct, fields) with the values in their
     # natural units (mm, steps/s, deg); None: its arguments must be fixed
     dynamic: Optional[tuple] = None
+    device: str = ""          # the device it needs (DEVICES); "": every e-puck has it
 
     @property
     def signature(self) -> str:
@@ -108,6 +109,7 @@ class EventSpec:
     # written as a rule's head of its own (`when COND`, `every D`, `after D`),
     # not `on NAME(...)`
     head: bool = False
+    device: str = ""          # the device it needs (DEVICES)
 
     @property
     def signature(self) -> str:
@@ -117,6 +119,25 @@ class EventSpec:
             return f"{self.name}(irN > T, irM < T, ...)"
         return signature(self.name, self.params)
 
+
+# The devices not every target has, what they are in words, and the targets
+# that have each: the checker reports a standard name that needs a device
+# its target lacks [E070] (never a link error). `host` is the simulation
+# (the stub harness and Enki worlds), which models them all.
+DEVICES = {
+    "messages": "IR messages between robots (libIrcom: `ircomSend`, `ircomPopMessage`)",
+    "tof": "the time-of-flight distance sensor (VL53L0X)",
+}
+TARGET_DEVICES = {
+    "host": frozenset(DEVICES),
+    # the e-puck library the dspic project builds with has no IR messaging
+    # (libIrcom is a library apart) and the e-puck has no ToF sensor
+    "dspic": frozenset(),
+    "epuck2": frozenset({"messages", "tof"}),
+}
+TARGET_NAMES = {"host": "the simulation (host)", "dspic": "the e-puck (dspic)",
+                "epuck2": "the e-puck2 (epuck2)"}
+MESSAGE_MAX = 255           # ircomSend carries one byte (IRCOM_WORDSIZE 8)
 
 _SPEED_RANGE = "-max_speed..max_speed (1000 steps/s on the e-puck) [E030]"
 _STEPS_RANGE = "a 16-bit int of motor steps [E034]"
@@ -220,6 +241,15 @@ ACTIONS = (
                "plays a built-in sample on the speaker (`e_play_sound`); the program goes on "
                "at once", "action_play_sound", runtime_param="param_play_sound",
                fields=("{sound}",)),
+    ActionSpec("send",
+               (Param("value", INT, "the value the message carries",
+                      f"a whole number 0..{MESSAGE_MAX} [E042] (one byte, as `ircomSend`); an "
+                      "expression that can leave it is warned [W030] and sent modulo 256",
+                      lo=0, hi=MESSAGE_MAX),),
+               "broadcasts `value` over the IR sensors (`ircomSend`) to the robots in range; "
+               "a send while one is still on the air replaces the value waiting to go",
+               "action_send", runtime_param="param_send", fields=("{value}",),
+               dynamic=("action_send", "param_send", ("{value}",)), device="messages"),
 )
 
 EVENTS = (
@@ -287,6 +317,11 @@ EVENTS = (
               "event_ambient", "param_event_sensor",
               conditions_doc=f"`{SENSOR_NAMES_DOC[0]}`..`{SENSOR_NAMES_DOC[1]}` `>` or `<` a "
               f"whole threshold in 0..{THRESHOLD_MAX} [E032] (raw ambient light readings)"),
+    EventSpec("message", (),
+              "for each message received (`ircomPopMessage`), one per poll, in the order they "
+              "came; while its action runs, `message`, `message_bearing` and `message_range` "
+              "describe it (the runtime queues 8; when full, the oldest is dropped)",
+              "event_message", memory=False, device="messages"),
 )
 
 STANDARD_ACTIONS = {spec.name: spec for spec in ACTIONS}
@@ -320,6 +355,7 @@ class Reading:
     hi: int
     c: str
     doc: str
+    device: str = ""          # the device it needs (DEVICES)
 
 
 READINGS = tuple(
@@ -342,7 +378,20 @@ READINGS = tuple(
        Reading("y", DISTANCE, -32768, 32767, "rt_y_mm()",
                "odometry: mm to the left of the start pose"),
        Reading("heading", ANGLE, -180, 179, "rt_heading_deg()",
-               "odometry: degrees turned since the start, counter-clockwise, -180..179")])
+               "odometry: degrees turned since the start, counter-clockwise, -180..179"),
+       Reading("message", INT, 0, MESSAGE_MAX, "rt_message()",
+               "the value of the message `on message` received (0 before any)",
+               device="messages"),
+       Reading("message_bearing", ANGLE, -180, 179, "rt_message_bearing()",
+               "where that message came from: degrees counter-clockwise from the robot's "
+               "heading, -180..179, the direction of the sensor that received it best",
+               device="messages"),
+       Reading("message_range", DISTANCE, 0, 1000, "rt_message_range()",
+               "how far its sender was: mm, estimated from the signal's strength",
+               device="messages"),
+       Reading("distance", DISTANCE, 0, 2000, "rt_distance()",
+               "the time-of-flight sensor's distance ahead (mm; 2000: nothing in range)",
+               device="tof")])
 STANDARD_READINGS = {r.name: r for r in READINGS}
 
 # The functions of expressions: name -> (arguments, doc).
@@ -405,6 +454,16 @@ def reference_markdown() -> str:
                      if choices.numbers else "") + ":", "",
                   f"| {choices.what} | means | C |", "|---|---|---|"]
         lines += [f"| `{c.name}` | {c.doc} | `{c.c}` |" for c in choices.values]
+    lines += ["", "Devices not every robot has: a name that needs one is an error [E070] when "
+              "the target (`epuckc check/build --target`) lacks it.", "",
+              "| device | names | " + " | ".join(TARGET_NAMES[t] for t in TARGET_DEVICES) + " |",
+              "|---|---|" + "---|" * len(TARGET_DEVICES)]
+    for device, what in DEVICES.items():
+        names = [("on " if isinstance(x, EventSpec) else "") + x.name
+                 for x in (*ACTIONS, *EVENTS, *READINGS) if x.device == device]
+        lines.append(f"| {what} | {', '.join(f'`{n}`' for n in names)} | "
+                     + " | ".join("yes" if device in TARGET_DEVICES[t] else "no"
+                                  for t in TARGET_DEVICES) + " |")
     return "\n".join(lines) + "\n"
 
 
