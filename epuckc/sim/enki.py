@@ -75,7 +75,7 @@ def build_runner() -> Path:
         raise BuildError(ENKI_MISSING)
     rt = runtime_dir()
     h = hashlib.sha256()
-    for rel in ("enki/world_runner.cpp", "enki/enki_bridge.h"):
+    for rel in ("enki/world_runner.cpp", "enki/enki_bridge.h", "enki/world_channel.h"):
         h.update((rt / rel).read_bytes())
     h.update(ENKI_HEADER.read_bytes())
     h.update(" ".join(cxx_compiler() + RUNNER_FLAGS).encode())

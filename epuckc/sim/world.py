@@ -12,6 +12,8 @@ angles `deg`, and a comma may separate the two coordinates of a point:
     seed 7                        # Enki's random generator (default 1)
     noise 5 %                     # wheel speed noise, +- (default 5 %, Enki's e-puck)
     step 10 ms                    # physics step (default 10 ms)
+    messages range 22.5 cm loss 5 % interval 100 ms emitter 60 deg receiver 60 deg
+                                  # the IR message channel (these are the defaults)
 
 docs/world.md is the reference. `parse_world` returns a `World` in
 millimetres and degrees, or raises `WorldError` with `file:line:col: error:
@@ -31,7 +33,20 @@ LENGTH_UNITS = {"mm": 1.0, "cm": 10.0, "m": 1000.0}
 MAX_ROBOTS = 1000
 MAX_LENGTH_MM = 100_000.0       # 100 m
 NAME_RE = re.compile(r"[A-Za-z_][A-Za-z0-9_-]*\Z")
-KEYWORDS = {"at", "size", "x", "angle", "height", "radius", "heading", "program", "none"}
+KEYWORDS = {"at", "size", "x", "angle", "height", "radius", "heading", "program", "none",
+            "range", "loss", "interval", "emitter", "receiver", "range_noise"}
+
+
+@dataclass
+class Messages:
+    """The IR message channel (runtime_c/enki/world_channel.h); the defaults
+    and where they come from are in docs/world.md."""
+    range_mm: float = 225.0
+    loss_percent: float = 5.0
+    interval_ms: int = 100
+    emitter_deg: float = 60.0
+    receiver_deg: float = 60.0
+    range_noise_percent: float = 10.0
 
 
 class WorldError(Exception):
@@ -79,6 +94,7 @@ class World:
     seed: int = 1
     noise_percent: float = 5.0
     step_ms: int = 10
+    messages: Messages = field(default_factory=Messages)
 
     @property
     def walled(self) -> bool:
@@ -103,6 +119,12 @@ class World:
             "seed": self.seed,
             "noise_percent": self.noise_percent,
             "step_ms": self.step_ms,
+            "messages": {"range_mm": r1(self.messages.range_mm),
+                         "loss_percent": self.messages.loss_percent,
+                         "interval_ms": self.messages.interval_ms,
+                         "emitter_deg": self.messages.emitter_deg,
+                         "receiver_deg": self.messages.receiver_deg,
+                         "range_noise_percent": self.messages.range_noise_percent},
         }
 
 
@@ -264,7 +286,7 @@ def _parse_line(world: World, path: Path, shown: str, lineno: int, raw: str, see
         return
     head = ln.next("an item")
     kind = head.text.lower() if head.number is None else ""
-    if kind in ("arena", "seed", "noise", "step"):
+    if kind in ("arena", "seed", "noise", "step", "messages"):
         if kind in seen:
             raise ln.error(f"a second `{kind}` line (the first is line {seen[kind]})", head,
                            "a world has one of each; delete one")
@@ -351,10 +373,51 @@ def _parse_line(world: World, path: Path, shown: str, lineno: int, raw: str, see
         if value != int(value) or not 1 <= value <= 100:
             raise ln.error("the physics step is a whole number of ms from 1 to 100", tok)
         world.step_ms = int(value)
+    elif kind == "messages":
+        _messages(world.messages, ln)
     else:
         raise ln.error(f"unknown item `{head.text}`", head,
-                       "a line starts with arena, box, cylinder, robot, seed, noise or step")
+                       "a line starts with arena, box, cylinder, robot, seed, noise, step or "
+                       "messages")
     ln.end()
+
+
+def _messages(m: Messages, ln: _Line):
+    """`messages [range L] [loss P %] [interval T ms] [emitter A deg]
+    [receiver A deg] [range_noise P %]`, any of them, in any order."""
+    example = "messages range 22.5 cm loss 5 % interval 100 ms"
+    if ln.at_end():
+        raise ln.error("`messages` needs a setting: range, loss, interval, emitter, receiver "
+                       "or range_noise", None, f"for example: {example}")
+    while not ln.at_end():
+        tok = ln.peek()
+        if ln.keyword("range"):
+            m.range_mm = ln.length("message range", positive=True)
+        elif ln.keyword("loss") or ln.keyword("range_noise"):
+            value = ln._quantity({"%": 1.0}, "percentage", "5 %")
+            if not 0 <= value <= 100:
+                raise ln.error(f"the {tok.text} is from 0 % to 100 %", tok)
+            if tok.text.lower() == "loss":
+                m.loss_percent = value
+            else:
+                m.range_noise_percent = value
+        elif ln.keyword("interval"):
+            value = ln._quantity({"ms": 1.0, "s": 1000.0}, "duration", "100 ms")
+            if value != int(value) or not 1 <= value <= 60_000:
+                raise ln.error("the interval is a whole number of ms from 1 to 60000", tok)
+            m.interval_ms = int(value)
+        elif ln.keyword("emitter") or ln.keyword("receiver"):
+            value = ln.angle()
+            if not 0 < value <= 360:
+                raise ln.error(f"the {tok.text} cone's width is from 0 to 360 deg", tok)
+            if tok.text.lower() == "emitter":
+                m.emitter_deg = value
+            else:
+                m.receiver_deg = value
+        else:
+            raise ln.error(f"unknown setting `{tok.text}` of messages", tok,
+                           "the settings are range, loss, interval, emitter, receiver and "
+                           f"range_noise, e.g. {example}")
 
 
 def _check_placement(world: World, lines: list, shown: str) -> list:
@@ -430,6 +493,10 @@ def runner_spec(world: World, robots: list) -> str:
     out.append(f"seed {world.seed}")
     out.append(f"noise {f(world.noise_percent / 100)}")
     out.append(f"step_ms {world.step_ms}")
+    m = world.messages
+    out.append(f"messages {f(m.range_mm / 10)} {f(m.loss_percent / 100)} "
+               f"{f(math.radians(m.emitter_deg))} {f(math.radians(m.receiver_deg))} "
+               f"{f(m.range_noise_percent / 100)} {m.interval_ms}")
     for b in world.boxes:
         out.append(f"box {f(b.x_mm / 10)} {f(b.y_mm / 10)} {f(b.length_mm / 10)} "
                    f"{f(b.width_mm / 10)} {f(math.radians(b.angle_deg))} {f(b.height_mm / 10)}")

@@ -10,6 +10,10 @@
  *   seed N                               Enki's random generator (noise)
  *   noise F                              wheel speed noise, +-F (0.05 = 5 %)
  *   step_ms N                            ms of virtual time per world step
+ *   messages RANGE LOSS EMIT RECV NOISE INTERVAL_MS
+ *                                        the IR message channel (world_channel.h):
+ *                                        range cm, loss 0..1, cone widths rad,
+ *                                        range noise 0..1, a message's ms on the air
  *   box X Y L1 L2 ANGLE HEIGHT           a static box centred at (X, Y)
  *   cylinder X Y R HEIGHT                a static cylinder
  *   robot NAME X Y ANGLE                 an e-puck; the lines below belong to it
@@ -47,6 +51,7 @@
 #include <enki/robots/e-puck/EPuck.h>
 
 #include "enki_bridge.h"
+#include "world_channel.h"
 
 namespace {
 
@@ -229,6 +234,17 @@ double read_prox(Enki::IRSensor &s)
     return v < 0 ? 0 : v > 4095 ? 4095 : v;
 }
 
+std::vector<channel::Obstacle> obstacles;
+channel::Settings messages;
+bool walls = false;
+double width = 0, height = 0;
+std::vector<channel::Pose> poses;       // every robot's, after the last step
+
+channel::Pose pose_of(const Robot &r)
+{
+    return channel::Pose{r.body->pos.x, r.body->pos.y, r.body->angle};
+}
+
 void sense(Robot &r)
 {
     Enki::IRSensor *ir[8] = {
@@ -241,6 +257,31 @@ void sense(Robot &r)
     r.io.x_mm = r.body->pos.x * 10.0;
     r.io.y_mm = r.body->pos.y * 10.0;
     r.io.heading_rad = r.body->angle;
+    r.io.distance_mm = channel::tof_mm(pose_of(r), obstacles, poses, walls, width, height);
+}
+
+// The messages sent in the world step just ended, to every robot the
+// channel lets hear them (in the SPEC's order: reproducible).
+void exchange(channel::Random &random)
+{
+    for (Robot &s : robots) {
+        for (int i = 0; i < s.io.n_sent; i++) {
+            for (Robot &r : robots) {
+                if (&r == &s || r.io.finished || r.io.n_inbox >= ENKI_MAX_INBOX)
+                    continue;
+                enki_message m;
+                if (!channel::deliver(messages, obstacles, random, pose_of(s), pose_of(r),
+                                      &m.sensor, &m.direction_rad, &m.distance_cm))
+                    continue;
+                m.value = s.io.sent[i];
+                m.from = s.name.c_str();
+                m.from_x_mm = s.body->pos.x * 10.0;
+                m.from_y_mm = s.body->pos.y * 10.0;
+                r.io.inbox[r.io.n_inbox++] = m;
+            }
+        }
+        s.io.n_sent = 0;
+    }
 }
 
 void flush_output(Robot &r, bool all)
@@ -273,12 +314,10 @@ int main(int argc, char **argv)
     if (spec == nullptr)
         die(std::string("cannot read ") + argv[1]);
 
-    bool walls = false;
-    double width = 0, height = 0, noise = 0.05;
+    double noise = 0.05;
     unsigned long seed = 1;
     int step_ms = 10;
-    struct Obstacle { bool box; double x, y, a, b, angle, h; };
-    std::vector<Obstacle> obstacles;
+    using channel::Obstacle;
     robots.reserve(1024);
 
     char line[8192];
@@ -294,7 +333,10 @@ int main(int argc, char **argv)
             walls = false;
         else if (std::sscanf(line, "seed %lu", &seed) == 1
                  || std::sscanf(line, "noise %lf", &noise) == 1
-                 || std::sscanf(line, "step_ms %d", &step_ms) == 1)
+                 || std::sscanf(line, "step_ms %d", &step_ms) == 1
+                 || std::sscanf(line, "messages %lf %lf %lf %lf %lf %d", &messages.range_cm,
+                                &messages.loss, &messages.emitter_rad, &messages.receiver_rad,
+                                &messages.range_noise, &messages.interval_ms) == 6)
             ;
         else if (std::sscanf(line, "box %lf %lf %lf %lf %lf %lf", &o.x, &o.y, &o.a, &o.b, &o.angle, &o.h) == 6) {
             o.box = true;
@@ -346,6 +388,7 @@ int main(int argc, char **argv)
         r.io.yield = yield_robot;
         r.io.runner = &r;
         r.io.step_ms = step_ms;
+        r.io.message_frame_ms = messages.interval_ms;
         if (r.settings.size() / 2 > ENKI_MAX_SETTINGS)
             die("too many settings for robot " + r.name);
         for (size_t i = 0; i < r.settings.size(); i++)
@@ -373,7 +416,10 @@ int main(int argc, char **argv)
     }
     // readings for the first poll: the world as placed, nothing moving
     const double dt = step_ms / 1000.0;
+    channel::Random random(seed);
     world->step(dt);
+    for (Robot &r : robots)
+        poses.push_back(pose_of(r));
     for (Robot &r : robots) {
         sense(r);
         auto attach = (int (*)(enki_robot_io *))dlsym(r.handle, "enki_robot_attach");
@@ -407,6 +453,9 @@ int main(int argc, char **argv)
             r.body->now_ms = now_ms;
         }
         world->step(dt);
+        for (size_t i = 0; i < robots.size(); i++)
+            poses[i] = pose_of(robots[i]);
+        exchange(random);
         for (Robot &r : robots) {
             r.io.pending_left = r.io.window_left;
             r.io.pending_right = r.io.window_right;

@@ -81,6 +81,7 @@ void stub_ircom_receive(long value, double distance_cm, double direction_rad, in
                         const char *from, double from_x_mm, double from_y_mm)
 {
     IrcomMessage *m;
+    double bearing;
     if (in_count == IRCOM_MESSAGES_MAX) {     /* as libIrcom: the oldest goes */
         in_begin = (in_begin + 1) % IRCOM_MESSAGES_MAX;
         in_count--;
@@ -93,10 +94,12 @@ void stub_ircom_receive(long value, double distance_cm, double direction_rad, in
     m->receivingSensor = sensor;
     m->error = 0;
     /* robot names are letters, digits, _ and - (epuckc/sim/world.py) */
+    bearing = direction_rad * 180.0 / 3.14159265358979323846;
+    if (bearing >= 180.0)       /* as message_bearing: -180..180 */
+        bearing -= 360.0;
     snprintf(json, sizeof json, ", \"from\": \"%.32s\", \"value\": %ld, \"bearing_deg\": %.1f, "
-             "\"range_mm\": %.1f, \"sensor\": %d, \"from_x_mm\": %.1f, \"from_y_mm\": %.1f", from, value,
-             direction_rad * 180.0 / 3.14159265358979323846, distance_cm * 10.0, sensor,
-             from_x_mm, from_y_mm);
+             "\"range_mm\": %.1f, \"sensor\": %d, \"from_x_mm\": %.1f, \"from_y_mm\": %.1f",
+             from, value, bearing, distance_cm * 10.0, sensor, from_x_mm, from_y_mm);
     stub_observe("message", json, (int)value);
 }
 

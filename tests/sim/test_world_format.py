@@ -59,11 +59,16 @@ def test_runner_spec_is_in_cm_and_radians(tmp_path):
                         "robot a at 20 cm, 20 cm heading 180 deg\n")
     spec = runner_spec(w, [("/x/a.so", {"EPUCK_TRACE": "/x/a.jsonl"})]).splitlines()
     assert spec[0] == "arena square 100.0 60.0"
-    box = spec[4].split()
+    # the message channel's defaults: 22.5 cm, 5 %, 60 deg cones, 10 %, 100 ms
+    messages = spec[4].split()
+    assert messages[0] == "messages" and messages[1:3] == ["22.5", "0.05"]
+    assert [round(float(v), 6) for v in messages[3:5]] == [round(math.pi / 3, 6)] * 2
+    assert messages[5:] == ["0.1", "100"]
+    box = spec[5].split()
     assert box[:5] == ["box", "50.0", "30.0", "10.0", "4.0"] and math.isclose(float(box[5]), math.pi / 2)
-    robot = spec[5].split()
+    robot = spec[6].split()
     assert robot[:4] == ["robot", "a", "20.0", "20.0"] and math.isclose(float(robot[4]), math.pi)
-    assert spec[6:] == ["lib /x/a.so", "setting EPUCK_TRACE /x/a.jsonl"]
+    assert spec[7:] == ["lib /x/a.so", "setting EPUCK_TRACE /x/a.jsonl"]
 
 
 @pytest.mark.parametrize("text, where, words", [
