@@ -494,4 +494,22 @@ unsigned long rt_messages_dropped(void);
 #define RT_DISTANCE_MAX 2000
 int rt_distance(void);
 
+/* ---- Extension: the colour camera (runtime_c/rt_camera.c) ----------------
+ * One subsampled row of RT_CAMERA_PIXELS pixels over 60 degrees, read at
+ * most once a poll.  rt_seen: the width in pixels of the widest run of
+ * `colour` in it; rt_bearing: the degrees of that run's centre, 0 straight
+ * ahead, positive to the left (0 when not seen).  rt_colour: the one
+ * classifier of 8-bit r, g, b (docs/runtime.md). */
+#define RT_CAMERA_PIXELS 60
+#define RT_NO_COLOUR 0
+#define RT_RED 1
+#define RT_YELLOW 2
+#define RT_GREEN 3
+#define RT_CYAN 4
+#define RT_BLUE 5
+#define RT_MAGENTA 6
+int rt_seen(int colour);
+int rt_bearing(int colour);
+int rt_colour(int r, int g, int b);
+
 #endif /* EPUCKRT_H */

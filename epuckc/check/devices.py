@@ -17,7 +17,10 @@ def require(checker, device: str, what: str, span) -> bool:
     """False (after reporting once per name) when `what` (an action, event
     or reading named in the text at `span`) needs `device` and the
     checker's target lacks it."""
-    if not device or device in TARGET_DEVICES.get(checker.target, DEVICES):
+    if not device:
+        return True
+    if device in TARGET_DEVICES.get(checker.target, DEVICES):
+        checker.devices_used.add(device)
         return True
     key = (device, what)
     if key not in checker.device_reported:

@@ -17,8 +17,8 @@ from typing import Optional
 
 from ..diagnostics import Collector, Fix
 from ..stdlib import arith
-from ..stdlib.table import FUNCTIONS, STANDARD_READINGS
-from . import devices
+from ..stdlib.table import CHOICE_READINGS, FUNCTIONS, STANDARD_READINGS
+from . import devices, readings
 from ..stdlib.units import (ANGLE, DISTANCE, DURATION, INT, INT16_MAX, INT16_MIN, SPEED,
                             UNITS, describe_kind, quantity, round_nearest)
 from ..syntax import ast
@@ -325,6 +325,8 @@ class Exprs:
 
     def _function(self, node: ast.FuncCall) -> Optional[Expr]:
         name = node.name.name
+        if name in CHOICE_READINGS:                 # `seen(red)`: check/readings.py
+            return readings.choice_reading(self, node)
         if name not in FUNCTIONS:
             self.diags.error("E054", node.name.span, f"unknown function {_code(name)}",
                              help=did_you_mean(node.name, FUNCTIONS) or

@@ -114,3 +114,4 @@ class CheckedProgram:
     modes: list = field(default_factory=list)     # mode names, in declared order
     initial_mode: Optional[str] = None
     variables: dict = field(default_factory=dict)  # name -> VarInfo, in declared order
+    devices: frozenset = frozenset()   # the devices it uses (stdlib DEVICES)

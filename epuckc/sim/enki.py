@@ -172,13 +172,14 @@ class WorldTimeout(Exception):
 
 def simulate(world: World, libs: list, time_limit_ms: int, seed: int = 1,
              pose_ms: Optional[int] = None, quiet: bool = False, capture: bool = False,
-             timeout_s: Optional[float] = None) -> WorldRun:
+             timeout_s: Optional[float] = None, cameras: Optional[list] = None) -> WorldRun:
     """Run the world once: `libs` are the robots' built shared objects, in
     the world's order; Enki's generator is seeded by the world's `seed`,
     robot k's `random` by `seed + k`. `quiet`: the robots print nothing;
     `capture`: the runner's output is kept from stdout and stderr (its last
     line of stderr then says why it failed). After `timeout_s` seconds of wall clock it is
-    killed (WorldTimeout). BuildError when the runner fails."""
+    killed (WorldTimeout). `cameras`: which robots get Enki's camera (their
+    program reads it; default: all). BuildError when the runner fails."""
     runner = build_runner()
     with tempfile.TemporaryDirectory(prefix="epuckc-world-") as tmp:
         tmpdir = Path(tmp)
@@ -195,7 +196,7 @@ def simulate(world: World, libs: list, time_limit_ms: int, seed: int = 1,
                 settings["EPUCK_POSE_MS"] = str(pose_ms)
             if quiet:
                 settings["EPUCK_QUIET"] = "1"
-            entries.append((copy, settings))
+            entries.append((copy, settings, cameras is None or cameras[i]))
         spec = tmpdir / "world.spec"
         spec.write_text(runner_spec(world, entries), encoding="utf-8")
         results_file = tmpdir / "results"
@@ -244,15 +245,16 @@ def run_world(world: World, default_program: Program, load_program, time_limit_m
     text = os.environ.get("EPUCK_SEED", "")
     seed = int(text) if text.isdigit() else 1
     libs = {}
-    robots = []
+    robots, cameras = [], []
     for placement in world.robots:
         program = default_program if placement.program is None else load_program(placement.program)
         if id(program) not in libs:
             libs[id(program)] = (program, build_robot(program))
         robots.append(libs[id(program)][1])
+        cameras.append(program.devices is None or "camera" in program.devices)
     quiet = os.environ.get("EPUCK_QUIET", "")
     quiet = bool(quiet and quiet != "0")
-    run = simulate(world, robots, time_limit_ms, seed, pose_ms, quiet=quiet)
+    run = simulate(world, robots, time_limit_ms, seed, pose_ms, quiet=quiet, cameras=cameras)
     if not quiet:
         for r in run.results:
             print(_contact_line(r))

@@ -127,13 +127,14 @@ class EventSpec:
 DEVICES = {
     "messages": "IR messages between robots (libIrcom: `ircomSend`, `ircomPopMessage`)",
     "tof": "the time-of-flight distance sensor (VL53L0X)",
+    "camera": "the colour camera (`e_poxxxx`; the e-puck2's po8030 through `dcmi`)",
 }
 TARGET_DEVICES = {
     "host": frozenset(DEVICES),
     # the e-puck library the dspic project builds with has no IR messaging
     # (libIrcom is a library apart) and the e-puck has no ToF sensor
-    "dspic": frozenset(),
-    "epuck2": frozenset({"messages", "tof"}),
+    "dspic": frozenset({"camera"}),
+    "epuck2": frozenset({"messages", "tof", "camera"}),
 }
 TARGET_NAMES = {"host": "the simulation (host)", "dspic": "the e-puck (dspic)",
                 "epuck2": "the e-puck2 (epuck2)"}
@@ -166,7 +167,18 @@ KEYS = Choices("key", (
     Choice("chan_up", "32", "channel up"),
     Choice("chan_down", "33", "channel down"),
 ), numbers=(0, 9))
-CHOICES = (LEDS, SOUNDS, KEYS)
+# The colours the camera tells apart (runtime_c/rt_camera.c, rt_colour: one
+# classifier on every target; docs/runtime.md gives its thresholds).
+COLOURS = Choices("colour", (
+    Choice("red", "RT_RED", "hue 330..30 degrees"),
+    Choice("yellow", "RT_YELLOW", "hue 30..90"),
+    Choice("green", "RT_GREEN", "hue 90..150"),
+    Choice("cyan", "RT_CYAN", "hue 150..210"),
+    Choice("blue", "RT_BLUE", "hue 210..270"),
+    Choice("magenta", "RT_MAGENTA", "hue 270..330"),
+))
+CAMERA_PIXELS = 60
+CHOICES = (LEDS, SOUNDS, KEYS, COLOURS)
 
 SENSOR_NAMES_DOC = ("ir0", f"ir{SENSOR_COUNT - 1}")
 _LED = Param("led", CHOICE, "which LED", "one of " + LEDS.describe() + " [E041]", choices=LEDS)
@@ -356,7 +368,17 @@ class Reading:
     c: str
     doc: str
     device: str = ""          # the device it needs (DEVICES)
+    # a reading of one of several things, written `name(CHOICE)`: `c` has
+    # `{choice}` where the choice's C goes (`seen(red)`: `rt_seen(RT_RED)`)
+    param: Optional[Param] = None
 
+    @property
+    def signature(self) -> str:
+        return f"{self.name}({self.param.choices.what.upper()})" if self.param else self.name
+
+
+_COLOUR = Param("colour", CHOICE, "a colour the camera tells apart",
+                "one of " + COLOURS.describe() + " [E041]", choices=COLOURS)
 
 READINGS = tuple(
     [Reading(f"ir{i}", INT, 0, THRESHOLD_MAX, f"rt_ir({i})",
@@ -391,8 +413,22 @@ READINGS = tuple(
                device="messages"),
        Reading("distance", DISTANCE, 0, 2000, "rt_distance()",
                "the time-of-flight sensor's distance ahead (mm; 2000: nothing in range)",
-               device="tof")])
-STANDARD_READINGS = {r.name: r for r in READINGS}
+               device="tof"),
+       Reading("seen", INT, 0, CAMERA_PIXELS, "rt_seen({choice})",
+               f"the width in pixels (0..{CAMERA_PIXELS}) of the widest run of that colour in "
+               f"the camera's line of {CAMERA_PIXELS} pixels over 60 degrees", device="camera",
+               param=_COLOUR),
+       Reading("bearing", ANGLE, -30, 30, "rt_bearing({choice})",
+               "where the centre of that run is: degrees, 0 straight ahead, positive to the "
+               "left (0 when the colour is not seen)", device="camera", param=_COLOUR)])
+# by name; a reading of a choice once for each (`seen(red)`), as the checker
+# names the Expr that reads it
+STANDARD_READINGS = {r.name: r for r in READINGS if r.param is None}
+STANDARD_READINGS.update(
+    (f"{r.name}({c.name})", Reading(f"{r.name}({c.name})", r.kind, r.lo, r.hi,
+                                    r.c.format(choice=c.c), r.doc, r.device))
+    for r in READINGS if r.param is not None for c in r.param.choices.values)
+CHOICE_READINGS = {r.name: r for r in READINGS if r.param is not None}
 
 # The functions of expressions: name -> (arguments, doc).
 FUNCTIONS = {
@@ -444,7 +480,7 @@ def reference_markdown() -> str:
     lines += ["", "Rules headed `when`, `every` and `after` are written `when COND do ...`, "
               "`every D do ...`, `after D do ...` (section 2.10).",
               "", "### 3.3 Readings", "", "| reading | kind | interval | is |", "|---|---|---|---|"]
-    lines += [f"| `{r.name}` | {r.kind} | {r.lo}..{r.hi} | {r.doc} |" for r in READINGS]
+    lines += [f"| `{r.signature}` | {r.kind} | {r.lo}..{r.hi} | {r.doc} |" for r in READINGS]
     lines += ["", "### 3.4 Functions", "", "| function | gives |", "|---|---|"]
     lines += [f"| `{name}({', '.join(params)})` | {doc} |"
               for name, (params, doc) in FUNCTIONS.items()]
@@ -459,7 +495,8 @@ def reference_markdown() -> str:
               "| device | names | " + " | ".join(TARGET_NAMES[t] for t in TARGET_DEVICES) + " |",
               "|---|---|" + "---|" * len(TARGET_DEVICES)]
     for device, what in DEVICES.items():
-        names = [("on " if isinstance(x, EventSpec) else "") + x.name
+        names = [("on " + x.name if isinstance(x, EventSpec) else
+                  x.signature if isinstance(x, Reading) else x.name)
                  for x in (*ACTIONS, *EVENTS, *READINGS) if x.device == device]
         lines.append(f"| {what} | {', '.join(f'`{n}`' for n in names)} | "
                      + " | ".join("yes" if device in TARGET_DEVICES[t] else "no"

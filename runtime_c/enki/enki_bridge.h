@@ -18,6 +18,7 @@
 #define ENKI_MAX_SETTINGS 8
 #define ENKI_MAX_SENT 16        /* values a robot sends in one world step, at most */
 #define ENKI_MAX_INBOX 64       /* messages delivered to a robot in one world step */
+#define ENKI_CAMERA_PIXELS 60   /* Enki's e-puck camera: 60 pixels over 60 degrees */
 
 /* A message the world's channel delivered (world_channel.h): what libIrcom
  * reports (value, estimated distance, the receiving sensor's direction)
@@ -44,6 +45,7 @@ typedef struct enki_robot_io {
     double heading_rad;             /* counter-clockwise from +x */
     int prox[8];                    /* IR readings, library units 0..4095 */
     int distance_mm;                /* the ToF ray (VL53L0X_get_dist_mm) */
+    unsigned char camera[3 * ENKI_CAMERA_PIXELS];   /* r, g, b of each pixel, leftmost first */
     int n_inbox;                    /* messages delivered in the world step */
     enki_message inbox[ENKI_MAX_INBOX];
     int message_frame_ms;           /* (at attach) one message's time on the air */

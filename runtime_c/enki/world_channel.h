@@ -56,6 +56,7 @@ struct Settings {
 struct Obstacle {
     bool box;
     double x, y, a, b, angle, h;    // box: a x b turned by angle; cylinder: radius a
+    double rgb[3];                  // its colour, 0..1
 };
 
 // -pi..pi
@@ -195,7 +196,7 @@ inline int tof_mm(const Pose &p, const std::vector<Obstacle> &obstacles,
     for (const Pose &r : robots) {
         if (r.x == p.x && r.y == p.y)
             continue;       // itself
-        Obstacle body{false, r.x, r.y, ROBOT_RADIUS_CM, 0, 0, 0};
+        Obstacle body{false, r.x, r.y, ROBOT_RADIUS_CM, 0, 0, 0, {0, 0, 0}};
         best = std::min(best, hit(body, p.x, p.y, dx, dy));
     }
     if (walls) {

@@ -59,5 +59,8 @@ int stub_ircom_take_sent(long *values, int max);
 void stub_ircom_receive(long value, double distance_cm, double direction_rad, int sensor,
                         const char *from, double from_x_mm, double from_y_mm);
 void stub_set_distance(int mm);
+/* What the camera sees: `pixels` (at most 60) r, g, b triples, 0..255,
+ * leftmost first. */
+void stub_set_camera(const unsigned char *rgb, int pixels);
 
 #endif

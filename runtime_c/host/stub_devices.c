@@ -6,6 +6,9 @@
  * send and nothing is in the ToF's range; in an Enki world
  * (enki/robot_glue.c) the world takes the values sent and hands over the
  * messages its channel model delivered and the ToF ray's distance.
+ * The camera (e_poxxxx, as the e-puck library declares it) sees what
+ * stub_set_camera last gave it (grey on the harness alone), as one line of
+ * RGB565 pixels, a capture ready at once.
  */
 #include <stdio.h>
 #include <string.h>
@@ -15,6 +18,7 @@
 #include "ircom/ircomReceive.h"
 #include "ircom/ircomMessages.h"
 #include "sensors/VL53L0X/VL53L0X.h"
+#include "camera/fast_2_timer/e_poxxxx.h"
 #include "motor_led/advance_one_timer/e_agenda.h"
 #include "epuck_stub.h"
 
@@ -126,4 +130,60 @@ void stub_set_distance(int mm)
 uint16_t VL53L0X_get_dist_mm(void)
 {
     return (uint16_t)distance_mm;
+}
+
+/* ---- the camera ---------------------------------------------------------- */
+
+#define STUB_CAMERA_PIXELS 60
+
+static unsigned char camera_rgb[3 * STUB_CAMERA_PIXELS] = {0};
+static char *capture;
+
+void stub_set_camera(const unsigned char *rgb, int pixels)
+{
+    if (pixels > STUB_CAMERA_PIXELS)
+        pixels = STUB_CAMERA_PIXELS;
+    memcpy(camera_rgb, rgb, (size_t)(3 * pixels));
+}
+
+int e_poxxxx_init_cam(void)
+{
+    return 0;
+}
+
+int e_poxxxx_config_cam(unsigned int sensor_x1, unsigned int sensor_y1,
+                        unsigned int sensor_width, unsigned int sensor_height,
+                        unsigned int zoom_fact_width, unsigned int zoom_fact_height,
+                        int color_mode)
+{
+    /* the runtime asks for one row of STUB_CAMERA_PIXELS in RGB565 */
+    return sensor_width / zoom_fact_width == STUB_CAMERA_PIXELS
+           && sensor_height / zoom_fact_height == 1 && color_mode == RGB_565_MODE
+           && sensor_x1 + sensor_width <= ARRAY_WIDTH
+           && sensor_y1 + sensor_height <= ARRAY_HEIGHT ? 0 : -1;
+}
+
+void e_poxxxx_write_cam_registers(void)
+{
+}
+
+void e_poxxxx_launch_capture(char *buf)
+{
+    capture = buf;
+}
+
+/* The capture is taken now: the pixels as RGB565, big-endian. */
+int e_poxxxx_is_img_ready(void)
+{
+    int i;
+    if (capture == NULL)
+        return 0;
+    for (i = 0; i < STUB_CAMERA_PIXELS; i++) {
+        unsigned r = camera_rgb[3 * i], g = camera_rgb[3 * i + 1], b = camera_rgb[3 * i + 2];
+        unsigned v = ((r & 0xF8u) << 8) | ((g & 0xFCu) << 3) | (b >> 3);
+        capture[2 * i] = (char)(v >> 8);
+        capture[2 * i + 1] = (char)(v & 0xFFu);
+    }
+    capture = NULL;
+    return 1;
 }

@@ -58,7 +58,7 @@ def test_runner_spec_is_in_cm_and_radians(tmp_path):
     w = parse(tmp_path, "arena 100 cm x 60 cm\nbox at 50 cm, 30 cm size 10 cm x 4 cm angle 90 deg\n"
                         "robot a at 20 cm, 20 cm heading 180 deg\n")
     spec = runner_spec(w, [("/x/a.so", {"EPUCK_TRACE": "/x/a.jsonl"})]).splitlines()
-    assert spec[0] == "arena square 100.0 60.0"
+    assert spec[0] == "arena square 100.0 60.0 0.501961 0.501961 0.501961"     # grey walls
     # the message channel's defaults: 22.5 cm, 5 %, 60 deg cones, 10 %, 100 ms
     messages = spec[4].split()
     assert messages[0] == "messages" and messages[1:3] == ["22.5", "0.05"]
@@ -68,7 +68,8 @@ def test_runner_spec_is_in_cm_and_radians(tmp_path):
     assert box[:5] == ["box", "50.0", "30.0", "10.0", "4.0"] and math.isclose(float(box[5]), math.pi / 2)
     robot = spec[6].split()
     assert robot[:4] == ["robot", "a", "20.0", "20.0"] and math.isclose(float(robot[4]), math.pi)
-    assert spec[7:] == ["lib /x/a.so", "setting EPUCK_TRACE /x/a.jsonl"]
+    assert spec[7:] == ["lib /x/a.so", "colour 0.501961 0.501961 0.501961",
+                        "setting EPUCK_TRACE /x/a.jsonl"]
 
 
 @pytest.mark.parametrize("text, where, words", [
