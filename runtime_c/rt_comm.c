@@ -23,6 +23,9 @@
 #include "ircom/ircomSend.h"
 #include "ircom/ircomReceive.h"
 #include "ircom/ircomMessages.h"
+#ifdef EPUCKRT_EPUCK2
+#include "sensors/proximity.h"
+#endif
 
 #define RT_PI 3.14159265358979f
 
@@ -49,7 +52,15 @@ static void start(void)
     if (started)
         return;
     started = 1;
+#ifdef EPUCKRT_EPUCK2
+    /* libIrcom samples the IR receivers itself (its ircomStart wants the
+     * proximity module stopped) and keeps the proximity readings at 5 Hz */
+    proximity_stop();
+#endif
     ircomStart();
+#ifdef EPUCKRT_EPUCK2
+    ircomEnableProximity();
+#endif
     ircomEnableContinuousListening();
     ircomListen();
     rt_device_poll = comm_poll;

@@ -71,7 +71,8 @@ def write_epuck2_project(program: Program, out_dir: Path, template_render,
                      mode=stat.S_IMODE(source.stat().st_mode), only_if_changed=True)
     defines = [d[2:] for d in _capacity_defines(program)] + ["EPUCKRT_EPUCK2",
                                                               "EPUCKRT_NO_NAMES"]
-    context = dict(name=program.name, runtime=DSPIC_RUNTIME)
+    context = dict(name=program.name, runtime=DSPIC_RUNTIME,
+                   camera=program.devices is None or "camera" in program.devices)
     write_atomic(out_dir / "main.c", template_render("epuck2_main.c.j2", **context),
                  only_if_changed=True)
     write_atomic(out_dir / "main.h", template_render("epuck2_main.h.j2", **context),

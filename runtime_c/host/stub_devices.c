@@ -49,6 +49,10 @@ void ircomEnableContinuousListening(void)
 {
 }
 
+void ircomEnableProximity(void)
+{
+}
+
 void ircomListen(void)
 {
 }

@@ -18,5 +18,6 @@ typedef struct
 
 void ircomStart(void);
 void ircomEnableContinuousListening(void);
+void ircomEnableProximity(void);
 
 #endif
