@@ -230,3 +230,49 @@ def test_bad_message_settings_are_reported_with_their_place(tmp_path, line, mess
     assert result.returncode == 1
     assert "bad.world:2:" in result.stdout + result.stderr
     assert message in result.stdout + result.stderr
+
+
+def _swarm(records):
+    """Per pose time: the mean distance from each robot to its nearest
+    neighbour, and the number of clusters (robots within 15 cm joined)."""
+    poses = {}
+    for r in records:
+        if r["kind"] == "pose":
+            poses.setdefault(r["t_ms"], {})[r["robot"]] = (r["x_mm"], r["y_mm"])
+    out = []
+    for t, p in sorted(poses.items()):
+        pts = list(p.values())
+        nearest = sum(min(math.dist(a, b) for j, b in enumerate(pts) if j != i)
+                      for i, a in enumerate(pts)) / len(pts)
+        parent = list(range(len(pts)))
+
+        def root(i):
+            while parent[i] != i:
+                i = parent[i]
+            return i
+        for i in range(len(pts)):
+            for j in range(i + 1, len(pts)):
+                if math.dist(pts[i], pts[j]) < 150:
+                    parent[root(i)] = root(j)
+        out.append((t, nearest, len({root(i) for i in range(len(pts))})))
+    return out
+
+
+def test_an_aggregation_swarm_gathers_in_clusters_by_messages(tmp_path):
+    world = EXAMPLES / "aggregation.world"
+    records, _, _ = run(EXAMPLES / "aggregation.epk", tmp_path, "--world", world,
+                        "--time-limit", "60s", "--pose-interval", "1s", expect=None)
+    swarm = _swarm(records)
+    assert swarm[0][2] == 10 and swarm[0][1] > 250          # scattered at the start
+    late = [s for s in swarm if s[0] >= 30_000]
+    assert all(nearest < 100 for _, nearest, _ in late)     # each beside a neighbour
+    assert all(clusters <= 4 for _, _, clusters in late)
+    # deaf (a channel of 1 cm), the same robots wander and stay apart
+    deaf = tmp_path / "deaf.world"
+    deaf.write_text(world.read_text().replace("arena 100 cm x 100 cm",
+                                              "arena 100 cm x 100 cm\nmessages range 1 cm"))
+    records, _, _ = run(EXAMPLES / "aggregation.epk", tmp_path, "--world", deaf,
+                        "--time-limit", "60s", "--pose-interval", "1s", expect=None,
+                        name="deaf")
+    late = [s for s in _swarm(records) if s[0] >= 30_000]
+    assert sum(nearest for _, nearest, _ in late) / len(late) > 120
