@@ -517,9 +517,10 @@ def _rgb(colour: str) -> str:
 def runner_spec(world: World, robots: list) -> str:
     """The world for runtime_c/enki/world_runner.cpp: lengths in cm, angles
     in radians, colours as r g b in 0..1. `robots` gives, in the world's
-    order, (library path, {setting: value}[, camera]) for each robot: with
-    `camera` true its body gets Enki's camera (a cost, for the robots whose
-    program reads it)."""
+    order, (library path, {setting: value}[, devices]) for each robot:
+    `devices` (stdlib DEVICES; None or left out: all) says which of the
+    costly ones it reads, "camera" (Enki's camera on its body) and "tof"
+    (the distance ray, cast at every step)."""
     def f(v: float) -> str:
         return repr(float(v))
     out = []
@@ -543,13 +544,12 @@ def runner_spec(world: World, robots: list) -> str:
         out.append(f"cylinder {f(c.x_mm / 10)} {f(c.y_mm / 10)} {f(c.radius_mm / 10)} "
                    f"{f(c.height_mm / 10)} {_rgb(c.colour)}")
     for placement, (lib, settings, *rest) in zip(world.robots, robots):
-        camera = bool(rest and rest[0])
+        devices = rest[0] if rest and rest[0] is not None else ("camera", "tof")
         out.append(f"robot {placement.name} {f(placement.x_mm / 10)} {f(placement.y_mm / 10)} "
                    f"{f(math.radians(placement.heading_deg))}")
         out.append(f"lib {lib}")
         out.append(f"colour {_rgb(placement.colour)}")
-        if camera:
-            out.append("camera")
+        out.extend(device for device in ("camera", "tof") if device in devices)
         for name, value in settings.items():
             out.append(f"setting {name} {value}")
     return "\n".join(out) + "\n"

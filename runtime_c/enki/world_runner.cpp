@@ -23,6 +23,7 @@
  *   setting NAME VALUE                   what its getenv(NAME) returns
  *   colour R G B                         its body's colour (what cameras see)
  *   camera                               it has Enki's camera (its program reads it)
+ *   tof                                  its ToF ray is cast (its program reads it)
  *
  * Each robot's shared object is loaded from its own file (so its globals
  * are its own) and its main() runs as a coroutine: it runs step_ms poll
@@ -150,7 +151,7 @@ struct Robot {
     double x = 0, y = 0, angle = 0;
     std::vector<std::string> settings;      // name, value, ...
     Enki::Color colour = Enki::Color::gray;
-    bool camera = false;
+    bool camera = false, tof = false;
     enki_robot_io io;
     Body *body = nullptr;
     void *handle = nullptr;
@@ -265,7 +266,8 @@ void sense(Robot &r)
     r.io.x_mm = r.body->pos.x * 10.0;
     r.io.y_mm = r.body->pos.y * 10.0;
     r.io.heading_rad = r.body->angle;
-    r.io.distance_mm = channel::tof_mm(pose_of(r), obstacles, poses, walls, width, height);
+    r.io.distance_mm = r.tof ? channel::tof_mm(pose_of(r), obstacles, poses, walls, width, height)
+                             : channel::TOF_NONE_MM;
     if (r.camera) {
         // Enki's pixels go counter-clockwise, from the right; the camera's
         // line from the left
@@ -378,6 +380,8 @@ int main(int argc, char **argv)
             robots.back().colour = Enki::Color(rgb[0], rgb[1], rgb[2]);
         else if (std::strncmp(line, "camera", 6) == 0 && !robots.empty())
             robots.back().camera = true;
+        else if (std::strncmp(line, "tof", 3) == 0 && !robots.empty())
+            robots.back().tof = true;
         else if (std::strncmp(line, "setting ", 8) == 0 && !robots.empty()) {
             std::string s = rest(line, "setting");
             size_t sp = s.find(' ');

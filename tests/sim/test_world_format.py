@@ -68,8 +68,12 @@ def test_runner_spec_is_in_cm_and_radians(tmp_path):
     assert box[:5] == ["box", "50.0", "30.0", "10.0", "4.0"] and math.isclose(float(box[5]), math.pi / 2)
     robot = spec[6].split()
     assert robot[:4] == ["robot", "a", "20.0", "20.0"] and math.isclose(float(robot[4]), math.pi)
-    assert spec[7:] == ["lib /x/a.so", "colour 0.501961 0.501961 0.501961",
+    # devices not known (hand-written C): the camera and the ToF ray
+    assert spec[7:] == ["lib /x/a.so", "colour 0.501961 0.501961 0.501961", "camera", "tof",
                         "setting EPUCK_TRACE /x/a.jsonl"]
+    # a program that reads neither gets neither (each costs a part of every step)
+    spec = runner_spec(w, [("/x/a.so", {}, frozenset({"messages"}))]).splitlines()
+    assert spec[7:] == ["lib /x/a.so", "colour 0.501961 0.501961 0.501961"]
 
 
 @pytest.mark.parametrize("text, where, words", [
