@@ -41,6 +41,7 @@ import svgwrite
 
 from . import leds as leds_mod
 from . import timeline as bands
+from .world import COLOURS as WORLD_COLOURS
 
 MAP_WIDTH_PX = 640.0
 MAP_MAX_HEIGHT_PX = 520.0
@@ -259,6 +260,15 @@ def _nice_step(span_s: float) -> float:
     return 3600 * math.ceil(span_s / 3600 / 12)
 
 
+def _fill(obstacle: dict) -> str:
+    """An obstacle's colour on the map: its world colour (what the camera
+    sees), or the map's brown for the default grey."""
+    colour = obstacle.get("colour", "grey")
+    if colour == "grey" or colour not in WORLD_COLOURS:
+        return "#b0a08a"
+    return "#%02x%02x%02x" % WORLD_COLOURS[colour]
+
+
 def _draw_messages(dwg, runs: list, px):
     """A line from sender to receiver for each pair of robots that
     exchanged messages, once per MESSAGE_BUCKET_MS (where they were at the
@@ -342,13 +352,13 @@ def plot_trace(text: str, title: str = "", source: str = "trace") -> str:
         cx, cy = px(b["x_mm"], b["y_mm"])
         w, h = b["length_mm"] * scale, b["width_mm"] * scale
         rect = dwg.rect(insert=(_r(cx - w / 2), _r(cy - h / 2)), size=(_r(w), _r(h)), class_="box",
-                        fill="#b0a08a", stroke="#6b5b45")
+                        fill=_fill(b), stroke="#6b5b45")
         if b.get("angle_deg"):
             rect.rotate(-b["angle_deg"], center=(cx, cy))     # +y is up in the world
         g.add(rect)
     for c in (world or {}).get("cylinders", []):
         g.add(dwg.circle(center=px(c["x_mm"], c["y_mm"]), r=_r(c["radius_mm"] * scale),
-                         class_="cylinder", fill="#b0a08a", stroke="#6b5b45"))
+                         class_="cylinder", fill=_fill(c), stroke="#6b5b45"))
     # a scale bar in the map's lower left corner
     bar_mm = _scale_length(scale)
     bx0, by0 = MARGIN_PX + 8, _r(top + map_h - 10)

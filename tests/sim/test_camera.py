@@ -112,3 +112,25 @@ def test_bearing_is_positive_to_the_left_and_seen_grows_nearer(tmp_path):
         assert seen > 0 and abs(bearing - true) <= 3 + seen / 2
     assert results["left"][1] > 0 > results["right"][1]
     assert results["near"][0] > results["far"][0] > 0
+
+
+def test_the_picture_fills_obstacles_with_their_world_colour():
+    from epuckc.sim.plot import plot_trace
+    import json
+    import xml.etree.ElementTree as ET
+    world = {"kind": "world", "arena": {"width_mm": 500, "height_mm": 500, "colour": "white"},
+             "boxes": [{"x_mm": 100, "y_mm": 100, "length_mm": 50, "width_mm": 20,
+                        "angle_deg": 0, "colour": "blue"}],
+             "cylinders": [{"x_mm": 300, "y_mm": 300, "radius_mm": 30, "colour": "red"},
+                           {"x_mm": 400, "y_mm": 100, "radius_mm": 30, "colour": "grey"}],
+             "robots": [], "robot_radius_mm": 37}
+    pose = {"t_ms": 0, "robot": "r1", "kind": "pose", "name": "pose", "x_mm": 250.0,
+            "y_mm": 250.0, "heading_deg": 0.0}
+    root = ET.fromstring(plot_trace(json.dumps(world) + "\n" + json.dumps(pose) + "\n"))
+    fills = {e.get("class"): [] for e in root.iter()}
+    for e in root.iter():
+        if e.get("class") in ("box", "cylinder"):
+            fills[e.get("class")].append(e.get("fill"))
+    hexed = {n: "#%02x%02x%02x" % COLOURS[n] for n in ("blue", "red")}
+    assert fills["box"] == [hexed["blue"]]
+    assert fills["cylinder"][0] == hexed["red"] and fills["cylinder"][1] not in hexed.values()
