@@ -134,3 +134,21 @@ def test_the_picture_fills_obstacles_with_their_world_colour():
     hexed = {n: "#%02x%02x%02x" % COLOURS[n] for n in ("blue", "red")}
     assert fills["box"] == [hexed["blue"]]
     assert fills["cylinder"][0] == hexed["red"] and fills["cylinder"][1] not in hexed.values()
+
+
+@pytest.mark.parametrize("line, word", [
+    ("cylinder at 10 cm, 10 cm radius 2 cm colour purple", "purple"),
+    ("box at 10 cm, 10 cm size 2 cm x 2 cm colour 3", "3"),
+    ("robot at 50 cm, 50 cm colour", None),
+])
+def test_a_colour_that_is_not_one_is_reported_with_its_place(tmp_path, line, word):
+    from tests.support.world import epuckc
+    column = line.index(word.strip(), line.index("colour")) + 1 if word else None
+    path = tmp_path / "bad.world"
+    path.write_text(f"arena 1 m x 1 m\n{line}\n")
+    result = epuckc("check", path)
+    out = result.stdout + result.stderr
+    assert result.returncode == 1
+    assert (f"bad.world:2:{column}:" if column else "bad.world:2:") in out
+    assert "is not a colour of a world" in out or "expected a colour" in out
+    assert "red, yellow, green" in out or "expected a colour" in out
