@@ -794,6 +794,7 @@ static int poll_ranked(void)
  * order: the table's, then the registered ones.  Returns 1 when exit_main
  * ran. */
 unsigned long rt_poll_count;
+void (*rt_device_poll)(void);
 
 static int poll_events(void)
 {
@@ -802,6 +803,8 @@ static int poll_events(void)
     conditions_valid = 0;
     rt_prox_valid = 0;
     rt_poll_count++;
+    if (rt_device_poll != NULL)
+        rt_device_poll();
     if (rt_sensors_starting) {  /* start_sensor of an earlier poll */
         rt_sensors_starting = 0;
         rt_sensors_on = 1;

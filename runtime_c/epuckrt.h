@@ -499,4 +499,52 @@ typedef struct {
 } param_wait;
 void action_wait(void *param);
 
+/* ---- Extension: IR messages between robots (runtime_c/rt_comm.c) --------
+ * Over libIrcom's API (ircomSend, ircomPopMessage: the e-puck2 firmware's
+ * src/ircom; the host's stub and Enki provide the same).  send: broadcasts
+ * the low 8 bits of `value`; while a message is on the air the newest
+ * value waits and goes when it is free (one waits; a later send replaces
+ * it).  Messages received are queued by the runtime (RT_MESSAGE_QUEUE; a
+ * message that comes when it is full drops the oldest); event_message
+ * occurs at a poll when it takes one from the queue (one per poll), and
+ * until it takes the next rt_message* read that one: its value 0..255,
+ * where it came from (degrees counter-clockwise from the heading,
+ * -180..179, the direction of the sensor that received it) and how far
+ * its sender was (mm, estimated). */
+#define RT_MESSAGE_QUEUE 8
+typedef struct {
+    int value;
+} param_send;
+void action_send(void *param);
+void event_message(void *param, void *status);
+int rt_message(void);
+int rt_message_bearing(void);
+int rt_message_range(void);
+/* Messages dropped because the queue was full, since the start. */
+unsigned long rt_messages_dropped(void);
+
+/* ---- Extension: the e-puck2's time-of-flight sensor (runtime_c/rt_tof.c) -
+ * rt_distance: mm ahead (VL53L0X_get_dist_mm), RT_DISTANCE_MAX when
+ * nothing is in range; the sensor is started at the first reading. */
+#define RT_DISTANCE_MAX 2000
+int rt_distance(void);
+
+/* ---- Extension: the colour camera (runtime_c/rt_camera.c) ----------------
+ * One subsampled row of RT_CAMERA_PIXELS pixels over 60 degrees, read at
+ * most once a poll.  rt_seen: the width in pixels of the widest run of
+ * `colour` in it; rt_bearing: the degrees of that run's centre, 0 straight
+ * ahead, positive to the left (0 when not seen).  rt_colour: the one
+ * classifier of 8-bit r, g, b (docs/runtime.md). */
+#define RT_CAMERA_PIXELS 60
+#define RT_NO_COLOUR 0
+#define RT_RED 1
+#define RT_YELLOW 2
+#define RT_GREEN 3
+#define RT_CYAN 4
+#define RT_BLUE 5
+#define RT_MAGENTA 6
+int rt_seen(int colour);
+int rt_bearing(int colour);
+int rt_colour(int r, int g, int b);
+
 #endif /* EPUCKRT_H */

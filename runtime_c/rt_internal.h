@@ -84,6 +84,10 @@ extern int rt_current_rearmed;   /* its action entered its mode again: it stays 
 extern int rt_firing_event;   /* the event whose action mainloop runs (-1: none) */
 extern int rt_polled_event;   /* the event whose function was called last */
 extern unsigned long rt_poll_count;   /* polls so far: readings are read once in each */
+/* A device that works at every poll (rt_comm.c: its transmitter and
+ * receiver) sets this at its first use; the poll calls it first.  NULL:
+ * none, and the core links without the device's files. */
+extern void (*rt_device_poll)(void);
 
 /* rt_motion.c: motion and the sequencer */
 extern struct rt_motion rt_motion;

@@ -12,7 +12,8 @@ from pathlib import Path
 from typing import Optional
 
 from ..base.output import write_atomic
-from ..base.resources import RUNTIME_CORE, RUNTIME_CORE_HEADERS
+from ..base.resources import (RUNTIME_CORE, RUNTIME_CORE_HEADERS, RUNTIME_DEVICES,
+                              RUNTIME_DSPIC_DEVICES)
 
 # -O1 as on the robot (the dspic Makefile; XC16's free edition stops there)
 # and in the sanitizer builds of the tests: the harness runs no slower than
@@ -36,13 +37,14 @@ BUILD_FLAGS = ["-pipe"]
 
 
 # The runtime's files for each target, relative to runtime_c/.
-HOST_SOURCES = [*RUNTIME_CORE, "host/platform_host.c", "host/epuck_stub.c"]
+HOST_SOURCES = [*RUNTIME_CORE, *RUNTIME_DEVICES, "host/platform_host.c", "host/epuck_stub.c",
+                "host/stub_devices.c"]
 
 
 HOST_INCLUDES = [".", "epuck_api", "host"]
 
 
-ROBOT_SOURCES = [*RUNTIME_CORE, "platform_robot.c"]
+ROBOT_SOURCES = [*RUNTIME_CORE, *RUNTIME_DSPIC_DEVICES, "platform_robot.c"]
 
 
 ROBOT_HEADERS = list(RUNTIME_CORE_HEADERS)
@@ -97,6 +99,8 @@ class Program:
     source_path: Optional[Path] = None
     inputs: list = field(default_factory=list)
     variables: list = field(default_factory=list)
+    # the devices it uses (stdlib DEVICES); None: not known (hand-written C)
+    devices: Optional[frozenset] = None
 
     def user_sources(self) -> list:
         """The C files of the user's that are compiled on their own."""

@@ -12,7 +12,7 @@ from pathlib import Path
 from typing import Optional
 
 from ..base.output import prepare_directory, write_atomic
-from ..base.resources import RUNTIME_CORE, RUNTIME_CORE_HEADERS, runtime_dir
+from ..base.resources import RUNTIME_CORE, RUNTIME_CORE_HEADERS, RUNTIME_DEVICES, runtime_dir
 from .common import (DSPIC_RUNTIME, EXIT_NO_TOOLCHAIN, BuildError, Program, _capacity_defines,
                      _write_generated, check_outputs)
 from .dspic import dspic_user_copies, dspic_user_headers
@@ -20,7 +20,7 @@ from .dspic import dspic_user_copies, dspic_user_headers
 # The runtime's files in an e-puck2 project (relative to runtime_c/): the
 # core, the robot's platform layer (its hooks and seed) with the ChibiOS
 # wait for the clock, the system calls Debian's newlib wants.
-EPUCK2_SOURCES = [*RUNTIME_CORE, "platform_robot.c", "platform_epuck2.c",
+EPUCK2_SOURCES = [*RUNTIME_CORE, *RUNTIME_DEVICES, "platform_robot.c", "platform_epuck2.c",
                   "epuck2/newlib_stubs.c"]
 EPUCK2_FILES = EPUCK2_SOURCES + list(RUNTIME_CORE_HEADERS)
 ARM_GCC = "arm-none-eabi-gcc"
@@ -71,7 +71,8 @@ def write_epuck2_project(program: Program, out_dir: Path, template_render,
                      mode=stat.S_IMODE(source.stat().st_mode), only_if_changed=True)
     defines = [d[2:] for d in _capacity_defines(program)] + ["EPUCKRT_EPUCK2",
                                                               "EPUCKRT_NO_NAMES"]
-    context = dict(name=program.name, runtime=DSPIC_RUNTIME)
+    context = dict(name=program.name, runtime=DSPIC_RUNTIME,
+                   camera=program.devices is None or "camera" in program.devices)
     write_atomic(out_dir / "main.c", template_render("epuck2_main.c.j2", **context),
                  only_if_changed=True)
     write_atomic(out_dir / "main.h", template_render("epuck2_main.h.j2", **context),

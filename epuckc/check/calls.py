@@ -10,7 +10,7 @@ from ..diagnostics import Fix, Note
 from ..stdlib.table import ACTION_ALIASES, CHOICE, STANDARD_ACTIONS
 from ..stdlib.units import ANGLE, DISTANCE, curve_wheels, round_nearest
 from ..syntax import ast
-from . import modes
+from . import devices, modes
 from .messages import _code, _count, _shown, _signature_help, did_you_mean
 from .program import Expr, ResolvedCall
 
@@ -218,6 +218,8 @@ class Calls:
 
     def _standard_action(self, name: str, call: ast.Call) -> Optional[ResolvedCall]:
         spec = STANDARD_ACTIONS[name]
+        if not devices.require(self, spec.device, name, call.name.span):
+            return None
         params = spec.params
         bound = self._bind(call.name, call.args, params, "action")
         if bound is None:
@@ -243,6 +245,8 @@ class Calls:
                                  f"`radius` cannot be negative (`{shown['radius']}`)",
                                  help="a positive `degrees` turns left, a negative one right")
                 return None
+            for p in params:
+                self._interval_warning(values[p.name], p, bound[p.name].value, name)
             return ResolvedCall("standard", name, values, shown, call, dynamic=True)
         geo = self.geo
         if name == "start_curve":
@@ -274,6 +278,23 @@ class Calls:
         elif name == "start_straight" and values["speed"] < 0 and values["distance"] < 0:
             self._backward_twice(bound["distance"].value, shown)
         return ResolvedCall("standard", name, values, shown, call)
+
+    def _interval_warning(self, e, p, node, name: str):
+        """W030: an expression whose interval can leave the whole numbers
+        `p.lo`..`p.hi` its parameter carries (`send`'s byte)."""
+        if p.lo is None or not isinstance(e, Expr) or (p.lo <= e.lo and e.hi <= p.hi):
+            return
+        if e.constant:
+            self.diags.error(p.range_code, node.span,
+                             f"`{name}` carries {p.lo}..{p.hi}, but `{self._text(node)}` is "
+                             f"{e.value}", help=f"give a value in {p.lo}..{p.hi}")
+            return
+        text = self._text(node)
+        self.diags.warning("W030", node.span,
+                           f"`{text}` can be {e.lo}..{e.hi}, but `{name}` carries only "
+                           f"{p.lo}..{p.hi}: a value outside is sent modulo {p.hi + 1}",
+                           help=Fix(node.span, f"clamp({text}, {p.lo}, {p.hi})",
+                                    f"clamp it: `clamp(..., {p.lo}, {p.hi})`"))
 
     def _backward_twice(self, distance, shown: dict):
         """W012: `start_straight(-300, -10 cm)` drives forward."""

@@ -36,8 +36,11 @@ class Checker(Names, Externs, RobotSettings, Values, Exprs, Variables, Ranges, C
     arbitration.py."""
 
     def __init__(self, program: ast.Program, diags: Collector,
-                 base_dir: Optional[Path] = None):
+                 base_dir: Optional[Path] = None, target: str = "host"):
         self.program = program
+        self.target = target             # what it is built for: the devices it has
+        self.device_reported: set = set()   # (device, name) reported [E070]
+        self.devices_used: set = set()
         self.diags = diags
         self.base_dir = base_dir
         self.geo = Geometry()
@@ -90,6 +93,7 @@ class Checker(Names, Externs, RobotSettings, Values, Exprs, Variables, Ranges, C
         self._never_fire(out, complete)
         if complete:
             self._unused()
+        out.devices = frozenset(self.devices_used)
         modes.check_program(self, out, complete)
         races.check_program(self, out)
         self._no_warnings_beside_errors()

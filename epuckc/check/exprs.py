@@ -19,6 +19,7 @@ from typing import Optional
 from ..diagnostics import Collector, Fix
 from ..stdlib import arith, imath
 from ..stdlib.table import READING_ARRAYS, STANDARD_READINGS
+from . import devices
 from ..stdlib.units import (ANGLE, DISTANCE, DURATION, INT, INT16_MAX, INT16_MIN, SPEED,
                             UNITS, describe_kind, quantity, round_nearest)
 from ..syntax import ast
@@ -181,6 +182,8 @@ class Exprs:
                                                    + list(STANDARD_READINGS)) or
                                  f"declare it (`var {name} = 0` or `const {name} = 1`), or read "
                                  f"the robot: `ir0`..`ir7`, `x`, `heading`, ...")
+                return None
+            if not devices.require(self, reading.device, name, node.name.span):
                 return None
             e = Expr("read", reading.kind, reading.lo, reading.hi, name=name, node=node.name)
         if node.negative:

@@ -45,9 +45,10 @@ def read_error(name: str, exc: OSError) -> InputError:
 
 
 def check_file(path: Path, report: Report, shown_name: Optional[str] = None,
-               text: Optional[str] = None) -> FrontEndResult:
+               text: Optional[str] = None, target: str = "host") -> FrontEndResult:
     """Parse and check one rule file, adding its diagnostics to `report`.
-    `text` replaces the file's contents (an editor's unsaved buffer)."""
+    `text` replaces the file's contents (an editor's unsaved buffer);
+    `target` the robot it is for (devices it lacks are E070)."""
     name = shown_name if shown_name is not None else str(path)
     if text is not None:
         source, problem = SourceFile(name, text), None
@@ -74,7 +75,8 @@ def check_file(path: Path, report: Report, shown_name: Optional[str] = None,
     try:
         program = parse(source, diags)
         checked = check(program, diags,
-                        base_dir=path.parent if text is None or path.exists() else None)
+                        base_dir=path.parent if text is None or path.exists() else None,
+                        target=target)
     finally:
         if collecting:
             gc.enable()

@@ -8,10 +8,10 @@ from __future__ import annotations
 from typing import Optional
 
 from ..stdlib import arith, imath
-from ..stdlib.table import AGGREGATES, FUNCTIONS
+from ..stdlib.table import AGGREGATES, CHOICE_READINGS, FUNCTIONS
 from ..stdlib.units import ANGLE, INT
 from ..syntax import ast
-from . import arrays
+from . import arrays, readings
 from .messages import _code, _kind_word, did_you_mean
 from .program import Expr
 
@@ -23,6 +23,8 @@ _MATH_KINDS = {"atan2": (None, ANGLE), "hypot": (None, None), "sqrt": (INT, INT)
 
 def call(self, node: ast.FuncCall) -> Optional[Expr]:
     name = node.name.name
+    if name in CHOICE_READINGS:                 # `seen(red)`: check/readings.py
+        return readings.choice_reading(self, node)
     if name in AGGREGATES or (name in ("min", "max") and len(node.args or ()) == 1):
         return arrays.aggregate(self, node)
     if name not in FUNCTIONS:

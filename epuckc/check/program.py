@@ -117,3 +117,4 @@ class CheckedProgram:
     initial_mode: Optional[str] = None
     variables: dict = field(default_factory=dict)  # name -> VarInfo, in declared order
     const_arrays: dict = field(default_factory=dict)   # name -> its values (check/arrays.py)
+    devices: frozenset = frozenset()   # the devices it uses (stdlib DEVICES)

@@ -9,7 +9,7 @@ from ..stdlib.table import (EVENT_ALIASES, MOTION_ACTIONS, SENSOR_NAMES, STANDAR
                             THRESHOLD_MAX)
 from ..stdlib.units import INT
 from ..syntax import ast
-from . import modes
+from . import devices, modes
 from .messages import _code, _shown, _then, did_you_mean
 from .program import CheckedProgram, ResolvedEvent, ResolvedRule
 
@@ -94,6 +94,8 @@ class Rules:
         if spec is not None and spec.params is None:
             return self._sensor(call, canonical)
         if spec is not None:
+            if not devices.require(self, spec.device, canonical, call.name.span):
+                return None
             params = spec.params
             bound = self._bind(call.name, call.args, params, "event")
             converted = self._convert(bound, params) if bound is not None else None

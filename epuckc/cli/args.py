@@ -121,6 +121,9 @@ def _check_parser(sub):
                                    "(or warnings with --werror), 2 usage or I/O error.")
     p.add_argument("files", nargs="+", metavar="FILE")
     _add_check_options(p)
+    p.add_argument("--target", choices=("host", "dspic", "epuck2"), default="host",
+                   help="the robot it is for: a device the target lacks is an error (E070); "
+                        "host (the simulation) has every device")
     p.set_defaults(run=cmd_check)
 
 
@@ -169,7 +172,8 @@ def _compile_parser(sub):
     p.add_argument("-o", "--output", metavar="OUT.c",
                    help="the C file (default: FILE with .c); `-` is standard output")
     p.add_argument("--target", choices=("host", "dspic", "epuck2"), default="host",
-                   help="the C is the same for every target; accepted for symmetry with build")
+                   help="the robot it is for: a device the target lacks is an error (E070); "
+                        "otherwise the C is the same for every target")
     p.set_defaults(run=cmd_compile)
 
 

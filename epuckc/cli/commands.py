@@ -68,7 +68,7 @@ def cmd_check(args) -> int:
             others += _check_other_file(Path(name), shown)
             continue
         try:
-            check_file(Path(name), report, shown_name=shown)
+            check_file(Path(name), report, shown_name=shown, target=args.target)
         except InputError as exc:
             unreadable = True
             report.diagnostics.append(exc.diagnostic(shown))
@@ -155,7 +155,8 @@ def _load(args, report=None):
     try:
         program = load_program(Path(args.file), report, args.max_actions, args.max_events,
                                shown_name=display_name(args.file),
-                               defines=dict(getattr(args, "defines", None) or ()))
+                               defines=dict(getattr(args, "defines", None) or ()),
+                               target=getattr(args, "target", "host"))
     except (InputError, DefineError) as exc:
         _error(str(exc))
         return None, EXIT_USAGE

@@ -37,10 +37,11 @@ def _program_name(path: Path) -> str:
 def load_program(path: Path, report: Report, max_actions: Optional[int] = None,
                  max_events: Optional[int] = None,
                  shown_name: Optional[str] = None,
-                 defines: Optional[dict] = None) -> Optional[Program]:
+                 defines: Optional[dict] = None, target: str = "host") -> Optional[Program]:
     """A rule file is checked and compiled; a .c file is taken as it is.
     `defines` (NAME -> VALUE text, `-D`) override constants before checking
-    (check/defines.py; DefineError for an unknown name)."""
+    (check/defines.py; DefineError for an unknown name). `target`: the
+    robot it is built for, whose devices the checker knows (E070)."""
     name = _program_name(path)
     shown = shown_name if shown_name is not None else str(path)
     if path.suffix == ".c":
@@ -55,7 +56,7 @@ def load_program(path: Path, report: Report, max_actions: Optional[int] = None,
     if defines:
         from ..check.defines import apply_defines
         text = apply_defines(_read_text(path, shown), defines, shown)
-    result = check_file(path, report, shown_name=shown, text=text)
+    result = check_file(path, report, shown_name=shown, text=text, target=target)
     if result.checked is None:
         return None
     from ..emit.program import emit_program
@@ -71,7 +72,8 @@ def load_program(path: Path, report: Report, max_actions: Optional[int] = None,
     return Program(name, generated.c_text, path.parent, user_files, max_actions, max_events,
                    header_name=generated.header_name, header_text=generated.header_text,
                    inputs=[path] + user_files,
-                   variables=[(v.name, v.init) for v in result.checked.variables.values()])
+                   variables=[(v.name, v.init) for v in result.checked.variables.values()],
+                   devices=result.checked.devices)
 
 
 def write_compiled(program: Program, out):

@@ -65,6 +65,7 @@ CODES = {
     "E061": "array index outside the array, or an array of no (or too many) elements",
     "E062": "an array where one value is wanted, or an index of what is not an array",
     "E063": "`dot` of arrays of different sizes",
+    "E070": "a device the target does not have",
     # warnings
     "W001": "timer rule that can never fire",
     "W002": "sensor rule that can never fire",
@@ -85,6 +86,7 @@ CODES = {
     "W017": "variable never assigned",
     "W020": "a value that can leave its range and saturate",
     "W022": "an array index that can leave the array",
+    "W030": "a value that can leave the range its action carries",
 }
 
 _EXPLANATIONS = Path(__file__).resolve().parent / "explanations"

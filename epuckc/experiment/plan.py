@@ -32,6 +32,9 @@ class Payload:
     files: list                 # (name relative to the program's folder, text)
     variables: list             # (name, initial value)
     digest: str = ""
+    # the devices it reads (stdlib DEVICES; None: not known): only a robot
+    # whose program reads the camera or the ToF sensor gets them in Enki
+    devices: Optional[list] = None
 
     def __post_init__(self):
         h = hashlib.sha256()
@@ -75,7 +78,8 @@ def payload_of(program) -> Payload:
             program.base_dir) else Path(Path(path).name)
         files.append((rel.as_posix(), Path(path).read_text(encoding="utf-8")))
     return Payload(program.name, program.c_text, program.generated, program.header_name,
-                   program.header_text, files, list(program.variables))
+                   program.header_text, files, list(program.variables),
+                   devices=None if program.devices is None else sorted(program.devices))
 
 
 def grid(exp: Experiment) -> list:

@@ -72,8 +72,9 @@ def execute(task) -> RunResult:
     out = RunResult(task.key, task.point, task.seed, dict(task.values))
     try:
         libs = [_robot(task.payloads[i]) for i in task.robot_programs]
+        devices = [task.payloads[i].devices for i in task.robot_programs]
         run = simulate(task.world, libs, task.duration_ms, task.seed, task.pose_ms,
-                       quiet=True, capture=True, timeout_s=task.timeout_s)
+                       quiet=True, capture=True, timeout_s=task.timeout_s, devices=devices)
     except KeyboardInterrupt:
         if not _pool_worker:
             raise

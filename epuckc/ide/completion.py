@@ -147,7 +147,9 @@ def _array_items(analysis: Analysis) -> list:
 def _value_items(analysis: Analysis, kind: Optional[str] = None) -> list:
     """What an expression may name: constants, variables, readings, functions."""
     return (_const_items(analysis, kind) + _var_items(analysis) + _array_items(analysis)
-            + [Completion(r.name, "sensor", f"{r.kind}, {r.lo}..{r.hi}", doc=r.doc)
+            + [Completion(r.name, "sensor", (f"{r.signature}: " if r.param else "")
+                          + f"{r.kind}, {r.lo}..{r.hi}", doc=r.doc,
+                          insert=f"{r.name}(" if r.param else None)
                for r in READINGS]
             + [Completion(name, "function", f"{name}({', '.join(params)})", doc=doc,
                           insert=f"{name}(")

@@ -35,6 +35,7 @@ from ..stdlib.table import STANDARD_ACTIONS, STANDARD_EVENTS
 from ..stdlib.units import round_nearest
 from .exprs import (CONST_PREFIX, ODOMETRY, c_expr, c_int, indexed_arrays, proximity_read,
                     readings_of, var_name, variables_of)
+from . import statements
 from .model import (CAction, CCondition, CConditionWord, CEvent, CEventFunction, CExtern,
                     CExternStruct, CFunction, CProgram, CSequence, CStruct, CVariable)
 
@@ -182,38 +183,9 @@ class _Lowerer:
             return _Primitive("action_enter_mode", param,
                               f"action_enter_mode({void_ref(param)});", text)
         if call.kind == "assign":
-            info = self.program.variables[call.name]
-            self.variables_in_c.add(call.name)
-            index = call.values.get("index")
-            if index is None:
-                readings, head = self.proximity(call.values["value"])
-                return _Primitive(None, "", head + f"rt_assign(&{var_name(call.name)}, "
-                                                   f"{info.index}, "
-                                                   f"{self.expr(call.values['value'], readings=readings)});"
-                                  + (" }" if head else ""), text)
-            if index.constant:      # one element: its own trace id
-                k = index.value
-                return _Primitive(None, "", f"rt_assign(&{var_name(call.name)}[{k}], "
-                                            f"{info.index + k}, "
-                                            f"{self.expr(call.values['value'], index_name=str(k))});",
-                                  text)
-            # the index once, as the element it names (clamped into the array)
-            k = self.expr(index)
-            if not (0 <= index.lo and index.hi < info.size):
-                k = f"rt_index({k}, {info.size})"
-            value = self.expr(call.values["value"], index_name=f"{PREFIX}k")
-            trace_id = f"{info.index} + {PREFIX}k" if info.index else f"{PREFIX}k"
-            return _Primitive(None, "", f"{{ const int {PREFIX}k = {k}; "
-                                        f"rt_assign(&{var_name(call.name)}[{PREFIX}k], "
-                                        f"{trace_id}, {value}); }}", text)
+            return _Primitive(None, "", statements.assignment(self, call), text)
         if call.dynamic:
-            function, ctype, fields = STANDARD_ACTIONS[call.name].dynamic
-            readings, head = self.proximity(_Together(tuple(call.values.values())))
-            values = {name: self.expr(v, readings=readings) for name, v in call.values.items()}
-            init = ", ".join(f.format(**values) for f in fields)
-            return _Primitive(None, "", head + f"{{ {ctype} {PREFIX}arg = {{{init}}}; "
-                                               f"{function}(&{PREFIX}arg); }}"
-                              + (" }" if head else ""), text)
+            return _Primitive(None, "", statements.dynamic_call(self, call), text)
         function = STANDARD_ACTIONS[call.name].runtime if call.kind == "standard" else call.name
         if not call.values:       # stop_motor, exit_main, an extern without parameters...
             return _Primitive(function, "NULL", f"{function}(NULL);", text)
@@ -477,18 +449,6 @@ class _Lowerer:
                             f"{round_nearest(geo.axle_mm * 1000)}L, {geo.steps_per_rev}L")
         return out
 
-    def proximity(self, e) -> tuple:
-        """(readings, C before the statement) for a statement whose value
-        reads several proximity sensors: they are read with one call
-        (`rt_proximity`, the values of this poll) into `epk_p`, rather than
-        one `rt_ir` call each; ({}, "") for fewer than three."""
-        sensors = sorted(proximity_read(e))
-        if len(sensors) < 3:
-            return {}, ""
-        mask = sum(1 << n for n in sensors)
-        return ({f"ir{n}": f"{PREFIX}p[{n}]" for n in sensors},
-                f"{{ const int *{PREFIX}p = rt_proximity(0x{mask:02x}u); ")
-
     def expr(self, e, **options) -> str:
         """The C of an expression; notes whether the program reads the odometry."""
         self.odometry = self.odometry or bool(readings_of(e) & ODOMETRY)
@@ -538,14 +498,6 @@ class _Lowerer:
         for steps in [r.body for r in self.program.rules] + list(self.program.actions.values()):
             names.update(c.name for step in steps for c in step if c.kind == "cancel")
         return names
-
-
-class _Together:
-    """Several expressions as one, for what they read."""
-    op, name = "args", None
-
-    def __init__(self, args):
-        self.args = args
 
 
 def event_flags(rule) -> str:

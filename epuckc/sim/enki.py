@@ -29,10 +29,11 @@ from typing import Optional
 from ..build.common import BuildError, Program, _run_compiler, c_compiler
 
 from ..build.host import compile_objects, host_build_key, runtime_cache_dir, runtime_flags
-from ..base.resources import RUNTIME_CORE, cache_dir, runtime_dir
+from ..base.resources import RUNTIME_CORE, RUNTIME_DEVICES, cache_dir, runtime_dir
 from .world import World, runner_spec
 
-ROBOT_SOURCES = [*RUNTIME_CORE, "host/platform_host.c", "host/epuck_stub.c", "enki/robot_glue.c"]
+ROBOT_SOURCES = [*RUNTIME_CORE, *RUNTIME_DEVICES, "host/platform_host.c", "host/epuck_stub.c",
+                 "host/stub_devices.c", "enki/robot_glue.c"]
 ROBOT_INCLUDES = [".", "epuck_api", "host", "enki"]
 # robot_glue.c's header comment says why each of these is wrapped
 WRAPPED = ["stub_motors_1ms", "stub_pose", "stub_set_geometry", "getenv", "exit"]
@@ -74,7 +75,7 @@ def build_runner() -> Path:
         raise BuildError(ENKI_MISSING)
     rt = runtime_dir()
     h = hashlib.sha256()
-    for rel in ("enki/world_runner.cpp", "enki/enki_bridge.h"):
+    for rel in ("enki/world_runner.cpp", "enki/enki_bridge.h", "enki/world_channel.h"):
         h.update((rt / rel).read_bytes())
     h.update(ENKI_HEADER.read_bytes())
     h.update(" ".join(cxx_compiler() + RUNNER_FLAGS).encode())
@@ -171,13 +172,15 @@ class WorldTimeout(Exception):
 
 def simulate(world: World, libs: list, time_limit_ms: int, seed: int = 1,
              pose_ms: Optional[int] = None, quiet: bool = False, capture: bool = False,
-             timeout_s: Optional[float] = None) -> WorldRun:
+             timeout_s: Optional[float] = None, devices: Optional[list] = None) -> WorldRun:
     """Run the world once: `libs` are the robots' built shared objects, in
     the world's order; Enki's generator is seeded by the world's `seed`,
     robot k's `random` by `seed + k`. `quiet`: the robots print nothing;
     `capture`: the runner's output is kept from stdout and stderr (its last
     line of stderr then says why it failed). After `timeout_s` seconds of wall clock it is
-    killed (WorldTimeout). BuildError when the runner fails."""
+    killed (WorldTimeout). `devices`: each robot's devices its program reads
+    (stdlib DEVICES; None: all), so that only those robots get Enki's
+    camera and the ToF ray. BuildError when the runner fails."""
     runner = build_runner()
     with tempfile.TemporaryDirectory(prefix="epuckc-world-") as tmp:
         tmpdir = Path(tmp)
@@ -194,7 +197,7 @@ def simulate(world: World, libs: list, time_limit_ms: int, seed: int = 1,
                 settings["EPUCK_POSE_MS"] = str(pose_ms)
             if quiet:
                 settings["EPUCK_QUIET"] = "1"
-            entries.append((copy, settings))
+            entries.append((copy, settings, None if devices is None else devices[i]))
         spec = tmpdir / "world.spec"
         spec.write_text(runner_spec(world, entries), encoding="utf-8")
         results_file = tmpdir / "results"
@@ -243,15 +246,16 @@ def run_world(world: World, default_program: Program, load_program, time_limit_m
     text = os.environ.get("EPUCK_SEED", "")
     seed = int(text) if text.isdigit() else 1
     libs = {}
-    robots = []
+    robots, devices = [], []
     for placement in world.robots:
         program = default_program if placement.program is None else load_program(placement.program)
         if id(program) not in libs:
             libs[id(program)] = (program, build_robot(program))
         robots.append(libs[id(program)][1])
+        devices.append(program.devices)
     quiet = os.environ.get("EPUCK_QUIET", "")
     quiet = bool(quiet and quiet != "0")
-    run = simulate(world, robots, time_limit_ms, seed, pose_ms, quiet=quiet)
+    run = simulate(world, robots, time_limit_ms, seed, pose_ms, quiet=quiet, devices=devices)
     if not quiet:
         for r in run.results:
             print(_contact_line(r))

@@ -18,7 +18,12 @@ The drawing is made of named pieces that tests and tools can find again:
 `g.robot-run` (`data-robot`) with `polyline.path`, `circle.firing`
 (`data-t-ms`, `data-label`: the rule's `file:line`; `text.firing-label`),
 `polygon.mode-change`, `circle.led-change`, `path.contact`,
-`g.final-pose` (with the LEDs' `g.leds`: leds.py); `g#timeline` with the
+`g.final-pose` (with the LEDs' `g.leds`: leds.py); `g.messages` with a
+`line.message` (`data-t-ms`, `data-from`, `data-to`) from sender to
+receiver for each pair that exchanged messages in each second; with more
+than MANY_ROBOTS robots each robot's labels are in its `g.labels`, shown
+when the pointer is over the robot's run (or, in the replay, for the robot
+selected) and the paths are pale; `g#timeline` with the
 bands of who holds the motors and when the robot is still
 (`g.timeline-band`: timeline.py) and `g.timeline-row` (`data-label`: a
 rule's `file:line`, or `mode`, `led`, `contact`) holding `line.tick`
@@ -36,6 +41,7 @@ import svgwrite
 
 from . import leds as leds_mod
 from . import timeline as bands
+from .world import COLOURS as WORLD_COLOURS
 
 MAP_WIDTH_PX = 640.0
 MAP_MAX_HEIGHT_PX = 520.0
@@ -81,12 +87,20 @@ class RobotRun:
     marks: list = field(default_factory=list)
     leds: list = field(default_factory=list)        # (t_ms, ring, body, front): leds.py
     holds: list = field(default_factory=list)       # (t_ms, rule label or None, name)
+    # messages it received: (t_ms, sender's x, y, its own x, y, sender, value)
+    messages: list = field(default_factory=list)
 
 
 SHOWN_CHARS = 24        # a label on the map; the timeline and the tooltip say it all
 # A rule that fires more often than this in a run (`every 10 ms`: continuous
 # control) has no markers on the map and one band on the timeline.
 DENSE = 50
+# More robots than this: labels on demand (hover, selection), pale paths.
+MANY_ROBOTS = 10
+MESSAGE_BUCKET_MS = 1000    # one line per pair of robots per second
+MESSAGE_COLOUR = "#7b1fa2"
+_MANY_CSS = ("g.robot-run g.labels { display: none; } "
+             "g.robot-run:hover g.labels, g.robot-run.selected g.labels { display: inline; }")
 
 
 def rule_label(name: str) -> str:
@@ -148,6 +162,9 @@ def parse_trace(text: str, source: str = "trace"):
             run.leds.append(leds_mod.led_state(rec))
             run.marks.append(Mark("led", t, f"{rec.get('name', 'LED')} {state} (ring "
                                   f"{run.leds[-1][1]})", x, y))
+        elif rec["kind"] == "message" and "from_x_mm" in rec:
+            run.messages.append((t, float(rec["from_x_mm"]), float(rec["from_y_mm"]), x, y,
+                                 str(rec.get("from", "")), rec.get("value")))
         elif rec["kind"] == "motors":
             owner = str(rec.get("name", ""))
             run.holds.append((t, None if owner == "free" else rule_label(owner), owner))
@@ -243,6 +260,41 @@ def _nice_step(span_s: float) -> float:
     return 3600 * math.ceil(span_s / 3600 / 12)
 
 
+def _fill(obstacle: dict) -> str:
+    """An obstacle's colour on the map: its world colour (what the camera
+    sees), or the map's brown for the default grey."""
+    colour = obstacle.get("colour", "grey")
+    if colour == "grey" or colour not in WORLD_COLOURS:
+        return "#b0a08a"
+    return "#%02x%02x%02x" % WORLD_COLOURS[colour]
+
+
+def _draw_messages(dwg, runs: list, px):
+    """A line from sender to receiver for each pair of robots that
+    exchanged messages, once per MESSAGE_BUCKET_MS (where they were at the
+    first), the tooltip naming the messages."""
+    g = dwg.g(class_="messages")
+    seen = {}
+    for run in runs:
+        for t, fx, fy, x, y, sender, value in run.messages:
+            key = (sender, run.name, t // MESSAGE_BUCKET_MS)
+            if key in seen:
+                seen[key][1] += 1
+                continue
+            line = dwg.line(start=px(fx, fy), end=px(x, y), class_="message",
+                            stroke=MESSAGE_COLOUR, stroke_width=0.8, stroke_opacity=0.35)
+            line["data-t-ms"] = str(t)
+            line["data-from"] = sender
+            line["data-to"] = run.name
+            seen[key] = [line, 1, t, value]
+    for (sender, to, _), (line, count, t, value) in seen.items():
+        line.set_desc(title=f"{sender} to {to}: {count} message{'s' if count > 1 else ''} "
+                            f"from {t} ms (the first: {value})")
+        g.add(line)
+    if seen:
+        dwg.add(g)
+
+
 def plot_trace(text: str, title: str = "", source: str = "trace") -> str:
     """The SVG picture of a trace, as text (deterministic)."""
     world, runs, end_ms = parse_trace(text, source)
@@ -300,13 +352,13 @@ def plot_trace(text: str, title: str = "", source: str = "trace") -> str:
         cx, cy = px(b["x_mm"], b["y_mm"])
         w, h = b["length_mm"] * scale, b["width_mm"] * scale
         rect = dwg.rect(insert=(_r(cx - w / 2), _r(cy - h / 2)), size=(_r(w), _r(h)), class_="box",
-                        fill="#b0a08a", stroke="#6b5b45")
+                        fill=_fill(b), stroke="#6b5b45")
         if b.get("angle_deg"):
             rect.rotate(-b["angle_deg"], center=(cx, cy))     # +y is up in the world
         g.add(rect)
     for c in (world or {}).get("cylinders", []):
         g.add(dwg.circle(center=px(c["x_mm"], c["y_mm"]), r=_r(c["radius_mm"] * scale),
-                         class_="cylinder", fill="#b0a08a", stroke="#6b5b45"))
+                         class_="cylinder", fill=_fill(c), stroke="#6b5b45"))
     # a scale bar in the map's lower left corner
     bar_mm = _scale_length(scale)
     bx0, by0 = MARGIN_PX + 8, _r(top + map_h - 10)
@@ -320,6 +372,10 @@ def plot_trace(text: str, title: str = "", source: str = "trace") -> str:
                      font_size=9, class_="scale-label"))
     g.add(bar)
     dwg.add(g)
+    many = len(runs) > MANY_ROBOTS
+    if many:
+        dwg.defs.add(dwg.style(_MANY_CSS))
+    _draw_messages(dwg, runs, px)
 
     # -- each robot's path, firings, marks and final pose: the robots' names
     # are placed first, so that no label covers them
@@ -336,10 +392,15 @@ def plot_trace(text: str, title: str = "", source: str = "trace") -> str:
             box = (_r(left), _r(cy + 4 - 10), w, 13.0, run.name)     # 10 px text
             name_boxes[run.name] = box
             placed_labels.append(box)
+    base_labels = list(placed_labels)
     for i, run in enumerate(runs):
         colour = COLOURS[i % len(COLOURS)]
         rg = dwg.g(class_="robot-run")
         rg["data-robot"] = run.name or "robot"
+        # many robots: each one's labels on demand, laid out among its own
+        labels = dwg.g(class_="labels") if many else rg
+        if many:
+            placed_labels = list(base_labels)
         points = []
         for _, x, y, _ in run.poses:
             p = px(x, y)
@@ -347,8 +408,11 @@ def plot_trace(text: str, title: str = "", source: str = "trace") -> str:
                 points.append(p)
         if len(points) == 1:
             points.append(points[0])
-        rg.add(dwg.polyline(points, class_="path", fill="none", stroke=colour, stroke_width=1.5,
-                            stroke_linejoin="round"))
+        path = dwg.polyline(points, class_="path", fill="none", stroke=colour, stroke_width=1.5,
+                            stroke_linejoin="round")
+        if many:
+            path["stroke-opacity"] = 0.35
+        rg.add(path)
         sx, sy = px(run.poses[0][1], run.poses[0][2])
         rg.add(dwg.circle(center=(sx, sy), r=3, class_="start", fill="white", stroke=colour))
         counts: dict = {}
@@ -374,7 +438,7 @@ def plot_trace(text: str, title: str = "", source: str = "trace") -> str:
                              font_family="sans-serif", font_size=9, fill="#333")
                 t["data-t-ms"] = str(f.t_ms)
                 t["data-label"] = f.label
-                rg.add(t)
+                labels.add(t)
         for m in run.marks:
             mx, my = px(m.x, m.y)
             if m.kind == "mode":
@@ -398,7 +462,7 @@ def plot_trace(text: str, title: str = "", source: str = "trace") -> str:
                     t = dwg.text(m.text, insert=(box[0], _r(box[1] + BASELINE)),
                                  class_=f"{m.kind}-label", font_family="sans-serif", font_size=9,
                                  fill="#333")
-                    rg.add(t)
+                    labels.add(t)
         _, fx, fy, fh = run.poses[-1]
         cx, cy = px(fx, fy)
         fin = dwg.g(class_="final-pose")
@@ -419,6 +483,8 @@ def plot_trace(text: str, title: str = "", source: str = "trace") -> str:
             fin.add(dwg.text(run.name, insert=(box[0], _r(box[1] + 10)), font_family="sans-serif",
                              font_size=10, class_="robot-name"))
         rg.add(fin)
+        if many:
+            rg.add(labels)
         dwg.add(rg)
 
     # -- timeline

@@ -5,7 +5,13 @@ slider, and at the cursor the rules that fired last and the variables'
 values (every declared variable from 0 s with its initial value, when the
 run passes them, then the trace's `set` records); each robot's LEDs (ring,
 body, front: leds.py) lit as they were at the cursor. `#t=MS` after the
-page's address opens it at that moment, `#play` plays it.
+page's address opens it at that moment (`#t=MS&select=NAME` with that
+robot selected), `#play` plays it. Each message
+delivered in the last MESSAGE_SHOWN_MS is a line from its sender to its
+receiver, fading with its age. With more than MANY_ROBOTS robots the page
+stays readable: each robot draws only its trail of the last TRAIL_MS over
+its pale path, and a robot's rule labels show while the pointer is over it
+or when it is selected (a click on the moving robot; again: unselected).
 
 The page carries the trace's poses, firings and variable changes as JSON
 and a small script; the picture's map frame and timeline axis come from
@@ -21,7 +27,8 @@ import re
 from typing import Optional
 
 from .leds import BODY_ON, FRONT_ON, OFF_STROKE, RING_ON, local_geometry
-from .plot import COLOURS, DEFAULT_ROBOT_RADIUS_MM, parse_trace, plot_trace
+from .plot import (COLOURS, DEFAULT_ROBOT_RADIUS_MM, MANY_ROBOTS, MESSAGE_COLOUR, parse_trace,
+                   plot_trace)
 
 _PAGE = """<!doctype html>
 <html lang="en"><head><meta charset="utf-8"><title>{title}</title>
@@ -31,6 +38,7 @@ body {{ font-family: sans-serif; margin: 16px; color: #222; }}
 #slider {{ width: 480px; }}
 #panel {{ display: flex; gap: 32px; font-size: 13px; }}
 #panel ul {{ margin: 4px 0; padding-left: 18px; }}
+.replay-robot {{ cursor: pointer; }}
 </style></head>
 <body data-errors="">
 <div id="controls"><button id="play" type="button">play</button>
@@ -51,7 +59,18 @@ window.addEventListener("error", e => {{ document.body.dataset.errors += e.messa
   const [tLeft, tRight, span, tTop, tBottom] = document.getElementById("timeline").dataset.axis
     .split(" ").map(Number);
   const px = (x, y) => [margin + (x - x0) * scale, top + (y1 - y) * scale];
+  const runs = new Map([...svg.querySelectorAll("g.robot-run")].map(e => [e.dataset.robot, e]));
+  const many = run.robots.length > {many};
+  const layer = document.createElementNS(NS, "g");
+  layer.setAttribute("id", "replay-messages"); svg.appendChild(layer);
   const robots = run.robots.map(r => {{
+    let trail = null;
+    if (many) {{
+      trail = document.createElementNS(NS, "polyline");
+      trail.setAttribute("class", "trail"); trail.setAttribute("fill", "none");
+      trail.setAttribute("stroke", r.colour); trail.setAttribute("stroke-width", "2");
+      svg.appendChild(trail);
+    }}
     const g = document.createElementNS(NS, "g");
     g.setAttribute("class", "replay-robot");
     g.dataset.robot = r.name;
@@ -76,8 +95,41 @@ window.addEventListener("error", e => {{ document.body.dataset.errors += e.messa
       const e = dot(x, y, geo.led_r, "led ring-led"); e.dataset.led = i; return e;
     }});
     svg.appendChild(g);
-    return {{ poses: r.poses, leds: r.leds, g: g, body: body, front: front, ring: ring }};
+    // a click selects the robot: its labels stay shown
+    g.addEventListener("click", () => {{
+      const e = runs.get(r.name); if (!e) return;
+      e.classList.toggle("selected"); g.classList.toggle("selected", e.classList.contains("selected"));
+    }});
+    return {{ poses: r.poses, leds: r.leds, g: g, body: body, front: front, ring: ring,
+             trail: trail }};
   }});
+  function trailAt(poses, t) {{
+    const pts = [];
+    for (const p of poses) {{
+      if (p[0] > t) break;
+      if (p[0] >= t - {trail_ms}) pts.push(px(p[1], p[2]).map(v => v.toFixed(1)).join(","));
+    }}
+    return pts.join(" ");
+  }}
+  function showMessages(t) {{
+    let lo = 0, hi = run.messages.length;
+    while (lo < hi) {{ const mid = (lo + hi) >> 1; if (run.messages[mid][0] <= t - {shown_ms}) lo = mid + 1; else hi = mid; }}
+    const recent = [];
+    for (let i = lo; i < run.messages.length && run.messages[i][0] <= t; i++) recent.push(run.messages[i]);
+    while (layer.childNodes.length < recent.length) {{
+      const l = document.createElementNS(NS, "line");
+      l.setAttribute("class", "replay-message"); l.setAttribute("stroke", "{message_colour}");
+      l.setAttribute("stroke-width", "1.5"); layer.appendChild(l);
+    }}
+    while (layer.childNodes.length > recent.length) layer.removeChild(layer.lastChild);
+    recent.forEach((m, i) => {{
+      const l = layer.childNodes[i], [ax, ay] = px(m[1], m[2]), [bx, by] = px(m[3], m[4]);
+      l.setAttribute("x1", ax.toFixed(1)); l.setAttribute("y1", ay.toFixed(1));
+      l.setAttribute("x2", bx.toFixed(1)); l.setAttribute("y2", by.toFixed(1));
+      l.setAttribute("stroke-opacity", (1 - (t - m[0]) / {shown_ms}).toFixed(2));
+      l.dataset.from = m[5]; l.dataset.to = m[6];
+    }});
+  }}
   // the LEDs at the final pose are the end's: the moving robots show them at the cursor
   svg.querySelectorAll(".final-pose .leds").forEach(e => e.setAttribute("display", "none"));
   function light(e, on, colour) {{
@@ -95,7 +147,9 @@ window.addEventListener("error", e => {{ document.body.dataset.errors += e.messa
     return poses[lo];
   }}
   function show(t) {{
+    showMessages(t);
     for (const r of robots) {{
+      if (r.trail) r.trail.setAttribute("points", trailAt(r.poses, t));
       const [, x, y, heading] = poseAt(r.poses, t);
       const [cx, cy] = px(x, y);
       r.g.setAttribute("transform", `translate(${{cx.toFixed(1)}} ${{cy.toFixed(1)}}) rotate(${{(-heading).toFixed(1)}})`);
@@ -142,8 +196,12 @@ window.addEventListener("error", e => {{ document.body.dataset.errors += e.messa
   }});
   slider.addEventListener("input", () => show(Number(slider.value)));
   // #t=MS shows that moment, #play plays from the start
-  const at = /^#t=([0-9]+)$/.exec(location.hash);
+  const at = /^#t=([0-9]+)(?:&select=([A-Za-z0-9_-]+))?$/.exec(location.hash);
   if (at) slider.value = Math.min(Number(at[1]), run.end);
+  if (at && at[2]) {{        // #t=MS&select=NAME: that robot selected
+    const i = run.robots.findIndex(r => r.name === at[2]);
+    if (i >= 0) robots[i].g.dispatchEvent(new Event("click"));
+  }}
   show(Number(slider.value));
   if (location.hash === "#play") play();
 }})();
@@ -153,6 +211,8 @@ window.addEventListener("error", e => {{ document.body.dataset.errors += e.messa
 # Virtual time runs this many times faster than real time: a minute's run
 # plays in six seconds.
 SPEED = 10.0
+MESSAGE_SHOWN_MS = 500      # a message's line fades out over this
+TRAIL_MS = 5000             # with many robots, each one's trail
 
 
 def replay_html(text: str, title: str = "", source: str = "trace",
@@ -161,13 +221,15 @@ def replay_html(text: str, title: str = "", source: str = "trace",
     robot's declared variables by its name ("" without a world), as
     (name, initial value) in declared order: the panel lists them from 0 s."""
     world, runs, end_ms = parse_trace(text, source)
-    robots, firings, sets = [], [], []
+    robots, firings, sets, messages = [], [], [], []
     for i, run in enumerate(runs):
         robots.append({"name": run.name, "colour": COLOURS[i % len(COLOURS)],
                        "poses": [[t, round(x, 1), round(y, 1), round(h, 1)]
                                  for t, x, y, h in run.poses],
                        "leds": [list(state) for state in run.leds]})
         firings += [[f.t_ms, run.name, f.shown] for f in run.firings]
+        messages += [[t, round(fx, 1), round(fy, 1), round(x, 1), round(y, 1), sender, run.name]
+                     for t, fx, fy, x, y, sender, _ in run.messages]
         sets += [[0, run.name, name, value] for name, value in (variables or {}).get(run.name, ())]
     for line in text.splitlines():
         if '"set"' in line:
@@ -176,14 +238,17 @@ def replay_html(text: str, title: str = "", source: str = "trace",
                 sets.append([int(rec["t_ms"]), str(rec.get("robot", "")), str(rec["var"]),
                              rec["value"]])
     firings.sort(key=lambda f: f[0])
+    messages.sort(key=lambda m: m[0])
     sets.sort(key=lambda s: s[0])       # stable: the declared values first
     radius = float((world or {}).get("robot_radius_mm", DEFAULT_ROBOT_RADIUS_MM))
     svg = plot_trace(text, title=title, source=source)
     scale = float(re.search(r'data-frame="\S+ \S+ (\S+) ', svg).group(1))
-    data = {"robots": robots, "firings": firings, "sets": sets, "end": end_ms, "speed": SPEED,
+    data = {"robots": robots, "firings": firings, "sets": sets, "messages": messages,
+            "end": end_ms, "speed": SPEED,
             "radius": radius, "leds": local_geometry(max(radius * scale, 3.0))}
     payload = json.dumps(data, separators=(",", ":")).replace("</", "<\\/")
     svg = svg[svg.index("<svg"):]
     return _PAGE.format(title=html.escape(title or "epuckc replay"), end=end_ms, svg=svg,
                         data=payload, ring_on=RING_ON, front_on=FRONT_ON, body_on=BODY_ON,
-                        off_stroke=OFF_STROKE)
+                        off_stroke=OFF_STROKE, many=MANY_ROBOTS, trail_ms=TRAIL_MS,
+                        shown_ms=MESSAGE_SHOWN_MS, message_colour=MESSAGE_COLOUR)

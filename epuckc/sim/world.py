@@ -6,12 +6,14 @@ angles `deg`, and a comma may separate the two coordinates of a point:
     arena 120 cm x 80 cm          # walls around the floor; (0, 0) is its bottom-left corner
     arena none                    # open ground, no walls (the default)
     box at 40 cm, 30 cm size 20 cm x 5 cm angle 30 deg
-    cylinder at 90 cm, 50 cm radius 6 cm
-    robot at 20 cm, 20 cm heading 45 deg
+    cylinder at 90 cm, 50 cm radius 6 cm colour red
+    robot at 20 cm, 20 cm heading 45 deg colour blue
     robot bob at 60 cm, 60 cm heading 180 deg program wall_follow.epk
     seed 7                        # Enki's random generator (default 1)
     noise 5 %                     # wheel speed noise, +- (default 5 %, Enki's e-puck)
     step 10 ms                    # physics step (default 10 ms)
+    messages range 22.5 cm loss 5 % interval 100 ms emitter 60 deg receiver 60 deg
+                                  # the IR message channel (these are the defaults)
 
 docs/world.md is the reference. `parse_world` returns a `World` in
 millimetres and degrees, or raises `WorldError` with `file:line:col: error:
@@ -31,7 +33,26 @@ LENGTH_UNITS = {"mm": 1.0, "cm": 10.0, "m": 1000.0}
 MAX_ROBOTS = 1000
 MAX_LENGTH_MM = 100_000.0       # 100 m
 NAME_RE = re.compile(r"[A-Za-z_][A-Za-z0-9_-]*\Z")
-KEYWORDS = {"at", "size", "x", "angle", "height", "radius", "heading", "program", "none"}
+KEYWORDS = {"at", "size", "x", "angle", "height", "radius", "heading", "program", "none",
+            "range", "loss", "interval", "emitter", "receiver", "range_noise", "colour"}
+# What the camera sees of each colour a world may give (r, g, b, 0..255):
+# the six the camera tells apart (stdlib COLOURS) and three it does not.
+COLOURS = {"red": (230, 30, 30), "yellow": (230, 220, 40), "green": (40, 190, 60),
+           "cyan": (40, 200, 210), "blue": (40, 70, 220), "magenta": (210, 40, 200),
+           "white": (240, 240, 240), "grey": (128, 128, 128), "black": (20, 20, 20)}
+DEFAULT_COLOUR = "grey"         # walls, boxes, cylinders and robots without one
+
+
+@dataclass
+class Messages:
+    """The IR message channel (runtime_c/enki/world_channel.h); the defaults
+    and where they come from are in docs/world.md."""
+    range_mm: float = 225.0
+    loss_percent: float = 5.0
+    interval_ms: int = 100
+    emitter_deg: float = 60.0
+    receiver_deg: float = 60.0
+    range_noise_percent: float = 10.0
 
 
 class WorldError(Exception):
@@ -47,6 +68,7 @@ class Box:
     angle_deg: float = 0.0
     height_mm: float = DEFAULT_HEIGHT_MM
     line: int = 0
+    colour: str = DEFAULT_COLOUR
 
 
 @dataclass
@@ -56,6 +78,7 @@ class Cylinder:
     radius_mm: float
     height_mm: float = DEFAULT_HEIGHT_MM
     line: int = 0
+    colour: str = DEFAULT_COLOUR
 
 
 @dataclass
@@ -66,6 +89,7 @@ class RobotPlacement:
     heading_deg: float = 0.0
     program: Optional[Path] = None      # None: the program given on the command line
     line: int = 0
+    colour: str = DEFAULT_COLOUR
 
 
 @dataclass
@@ -79,6 +103,8 @@ class World:
     seed: int = 1
     noise_percent: float = 5.0
     step_ms: int = 10
+    messages: Messages = field(default_factory=Messages)
+    wall_colour: str = DEFAULT_COLOUR
 
     @property
     def walled(self) -> bool:
@@ -90,19 +116,26 @@ class World:
             return round(float(v), 1)
         return {
             "kind": "world",
-            "arena": ({"width_mm": r1(self.width_mm), "height_mm": r1(self.height_mm)}
-                      if self.walled else None),
+            "arena": ({"width_mm": r1(self.width_mm), "height_mm": r1(self.height_mm),
+                       "colour": self.wall_colour} if self.walled else None),
             "boxes": [{"x_mm": r1(b.x_mm), "y_mm": r1(b.y_mm), "length_mm": r1(b.length_mm),
-                       "width_mm": r1(b.width_mm), "angle_deg": r1(b.angle_deg)}
-                      for b in self.boxes],
-            "cylinders": [{"x_mm": r1(c.x_mm), "y_mm": r1(c.y_mm), "radius_mm": r1(c.radius_mm)}
-                          for c in self.cylinders],
+                       "width_mm": r1(b.width_mm), "angle_deg": r1(b.angle_deg),
+                       "colour": b.colour} for b in self.boxes],
+            "cylinders": [{"x_mm": r1(c.x_mm), "y_mm": r1(c.y_mm), "radius_mm": r1(c.radius_mm),
+                           "colour": c.colour} for c in self.cylinders],
             "robots": [{"name": r.name, "x_mm": r1(r.x_mm), "y_mm": r1(r.y_mm),
-                        "heading_deg": r1(r.heading_deg)} for r in self.robots],
+                        "heading_deg": r1(r.heading_deg), "colour": r.colour}
+                       for r in self.robots],
             "robot_radius_mm": ROBOT_RADIUS_MM,
             "seed": self.seed,
             "noise_percent": self.noise_percent,
             "step_ms": self.step_ms,
+            "messages": {"range_mm": r1(self.messages.range_mm),
+                         "loss_percent": self.messages.loss_percent,
+                         "interval_ms": self.messages.interval_ms,
+                         "emitter_deg": self.messages.emitter_deg,
+                         "receiver_deg": self.messages.receiver_deg,
+                         "range_noise_percent": self.messages.range_noise_percent},
         }
 
 
@@ -264,7 +297,7 @@ def _parse_line(world: World, path: Path, shown: str, lineno: int, raw: str, see
         return
     head = ln.next("an item")
     kind = head.text.lower() if head.number is None else ""
-    if kind in ("arena", "seed", "noise", "step"):
+    if kind in ("arena", "seed", "noise", "step", "messages"):
         if kind in seen:
             raise ln.error(f"a second `{kind}` line (the first is line {seen[kind]})", head,
                            "a world has one of each; delete one")
@@ -276,6 +309,8 @@ def _parse_line(world: World, path: Path, shown: str, lineno: int, raw: str, see
             world.width_mm = ln.length("arena's width", positive=True)
             ln.expect("x", "arena 120 cm x 80 cm")
             world.height_mm = ln.length("arena's height", positive=True)
+            if ln.keyword("colour"):
+                world.wall_colour = _colour(ln)
     elif kind == "box":
         ln.expect("at", "box at 40 cm, 30 cm size 20 cm x 5 cm")
         x, y = ln.point()
@@ -289,6 +324,8 @@ def _parse_line(world: World, path: Path, shown: str, lineno: int, raw: str, see
                 box.angle_deg = ln.angle()
             elif ln.keyword("height"):
                 box.height_mm = ln.length("box's height", positive=True)
+            elif ln.keyword("colour"):
+                box.colour = _colour(ln)
             else:
                 ln.end()
         world.boxes.append(box)
@@ -297,9 +334,13 @@ def _parse_line(world: World, path: Path, shown: str, lineno: int, raw: str, see
         x, y = ln.point()
         ln.expect("radius", "cylinder at 90 cm, 50 cm radius 6 cm")
         cyl = Cylinder(x, y, ln.length("radius", positive=True), line=lineno)
-        if ln.keyword("height"):
-            cyl.height_mm = ln.length("cylinder's height", positive=True)
-        ln.end()
+        while not ln.at_end():
+            if ln.keyword("height"):
+                cyl.height_mm = ln.length("cylinder's height", positive=True)
+            elif ln.keyword("colour"):
+                cyl.colour = _colour(ln)
+            else:
+                ln.end()
         world.cylinders.append(cyl)
     elif kind == "robot":
         name = f"r{len(world.robots) + 1}"
@@ -320,6 +361,8 @@ def _parse_line(world: World, path: Path, shown: str, lineno: int, raw: str, see
         while not ln.at_end():
             if ln.keyword("heading"):
                 robot.heading_deg = ln.angle()
+            elif ln.keyword("colour"):
+                robot.colour = _colour(ln)
             elif ln.keyword("program"):
                 ptok = ln.next("a program file (.epk or .c)")
                 program = Path(ptok.text)
@@ -351,10 +394,60 @@ def _parse_line(world: World, path: Path, shown: str, lineno: int, raw: str, see
         if value != int(value) or not 1 <= value <= 100:
             raise ln.error("the physics step is a whole number of ms from 1 to 100", tok)
         world.step_ms = int(value)
+    elif kind == "messages":
+        _messages(world.messages, ln)
     else:
         raise ln.error(f"unknown item `{head.text}`", head,
-                       "a line starts with arena, box, cylinder, robot, seed, noise or step")
+                       "a line starts with arena, box, cylinder, robot, seed, noise, step or "
+                       "messages")
     ln.end()
+
+
+def _colour(ln: _Line) -> str:
+    tok = ln.next("a colour")
+    name = tok.text.lower()
+    if tok.number is not None or name not in COLOURS:
+        raise ln.error(f"`{tok.text}` is not a colour of a world", tok,
+                       "the colours are " + ", ".join(COLOURS))
+    return name
+
+
+def _messages(m: Messages, ln: _Line):
+    """`messages [range L] [loss P %] [interval T ms] [emitter A deg]
+    [receiver A deg] [range_noise P %]`, any of them, in any order."""
+    example = "messages range 22.5 cm loss 5 % interval 100 ms"
+    if ln.at_end():
+        raise ln.error("`messages` needs a setting: range, loss, interval, emitter, receiver "
+                       "or range_noise", None, f"for example: {example}")
+    while not ln.at_end():
+        tok = ln.peek()
+        if ln.keyword("range"):
+            m.range_mm = ln.length("message range", positive=True)
+        elif ln.keyword("loss") or ln.keyword("range_noise"):
+            value = ln._quantity({"%": 1.0}, "percentage", "5 %")
+            if not 0 <= value <= 100:
+                raise ln.error(f"the {tok.text} is from 0 % to 100 %", tok)
+            if tok.text.lower() == "loss":
+                m.loss_percent = value
+            else:
+                m.range_noise_percent = value
+        elif ln.keyword("interval"):
+            value = ln._quantity({"ms": 1.0, "s": 1000.0}, "duration", "100 ms")
+            if value != int(value) or not 1 <= value <= 60_000:
+                raise ln.error("the interval is a whole number of ms from 1 to 60000", tok)
+            m.interval_ms = int(value)
+        elif ln.keyword("emitter") or ln.keyword("receiver"):
+            value = ln.angle()
+            if not 0 < value <= 360:
+                raise ln.error(f"the {tok.text} cone's width is from 0 to 360 deg", tok)
+            if tok.text.lower() == "emitter":
+                m.emitter_deg = value
+            else:
+                m.receiver_deg = value
+        else:
+            raise ln.error(f"unknown setting `{tok.text}` of messages", tok,
+                           "the settings are range, loss, interval, emitter, receiver and "
+                           f"range_noise, e.g. {example}")
 
 
 def _check_placement(world: World, lines: list, shown: str) -> list:
@@ -416,30 +509,47 @@ def _box_distance(b: Box, x: float, y: float) -> float:
     return math.hypot(ox, oy)
 
 
+def _rgb(colour: str) -> str:
+    """A colour as Enki's components, 0..1."""
+    return " ".join(repr(round(v / 255, 6)) for v in COLOURS[colour])
+
+
 def runner_spec(world: World, robots: list) -> str:
     """The world for runtime_c/enki/world_runner.cpp: lengths in cm, angles
-    in radians. `robots` gives, in the world's order, (library path,
-    {setting: value}) for each robot."""
+    in radians, colours as r g b in 0..1. `robots` gives, in the world's
+    order, (library path, {setting: value}[, devices]) for each robot:
+    `devices` (stdlib DEVICES; None or left out: all) says which of the
+    costly ones it reads, "camera" (Enki's camera on its body) and "tof"
+    (the distance ray, cast at every step)."""
     def f(v: float) -> str:
         return repr(float(v))
     out = []
     if world.walled:
-        out.append(f"arena square {f(world.width_mm / 10)} {f(world.height_mm / 10)}")
+        out.append(f"arena square {f(world.width_mm / 10)} {f(world.height_mm / 10)} "
+                   f"{_rgb(world.wall_colour)}")
     else:
         out.append("arena none")
     out.append(f"seed {world.seed}")
     out.append(f"noise {f(world.noise_percent / 100)}")
     out.append(f"step_ms {world.step_ms}")
+    m = world.messages
+    out.append(f"messages {f(m.range_mm / 10)} {f(m.loss_percent / 100)} "
+               f"{f(math.radians(m.emitter_deg))} {f(math.radians(m.receiver_deg))} "
+               f"{f(m.range_noise_percent / 100)} {m.interval_ms}")
     for b in world.boxes:
         out.append(f"box {f(b.x_mm / 10)} {f(b.y_mm / 10)} {f(b.length_mm / 10)} "
-                   f"{f(b.width_mm / 10)} {f(math.radians(b.angle_deg))} {f(b.height_mm / 10)}")
+                   f"{f(b.width_mm / 10)} {f(math.radians(b.angle_deg))} {f(b.height_mm / 10)} "
+                   f"{_rgb(b.colour)}")
     for c in world.cylinders:
         out.append(f"cylinder {f(c.x_mm / 10)} {f(c.y_mm / 10)} {f(c.radius_mm / 10)} "
-                   f"{f(c.height_mm / 10)}")
-    for placement, (lib, settings) in zip(world.robots, robots):
+                   f"{f(c.height_mm / 10)} {_rgb(c.colour)}")
+    for placement, (lib, settings, *rest) in zip(world.robots, robots):
+        devices = rest[0] if rest and rest[0] is not None else ("camera", "tof")
         out.append(f"robot {placement.name} {f(placement.x_mm / 10)} {f(placement.y_mm / 10)} "
                    f"{f(math.radians(placement.heading_deg))}")
         out.append(f"lib {lib}")
+        out.append(f"colour {_rgb(placement.colour)}")
+        out.extend(device for device in ("camera", "tof") if device in devices)
         for name, value in settings.items():
             out.append(f"setting {name} {value}")
     return "\n".join(out) + "\n"

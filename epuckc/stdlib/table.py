@@ -86,6 +86,7 @@ class ActionSpec:
     # runs) becomes: (function, struct, fields) with the values in their
     # natural units (mm, steps/s, deg); None: its arguments must be fixed
     dynamic: Optional[tuple] = None
+    device: str = ""          # the device it needs (DEVICES); "": every e-puck has it
 
     @property
     def signature(self) -> str:
@@ -108,6 +109,7 @@ class EventSpec:
     # written as a rule's head of its own (`when COND`, `every D`, `after D`),
     # not `on NAME(...)`
     head: bool = False
+    device: str = ""          # the device it needs (DEVICES)
 
     @property
     def signature(self) -> str:
@@ -117,6 +119,26 @@ class EventSpec:
             return f"{self.name}(irN > T, irM < T, ...)"
         return signature(self.name, self.params)
 
+
+# The devices not every target has, what they are in words, and the targets
+# that have each: the checker reports a standard name that needs a device
+# its target lacks [E070] (never a link error). `host` is the simulation
+# (the stub harness and Enki worlds), which models them all.
+DEVICES = {
+    "messages": "IR messages between robots (libIrcom: `ircomSend`, `ircomPopMessage`)",
+    "tof": "the time-of-flight distance sensor (VL53L0X)",
+    "camera": "the colour camera (`e_poxxxx`; the e-puck2's po8030 through `dcmi`)",
+}
+TARGET_DEVICES = {
+    "host": frozenset(DEVICES),
+    # the e-puck library the dspic project builds with has no IR messaging
+    # (libIrcom is a library apart) and the e-puck has no ToF sensor
+    "dspic": frozenset({"camera"}),
+    "epuck2": frozenset({"messages", "tof", "camera"}),
+}
+TARGET_NAMES = {"host": "the simulation (host)", "dspic": "the e-puck (dspic)",
+                "epuck2": "the e-puck2 (epuck2)"}
+MESSAGE_MAX = 255           # ircomSend carries one byte (IRCOM_WORDSIZE 8)
 
 _SPEED_RANGE = "-max_speed..max_speed (1000 steps/s on the e-puck) [E030]"
 _STEPS_RANGE = "a 16-bit int of motor steps [E034]"
@@ -145,7 +167,18 @@ KEYS = Choices("key", (
     Choice("chan_up", "32", "channel up"),
     Choice("chan_down", "33", "channel down"),
 ), numbers=(0, 9))
-CHOICES = (LEDS, SOUNDS, KEYS)
+# The colours the camera tells apart (runtime_c/rt_camera.c, rt_colour: one
+# classifier on every target; docs/runtime.md gives its thresholds).
+COLOURS = Choices("colour", (
+    Choice("red", "RT_RED", "hue 330..30 degrees"),
+    Choice("yellow", "RT_YELLOW", "hue 30..90"),
+    Choice("green", "RT_GREEN", "hue 90..150"),
+    Choice("cyan", "RT_CYAN", "hue 150..210"),
+    Choice("blue", "RT_BLUE", "hue 210..270"),
+    Choice("magenta", "RT_MAGENTA", "hue 270..330"),
+))
+CAMERA_PIXELS = 60
+CHOICES = (LEDS, SOUNDS, KEYS, COLOURS)
 
 SENSOR_NAMES_DOC = ("ir0", f"ir{SENSOR_COUNT - 1}")
 _LED = Param("led", CHOICE, "which LED", "one of " + LEDS.describe() + " [E041]", choices=LEDS)
@@ -233,6 +266,15 @@ ACTIONS = (
                "plays a built-in sample on the speaker (`e_play_sound`); the program goes on "
                "at once", "action_play_sound", runtime_param="param_play_sound",
                fields=("{sound}",)),
+    ActionSpec("send",
+               (Param("value", INT, "the value the message carries",
+                      f"a whole number 0..{MESSAGE_MAX} [E042] (one byte, as `ircomSend`); an "
+                      "expression that can leave it is warned [W030] and sent modulo 256",
+                      lo=0, hi=MESSAGE_MAX),),
+               "broadcasts `value` over the IR sensors (`ircomSend`) to the robots in range; "
+               "a send while one is still on the air replaces the value waiting to go",
+               "action_send", runtime_param="param_send", fields=("{value}",),
+               dynamic=("action_send", "param_send", ("{value}",)), device="messages"),
 )
 
 EVENTS = (
@@ -300,6 +342,11 @@ EVENTS = (
               "event_ambient", "param_event_sensor",
               conditions_doc=f"`{SENSOR_NAMES_DOC[0]}`..`{SENSOR_NAMES_DOC[1]}` `>` or `<` a "
               f"whole threshold in 0..{THRESHOLD_MAX} [E032] (raw ambient light readings)"),
+    EventSpec("message", (),
+              "for each message received (`ircomPopMessage`), one per poll, in the order they "
+              "came; while its action runs, `message`, `message_bearing` and `message_range` "
+              "describe it (the runtime queues 8; when full, the oldest is dropped)",
+              "event_message", memory=False, device="messages"),
 )
 
 STANDARD_ACTIONS = {spec.name: spec for spec in ACTIONS}
@@ -333,7 +380,18 @@ class Reading:
     hi: int
     c: str
     doc: str
+    device: str = ""          # the device it needs (DEVICES)
+    # a reading of one of several things, written `name(CHOICE)`: `c` has
+    # `{choice}` where the choice's C goes (`seen(red)`: `rt_seen(RT_RED)`)
+    param: Optional[Param] = None
 
+    @property
+    def signature(self) -> str:
+        return f"{self.name}({self.param.choices.what.upper()})" if self.param else self.name
+
+
+_COLOUR = Param("colour", CHOICE, "a colour the camera tells apart",
+                "one of " + COLOURS.describe() + " [E041]", choices=COLOURS)
 
 READINGS = tuple(
     [Reading(f"ir{i}", INT, 0, THRESHOLD_MAX, f"rt_ir({i})",
@@ -355,8 +413,35 @@ READINGS = tuple(
        Reading("y", DISTANCE, -32768, 32767, "rt_y_mm()",
                "odometry: mm to the left of the start pose"),
        Reading("heading", ANGLE, -180, 179, "rt_heading_deg()",
-               "odometry: degrees turned since the start, counter-clockwise, -180..179")])
-STANDARD_READINGS = {r.name: r for r in READINGS}
+               "odometry: degrees turned since the start, counter-clockwise, -180..179"),
+       Reading("message", INT, 0, MESSAGE_MAX, "rt_message()",
+               "the value of the message `on message` received (0 before any)",
+               device="messages"),
+       Reading("message_bearing", ANGLE, -180, 179, "rt_message_bearing()",
+               "where that message came from: degrees counter-clockwise from the robot's "
+               "heading, -180..179, the direction of the sensor that received it best",
+               device="messages"),
+       Reading("message_range", DISTANCE, 0, 1000, "rt_message_range()",
+               "how far its sender was: mm, estimated from the signal's strength",
+               device="messages"),
+       Reading("distance", DISTANCE, 0, 2000, "rt_distance()",
+               "the time-of-flight sensor's distance ahead (mm; 2000: nothing in range)",
+               device="tof"),
+       Reading("seen", INT, 0, CAMERA_PIXELS, "rt_seen({choice})",
+               f"the width in pixels (0..{CAMERA_PIXELS}) of the widest run of that colour in "
+               f"the camera's line of {CAMERA_PIXELS} pixels over 60 degrees", device="camera",
+               param=_COLOUR),
+       Reading("bearing", ANGLE, -30, 30, "rt_bearing({choice})",
+               "where the centre of that run is: degrees, 0 straight ahead, positive to the "
+               "left (0 when the colour is not seen)", device="camera", param=_COLOUR)])
+# by name; a reading of a choice once for each (`seen(red)`), as the checker
+# names the Expr that reads it
+STANDARD_READINGS = {r.name: r for r in READINGS if r.param is None}
+STANDARD_READINGS.update(
+    (f"{r.name}({c.name})", Reading(f"{r.name}({c.name})", r.kind, r.lo, r.hi,
+                                    r.c.format(choice=c.c), r.doc, r.device))
+    for r in READINGS if r.param is not None for c in r.param.choices.values)
+CHOICE_READINGS = {r.name: r for r in READINGS if r.param is not None}
 
 # The readings of several sensors as arrays: `ir[3]` is `ir3`; name ->
 # (the readings in order, the runtime call that reads element i).
@@ -434,7 +519,7 @@ def reference_markdown() -> str:
     lines += ["", "Rules headed `when`, `every` and `after` are written `when COND do ...`, "
               "`every D do ...`, `after D do ...` (section 2.10).",
               "", "### 3.3 Readings", "", "| reading | kind | interval | is |", "|---|---|---|---|"]
-    lines += [f"| `{r.name}` | {r.kind} | {r.lo}..{r.hi} | {r.doc} |" for r in READINGS]
+    lines += [f"| `{r.signature}` | {r.kind} | {r.lo}..{r.hi} | {r.doc} |" for r in READINGS]
     lines += ["", "### 3.4 Functions", "", "| function | gives |", "|---|---|"]
     lines += [f"| `{name}({', '.join(params)})` | {doc} |"
               for name, (params, doc) in {**FUNCTIONS, **AGGREGATES}.items()]
@@ -447,6 +532,17 @@ def reference_markdown() -> str:
                      if choices.numbers else "") + ":", "",
                   f"| {choices.what} | means | C |", "|---|---|---|"]
         lines += [f"| `{c.name}` | {c.doc} | `{c.c}` |" for c in choices.values]
+    lines += ["", "Devices not every robot has: a name that needs one is an error [E070] when "
+              "the target (`epuckc check/build --target`) lacks it.", "",
+              "| device | names | " + " | ".join(TARGET_NAMES[t] for t in TARGET_DEVICES) + " |",
+              "|---|---|" + "---|" * len(TARGET_DEVICES)]
+    for device, what in DEVICES.items():
+        names = [("on " + x.name if isinstance(x, EventSpec) else
+                  x.signature if isinstance(x, Reading) else x.name)
+                 for x in (*ACTIONS, *EVENTS, *READINGS) if x.device == device]
+        lines.append(f"| {what} | {', '.join(f'`{n}`' for n in names)} | "
+                     + " | ".join("yes" if device in TARGET_DEVICES[t] else "no"
+                                  for t in TARGET_DEVICES) + " |")
     return "\n".join(lines) + "\n"
 
 

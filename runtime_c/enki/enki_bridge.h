@@ -14,8 +14,23 @@
 #ifndef ENKI_BRIDGE_H
 #define ENKI_BRIDGE_H
 
-#define ENKI_BRIDGE_VERSION 2
+#define ENKI_BRIDGE_VERSION 3
 #define ENKI_MAX_SETTINGS 8
+#define ENKI_MAX_SENT 16        /* values a robot sends in one world step, at most */
+#define ENKI_MAX_INBOX 64       /* messages delivered to a robot in one world step */
+#define ENKI_CAMERA_PIXELS 60   /* Enki's e-puck camera: 60 pixels over 60 degrees */
+
+/* A message the world's channel delivered (world_channel.h): what libIrcom
+ * reports (value, estimated distance, the receiving sensor's direction)
+ * and, for the trace, who sent it from where. */
+typedef struct enki_message {
+    long value;
+    double distance_cm;
+    double direction_rad;           /* counter-clockwise from the heading, 0..2 pi */
+    int sensor;
+    const char *from;               /* the sender's name (the runner's) */
+    double from_x_mm, from_y_mm;
+} enki_message;
 
 typedef struct enki_robot_io {
     int version;                    /* ENKI_BRIDGE_VERSION */
@@ -29,10 +44,17 @@ typedef struct enki_robot_io {
     double x_mm, y_mm;              /* Enki's pose of the body (world frame) */
     double heading_rad;             /* counter-clockwise from +x */
     int prox[8];                    /* IR readings, library units 0..4095 */
+    int distance_mm;                /* the ToF ray (VL53L0X_get_dist_mm) */
+    unsigned char camera[3 * ENKI_CAMERA_PIXELS];   /* r, g, b of each pixel, leftmost first */
+    int n_inbox;                    /* messages delivered in the world step */
+    enki_message inbox[ENKI_MAX_INBOX];
+    int message_frame_ms;           /* (at attach) one message's time on the air */
 
     /* robot -> world */
     long window_left, window_right; /* wheel steps in the world step just ended */
     long pending_left, pending_right; /* steps Enki has not integrated yet */
+    int n_sent;                     /* values sent (ircomSend) in the world step */
+    long sent[ENKI_MAX_SENT];
     double mm_per_step, axle_mm;    /* the program's geometry */
     int ms_in_window;
     int finished;                   /* main returned or exit() was called */

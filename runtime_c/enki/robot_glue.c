@@ -16,6 +16,10 @@
  *     Enki body with them and steps the physics;
  *   - e_get_prox() reads what Enki's eight IR sensors measured (the runner
  *     writes them into the stub's proximity registers with stub_set_prox);
+ *   - libIrcom's sends (host/stub_devices.c) go to the world's channel
+ *     (world_channel.h) and the messages it delivered come back into the
+ *     stub's queue; VL53L0X_get_dist_mm reads the world's ToF ray, and
+ *     the camera (e_poxxxx) Enki's CircularCam;
  *   - the pose in the trace is the Enki body's pose in the world frame, plus
  *     the steps the world has not integrated yet (dead reckoning);
  *   - getenv() sees this robot's own settings (trace file, time limit, ...);
@@ -50,6 +54,9 @@ int enki_robot_attach(enki_robot_io *robot)
     io = robot;
     for (n = 0; n < 8; n++)
         stub_set_prox(n, io->prox[n]);
+    stub_set_distance(io->distance_mm);
+    stub_set_camera(io->camera, ENKI_CAMERA_PIXELS);
+    stub_ircom_set_frame_ms(io->message_frame_ms);
     return 0;
 }
 
@@ -57,9 +64,18 @@ int enki_robot_attach(enki_robot_io *robot)
 static void yield_to_world(void)
 {
     int n;
+    io->n_sent = stub_ircom_take_sent(io->sent, ENKI_MAX_SENT);
     io->yield(io);
     for (n = 0; n < 8; n++)
         stub_set_prox(n, io->prox[n]);
+    stub_set_distance(io->distance_mm);
+    stub_set_camera(io->camera, ENKI_CAMERA_PIXELS);
+    for (n = 0; n < io->n_inbox; n++) {
+        const enki_message *m = &io->inbox[n];
+        stub_ircom_receive(m->value, m->distance_cm, m->direction_rad, m->sensor, m->from,
+                           m->from_x_mm, m->from_y_mm);
+    }
+    io->n_inbox = 0;
 }
 
 void __wrap_stub_motors_1ms(void)

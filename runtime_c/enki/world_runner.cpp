@@ -6,15 +6,24 @@
  * SPEC is the world as epuckc/sim/world.py resolved it (all lengths in cm,
  * angles in radians, one item per line):
  *
- *   arena square W H | arena none        walls of a W x H cm arena, corner (0,0)
+ *   arena square W H [R G B] | arena none
+ *                                        walls of a W x H cm arena, corner (0,0),
+ *                                        coloured R G B (0..1; default grey)
  *   seed N                               Enki's random generator (noise)
  *   noise F                              wheel speed noise, +-F (0.05 = 5 %)
  *   step_ms N                            ms of virtual time per world step
- *   box X Y L1 L2 ANGLE HEIGHT           a static box centred at (X, Y)
- *   cylinder X Y R HEIGHT                a static cylinder
+ *   messages RANGE LOSS EMIT RECV NOISE INTERVAL_MS
+ *                                        the IR message channel (world_channel.h):
+ *                                        range cm, loss 0..1, cone widths rad,
+ *                                        range noise 0..1, a message's ms on the air
+ *   box X Y L1 L2 ANGLE HEIGHT [R G B]   a static box centred at (X, Y)
+ *   cylinder X Y R HEIGHT [R G B]        a static cylinder
  *   robot NAME X Y ANGLE                 an e-puck; the lines below belong to it
  *   lib PATH                             its program + runtime, a shared object
  *   setting NAME VALUE                   what its getenv(NAME) returns
+ *   colour R G B                         its body's colour (what cameras see)
+ *   camera                               it has Enki's camera (its program reads it)
+ *   tof                                  its ToF ray is cast (its program reads it)
  *
  * Each robot's shared object is loaded from its own file (so its globals
  * are its own) and its main() runs as a coroutine: it runs step_ms poll
@@ -47,6 +56,7 @@
 #include <enki/robots/e-puck/EPuck.h>
 
 #include "enki_bridge.h"
+#include "world_channel.h"
 
 namespace {
 
@@ -104,8 +114,10 @@ struct Body : public Enki::EPuck {
     // (its test is `capabilities & CAPABILITY_SCANNER_TURRET`, and that
     // constant is 0x3), which costs most of a step and is never read here:
     // only the eight IR sensors are added.
-    Body() : Enki::EPuck(CAPABILITY_NONE)
+    Body(bool with_camera) : Enki::EPuck(CAPABILITY_NONE)
     {
+        if (with_camera)
+            addLocalInteraction(&camera);
         addLocalInteraction(&infraredSensor0);
         addLocalInteraction(&infraredSensor1);
         addLocalInteraction(&infraredSensor2);
@@ -138,6 +150,8 @@ struct Robot {
     std::string name, lib;
     double x = 0, y = 0, angle = 0;
     std::vector<std::string> settings;      // name, value, ...
+    Enki::Color colour = Enki::Color::gray;
+    bool camera = false, tof = false;
     enki_robot_io io;
     Body *body = nullptr;
     void *handle = nullptr;
@@ -229,6 +243,17 @@ double read_prox(Enki::IRSensor &s)
     return v < 0 ? 0 : v > 4095 ? 4095 : v;
 }
 
+std::vector<channel::Obstacle> obstacles;
+channel::Settings messages;
+bool walls = false;
+double width = 0, height = 0;
+std::vector<channel::Pose> poses;       // every robot's, after the last step
+
+channel::Pose pose_of(const Robot &r)
+{
+    return channel::Pose{r.body->pos.x, r.body->pos.y, r.body->angle};
+}
+
 void sense(Robot &r)
 {
     Enki::IRSensor *ir[8] = {
@@ -241,6 +266,43 @@ void sense(Robot &r)
     r.io.x_mm = r.body->pos.x * 10.0;
     r.io.y_mm = r.body->pos.y * 10.0;
     r.io.heading_rad = r.body->angle;
+    r.io.distance_mm = r.tof ? channel::tof_mm(pose_of(r), obstacles, poses, walls, width, height)
+                             : channel::TOF_NONE_MM;
+    if (r.camera) {
+        // Enki's pixels go counter-clockwise, from the right; the camera's
+        // line from the left
+        for (int i = 0; i < ENKI_CAMERA_PIXELS; i++) {
+            const Enki::Color &c = r.body->camera.image[ENKI_CAMERA_PIXELS - 1 - i];
+            for (int k = 0; k < 3; k++) {
+                double v = std::floor(c[k] * 255.0 + 0.5);
+                r.io.camera[3 * i + k] = (unsigned char)(v < 0 ? 0 : v > 255 ? 255 : v);
+            }
+        }
+    }
+}
+
+// The messages sent in the world step just ended, to every robot the
+// channel lets hear them (in the SPEC's order: reproducible).
+void exchange(channel::Random &random)
+{
+    for (Robot &s : robots) {
+        for (int i = 0; i < s.io.n_sent; i++) {
+            for (Robot &r : robots) {
+                if (&r == &s || r.io.finished || r.io.n_inbox >= ENKI_MAX_INBOX)
+                    continue;
+                enki_message m;
+                if (!channel::deliver(messages, obstacles, random, pose_of(s), pose_of(r),
+                                      &m.sensor, &m.direction_rad, &m.distance_cm))
+                    continue;
+                m.value = s.io.sent[i];
+                m.from = s.name.c_str();
+                m.from_x_mm = s.body->pos.x * 10.0;
+                m.from_y_mm = s.body->pos.y * 10.0;
+                r.io.inbox[r.io.n_inbox++] = m;
+            }
+        }
+        s.io.n_sent = 0;
+    }
 }
 
 void flush_output(Robot &r, bool all)
@@ -273,12 +335,10 @@ int main(int argc, char **argv)
     if (spec == nullptr)
         die(std::string("cannot read ") + argv[1]);
 
-    bool walls = false;
-    double width = 0, height = 0, noise = 0.05;
+    double noise = 0.05, wall_colour[3] = {0.5, 0.5, 0.5};
     unsigned long seed = 1;
     int step_ms = 10;
-    struct Obstacle { bool box; double x, y, a, b, angle, h; };
-    std::vector<Obstacle> obstacles;
+    using channel::Obstacle;
     robots.reserve(1024);
 
     char line[8192];
@@ -286,20 +346,28 @@ int main(int argc, char **argv)
     while (std::fgets(line, sizeof line, spec) != nullptr) {
         lineno++;
         char name[256];
+        double rgb[3];
         Obstacle o{};
+        o.rgb[0] = o.rgb[1] = o.rgb[2] = 0.5;
         Robot r;
-        if (std::sscanf(line, "arena square %lf %lf", &width, &height) == 2)
+        if (std::sscanf(line, "arena square %lf %lf %lf %lf %lf", &width, &height, &wall_colour[0],
+                        &wall_colour[1], &wall_colour[2]) >= 2)
             walls = true;
         else if (std::strncmp(line, "arena none", 10) == 0)
             walls = false;
         else if (std::sscanf(line, "seed %lu", &seed) == 1
                  || std::sscanf(line, "noise %lf", &noise) == 1
-                 || std::sscanf(line, "step_ms %d", &step_ms) == 1)
+                 || std::sscanf(line, "step_ms %d", &step_ms) == 1
+                 || std::sscanf(line, "messages %lf %lf %lf %lf %lf %d", &messages.range_cm,
+                                &messages.loss, &messages.emitter_rad, &messages.receiver_rad,
+                                &messages.range_noise, &messages.interval_ms) == 6)
             ;
-        else if (std::sscanf(line, "box %lf %lf %lf %lf %lf %lf", &o.x, &o.y, &o.a, &o.b, &o.angle, &o.h) == 6) {
+        else if (std::sscanf(line, "box %lf %lf %lf %lf %lf %lf %lf %lf %lf", &o.x, &o.y, &o.a, &o.b,
+                             &o.angle, &o.h, &o.rgb[0], &o.rgb[1], &o.rgb[2]) >= 6) {
             o.box = true;
             obstacles.push_back(o);
-        } else if (std::sscanf(line, "cylinder %lf %lf %lf %lf", &o.x, &o.y, &o.a, &o.h) == 4) {
+        } else if (std::sscanf(line, "cylinder %lf %lf %lf %lf %lf %lf %lf", &o.x, &o.y, &o.a, &o.h,
+                               &o.rgb[0], &o.rgb[1], &o.rgb[2]) >= 4) {
             o.box = false;
             obstacles.push_back(o);
         } else if (std::sscanf(line, "robot %255s %lf %lf %lf", name, &r.x, &r.y, &r.angle) == 4) {
@@ -307,6 +375,13 @@ int main(int argc, char **argv)
             robots.push_back(std::move(r));
         } else if (std::strncmp(line, "lib ", 4) == 0 && !robots.empty())
             robots.back().lib = rest(line, "lib");
+        else if (!robots.empty() && std::sscanf(line, "colour %lf %lf %lf", &rgb[0], &rgb[1],
+                                                &rgb[2]) == 3)
+            robots.back().colour = Enki::Color(rgb[0], rgb[1], rgb[2]);
+        else if (std::strncmp(line, "camera", 6) == 0 && !robots.empty())
+            robots.back().camera = true;
+        else if (std::strncmp(line, "tof", 3) == 0 && !robots.empty())
+            robots.back().tof = true;
         else if (std::strncmp(line, "setting ", 8) == 0 && !robots.empty()) {
             std::string s = rest(line, "setting");
             size_t sp = s.find(' ');
@@ -326,7 +401,9 @@ int main(int argc, char **argv)
     // Enki draws its noise from one generator (Enki::random); C's rand() is
     // seeded too in case a part of Enki uses it.
     std::srand((unsigned)seed);
-    world = walls ? new Enki::World(width, height) : new Enki::World();
+    world = walls ? new Enki::World(width, height, Enki::Color(wall_colour[0], wall_colour[1],
+                                                               wall_colour[2]))
+                  : new Enki::World();
     world->setRandomSeed(seed);
     for (const Obstacle &o : obstacles) {
         Enki::PhysicalObject *p = new Enki::PhysicalObject;
@@ -336,6 +413,7 @@ int main(int argc, char **argv)
             p->setCylindric(o.a, o.h, -1);
         p->pos = Enki::Point(o.x, o.y);
         p->angle = o.angle;
+        p->setColor(Enki::Color(o.rgb[0], o.rgb[1], o.rgb[2]));
         world->addObject(p);
     }
 
@@ -346,6 +424,7 @@ int main(int argc, char **argv)
         r.io.yield = yield_robot;
         r.io.runner = &r;
         r.io.step_ms = step_ms;
+        r.io.message_frame_ms = messages.interval_ms;
         if (r.settings.size() / 2 > ENKI_MAX_SETTINGS)
             die("too many settings for robot " + r.name);
         for (size_t i = 0; i < r.settings.size(); i++)
@@ -360,7 +439,8 @@ int main(int argc, char **argv)
         // the default geometry until the program sets its own (epuckrt.h)
         r.io.mm_per_step = 128.805 / 1000.0;
         r.io.axle_mm = 53.0;
-        r.body = new Body;
+        r.body = new Body(r.camera);
+        r.body->setColor(r.colour);
         r.body->pos = Enki::Point(r.x, r.y);
         r.body->angle = r.angle;
         r.body->setGeometry(r.io.axle_mm / 10.0, 1000.0, noise);
@@ -373,7 +453,10 @@ int main(int argc, char **argv)
     }
     // readings for the first poll: the world as placed, nothing moving
     const double dt = step_ms / 1000.0;
+    channel::Random random(seed);
     world->step(dt);
+    for (Robot &r : robots)
+        poses.push_back(pose_of(r));
     for (Robot &r : robots) {
         sense(r);
         auto attach = (int (*)(enki_robot_io *))dlsym(r.handle, "enki_robot_attach");
@@ -407,6 +490,9 @@ int main(int argc, char **argv)
             r.body->now_ms = now_ms;
         }
         world->step(dt);
+        for (size_t i = 0; i < robots.size(); i++)
+            poses[i] = pose_of(robots[i]);
+        exchange(random);
         for (Robot &r : robots) {
             r.io.pending_left = r.io.window_left;
             r.io.pending_right = r.io.window_right;

@@ -396,6 +396,11 @@ static void observe(const char *device, const char *name, int value)
         observer(device, name, value);
 }
 
+void stub_observe(const char *device, const char *name, int value)
+{
+    observe(device, name, value);
+}
+
 /* ---- LEDs ---------------------------------------------------------------------- */
 
 static int ring[8], body_led, front_led;

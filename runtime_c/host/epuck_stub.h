@@ -41,5 +41,26 @@ void stub_press_key(int key);
 int stub_led(int n);
 typedef void (*stub_observer)(const char *device, const char *name, int value);
 void stub_set_observer(stub_observer f);
+void stub_observe(const char *device, const char *name, int value);
+
+/* The devices of host/stub_devices.c: libIrcom's IR messages and the
+ * e-puck2's ToF sensor.  A send is on the air for stub_ircom_set_frame_ms
+ * ms (STUB_IRCOM_FRAME_MS at start; counted by an agenda), observed as
+ * ("send", EXTRA, value); stub_ircom_take_sent gives the world the values
+ * sent since it last asked (at most `max`).  stub_ircom_receive puts a
+ * message in libIrcom's queue (20; full: the oldest goes), observed as
+ * ("message", EXTRA, value).  EXTRA is the trace record's own keys in JSON
+ * (", \"value\": 3, ...").  stub_set_distance: what VL53L0X_get_dist_mm
+ * reads (STUB_DISTANCE_NONE at start: nothing in range). */
+#define STUB_IRCOM_FRAME_MS 100
+#define STUB_DISTANCE_NONE 8190
+void stub_ircom_set_frame_ms(int ms);
+int stub_ircom_take_sent(long *values, int max);
+void stub_ircom_receive(long value, double distance_cm, double direction_rad, int sensor,
+                        const char *from, double from_x_mm, double from_y_mm);
+void stub_set_distance(int mm);
+/* What the camera sees: `pixels` (at most 60) r, g, b triples, 0..255,
+ * leftmost first. */
+void stub_set_camera(const unsigned char *rgb, int pixels);
 
 #endif

@@ -796,6 +796,10 @@ static void observe_output(const char *device, const char *name, int value)
         if (!quiet)
             printf("[%6ld ms] led       %-5s %-3s ring %s body %d front %d\n", now_ms, name,
                    value ? "on" : "off", ring, stub_led(9), stub_led(10));
+    } else if (strcmp(device, "sound") != 0) {  /* send, message: name is JSON (stub_devices.c) */
+        record_extra(device, device, -1, -1, 0, name);
+        if (!quiet)
+            printf("[%6ld ms] %-9s%s\n", now_ms, device, name + 1);
     } else {
         snprintf(extra, sizeof extra, ", \"length\": %d", value);
         record_extra("sound", name, -1, -1, 0, extra);

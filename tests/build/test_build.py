@@ -251,3 +251,24 @@ def test_one_name_for_the_xc16_folder():
               *sorted((REPO / "docs").glob("*.md"))]}
     assert all("XC16_BIN" not in text for text in texts.values())
     assert "XC16_DIR ?=" in texts[REPO / "templates" / "dspic.mk.j2"]
+
+
+def test_dspic_project_of_a_camera_program_has_the_camera_and_compiles_with_16_bit_int(tmp_path):
+    """Issue 27: the e-puck has the camera; its project takes the runtime's
+    camera file and the library's camera driver (docs/runtime.md)."""
+    out, result = dspic_project(tmp_path, example="colour_seeker.epk")
+    assert result.returncode == 3, result.stderr
+    makefile = (out / "Makefile").read_text()
+    assert "runtime/rt_camera.c" in makefile and "$(LIB)/camera/fast_2_timer/e_common.c" in makefile
+    avr = require_tool("avr-gcc")
+    for source in ("colour_seeker.c", "runtime/rt_camera.c"):
+        subprocess.run([avr, "-mmcu=atmega128", *WARN, "-Os", f"-I{out}", f"-I{out / 'runtime'}",
+                        f"-I{EPUCK_API}", "-c", str(out / source), "-o", str(tmp_path / "x.o")],
+                       check=True)
+
+
+def test_dspic_build_of_a_program_with_messages_is_a_checker_error_naming_the_target(tmp_path):
+    out, result = dspic_project(tmp_path, example="follower.epk")
+    assert result.returncode == 1
+    assert "error[E070]" in result.stderr and "the e-puck (dspic) does not have" in result.stderr
+    assert "Traceback" not in result.stderr and not out.exists()

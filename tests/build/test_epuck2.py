@@ -10,7 +10,7 @@ from pathlib import Path
 import pytest
 
 from conftest import REPO, require_checkout, require_tool
-from epuckc.base.resources import RUNTIME_CORE
+from epuckc.base.resources import RUNTIME_CORE, RUNTIME_DEVICES
 from tests.support.programs import epuckc
 
 EXAMPLES = sorted((REPO / "examples").glob("*.epk"))
@@ -88,7 +88,8 @@ def test_every_example_compiles_for_the_cortex_m4(tmp_path, example):
 
 def test_the_runtime_and_the_platform_layer_compile_for_the_cortex_m4(tmp_path):
     gcc = require_tool("arm-none-eabi-gcc")
-    for source in [*(RUNTIME / n for n in RUNTIME_CORE), RUNTIME / "platform_robot.c",
+    for source in [*(RUNTIME / n for n in (*RUNTIME_CORE, *RUNTIME_DEVICES)),
+                   RUNTIME / "platform_robot.c",
                    RUNTIME / "platform_epuck2.c", RUNTIME / "epuck2" / "newlib_stubs.c"]:
         subprocess.run([gcc, *ARM_FLAGS, f"-I{RUNTIME}", *API, "-c", str(source), "-o",
                         str(tmp_path / "x.o")], check=True)
@@ -125,3 +126,43 @@ def test_a_full_build_with_the_firmware(tmp_path, example):
     assert r.returncode == 0, r.stdout + r.stderr
     assert (out / "build" / f"{example.stem}.elf").is_file()
     assert (out / "build" / f"{example.stem}.bin").is_file()
+
+
+DEVICES = """# messages, the camera and the ToF sensor in one program
+var turn = 0 steps/s
+rule chase: every 50 ms if seen(red) > 0 and distance > 50 mm do
+    turn = bearing(red) / 1 deg * 10 steps/s, set_speed(300 steps/s - turn, 300 steps/s + turn)
+rule tell: every 200 ms do send(clamp(distance / 10 mm, 0, 255))
+rule hear: on message repeat do turn = message_bearing / 1 deg * 1 steps/s
+"""
+
+
+def test_a_full_build_with_messages_the_camera_and_the_tof_sensor(tmp_path):
+    """Issue 27: messages (the firmware's src/ircom), the camera (its
+    epuck1x e_poxxxx over po8030 and dcmi, started as its main starts it)
+    and the VL53L0X link into the firmware, each from the runtime's own file."""
+    firmware = str(require_checkout(
+        "EPUCK2_FIRMWARE", "src",
+        "EPUCK2_FIRMWARE is not set: the full e-puck2 link needs the firmware"))
+    require_tool("arm-none-eabi-gcc")
+    nm = require_tool("arm-none-eabi-nm")
+    program = tmp_path / "devices.epk"
+    program.write_text(DEVICES, encoding="utf-8")
+    out = tmp_path / "proj"
+    r = epuckc("build", "--target", "epuck2", program, "-o", out, "--firmware", firmware)
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert "cam_start();" in (out / "main.c").read_text()
+    symbols = subprocess.run([nm, str(out / "build" / "devices.elf")], capture_output=True,
+                             text=True, check=True).stdout
+    defined = {line.split()[-1] for line in symbols.splitlines() if " T " in line}
+    assert {"action_send", "event_message", "rt_seen", "rt_bearing", "rt_distance",
+            "ircomSend", "ircomPopMessage", "e_poxxxx_launch_capture",
+            "VL53L0X_get_dist_mm"} <= defined
+
+
+def test_a_program_without_the_camera_does_not_start_it(tmp_path):
+    out = tmp_path / "proj"
+    r = epuckc("build", "--target", "epuck2", EXAMPLES[0], "-o", out,
+               env={"EPUCK2_FIRMWARE": ""})
+    assert r.returncode == 3, r.stderr
+    assert "cam_start" not in (out / "main.c").read_text()

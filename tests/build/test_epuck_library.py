@@ -11,7 +11,7 @@ import subprocess
 import pytest
 
 from conftest import REPO, require_checkout, require_tool
-from epuckc.base.resources import RUNTIME_CORE
+from epuckc.base.resources import RUNTIME_CORE, RUNTIME_DSPIC_DEVICES
 from tests.support.programs import epuckc
 
 RUNTIME = REPO / "runtime_c"
@@ -46,7 +46,9 @@ def test_every_header_the_runtime_includes_is_the_librarys(library):
 def test_the_runtime_and_every_program_compile_against_the_library(library, tmp_path):
     avr = require_tool("avr-gcc")
     flags = [f"-mmcu=atmega128", *STRICT, f"-I{RUNTIME}", f"-I{library}"]
-    for source in [*(RUNTIME / n for n in RUNTIME_CORE), RUNTIME / "platform_robot.c"]:
+    # the camera (rt_camera.c) against the library's camera/fast_2_timer/e_poxxxx.h
+    for source in [*(RUNTIME / n for n in (*RUNTIME_CORE, *RUNTIME_DSPIC_DEVICES)),
+                   RUNTIME / "platform_robot.c"]:
         subprocess.run([avr, *flags, "-c", str(source), "-o", str(tmp_path / "x.o")], check=True)
     for example in sorted((REPO / "examples").glob("*.epk")):
         c = tmp_path / f"{example.stem}.c"

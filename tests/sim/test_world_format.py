@@ -58,12 +58,22 @@ def test_runner_spec_is_in_cm_and_radians(tmp_path):
     w = parse(tmp_path, "arena 100 cm x 60 cm\nbox at 50 cm, 30 cm size 10 cm x 4 cm angle 90 deg\n"
                         "robot a at 20 cm, 20 cm heading 180 deg\n")
     spec = runner_spec(w, [("/x/a.so", {"EPUCK_TRACE": "/x/a.jsonl"})]).splitlines()
-    assert spec[0] == "arena square 100.0 60.0"
-    box = spec[4].split()
+    assert spec[0] == "arena square 100.0 60.0 0.501961 0.501961 0.501961"     # grey walls
+    # the message channel's defaults: 22.5 cm, 5 %, 60 deg cones, 10 %, 100 ms
+    messages = spec[4].split()
+    assert messages[0] == "messages" and messages[1:3] == ["22.5", "0.05"]
+    assert [round(float(v), 6) for v in messages[3:5]] == [round(math.pi / 3, 6)] * 2
+    assert messages[5:] == ["0.1", "100"]
+    box = spec[5].split()
     assert box[:5] == ["box", "50.0", "30.0", "10.0", "4.0"] and math.isclose(float(box[5]), math.pi / 2)
-    robot = spec[5].split()
+    robot = spec[6].split()
     assert robot[:4] == ["robot", "a", "20.0", "20.0"] and math.isclose(float(robot[4]), math.pi)
-    assert spec[6:] == ["lib /x/a.so", "setting EPUCK_TRACE /x/a.jsonl"]
+    # devices not known (hand-written C): the camera and the ToF ray
+    assert spec[7:] == ["lib /x/a.so", "colour 0.501961 0.501961 0.501961", "camera", "tof",
+                        "setting EPUCK_TRACE /x/a.jsonl"]
+    # a program that reads neither gets neither (each costs a part of every step)
+    spec = runner_spec(w, [("/x/a.so", {}, frozenset({"messages"}))]).splitlines()
+    assert spec[7:] == ["lib /x/a.so", "colour 0.501961 0.501961 0.501961"]
 
 
 @pytest.mark.parametrize("text, where, words", [

@@ -23,9 +23,11 @@ syntax keyword epuckBuiltin selector clap tap tilt remote ambient
 syntax keyword epuckBuiltin event_selector event_clap event_tap event_tilt event_remote
 syntax keyword epuckBuiltin event_ambient
 syntax keyword epuckBuiltin set_speed wait action_set_speed action_wait
+syntax keyword epuckBuiltin send action_send message event_message
 syntax keyword epuckFunction abs min max clamp random atan2 hypot sqrt sin cos
 syntax keyword epuckFunction sum argmin argmax dot
 syntax keyword epuckReading x y heading acc_x acc_y acc_z ir mic acc
+syntax keyword epuckReading message_bearing message_range distance seen bearing
 
 " the name a statement defines
 syntax match epuckDefinition "\%(\<\%(rule\|action\|event\|const\|var\)\s\+\)\@<=\h\w*"

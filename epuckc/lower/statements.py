@@ -1,0 +1,61 @@
+"""The C of the statements that compute values while the program runs: an
+assignment (of a variable, or of an array's element), and a standard
+action whose arguments are computed (`set_speed(left: ..., right: ...)`).
+A statement that reads three proximity sensors or more reads them with one
+call (`rt_proximity`: the values of this poll) rather than one `rt_ir`
+each. `lw` is the lowerer (program.py), whose `expr` prints expressions."""
+from __future__ import annotations
+
+from ..stdlib.table import STANDARD_ACTIONS
+from .exprs import proximity_read, var_name
+
+PREFIX = "epk_"
+
+
+def proximity(e) -> tuple:
+    """(readings, C before the statement, C after it): ({}, "", "") for
+    fewer than three sensors."""
+    sensors = sorted(proximity_read(e))
+    if len(sensors) < 3:
+        return {}, "", ""
+    mask = sum(1 << n for n in sensors)
+    return ({f"ir{n}": f"{PREFIX}p[{n}]" for n in sensors},
+            f"{{ const int *{PREFIX}p = rt_proximity(0x{mask:02x}u); ", " }")
+
+
+class _Together:
+    """Several expressions as one, for what they read."""
+    op, name = "args", None
+
+    def __init__(self, args):
+        self.args = args
+
+
+def assignment(lw, call) -> str:
+    info = lw.program.variables[call.name]
+    lw.variables_in_c.add(call.name)
+    value = call.values["value"]
+    index = call.values.get("index")
+    if index is None:
+        readings, head, tail = proximity(value)
+        return (f"{head}rt_assign(&{var_name(call.name)}, {info.index}, "
+                f"{lw.expr(value, readings=readings)});{tail}")
+    if index.constant:      # one element: its own trace id
+        k = index.value
+        return (f"rt_assign(&{var_name(call.name)}[{k}], {info.index + k}, "
+                f"{lw.expr(value, index_name=str(k))});")
+    # the index once, as the element it names (clamped into the array)
+    k = lw.expr(index)
+    if not (0 <= index.lo and index.hi < info.size):
+        k = f"rt_index({k}, {info.size})"
+    trace_id = f"{info.index} + {PREFIX}k" if info.index else f"{PREFIX}k"
+    return (f"{{ const int {PREFIX}k = {k}; rt_assign(&{var_name(call.name)}[{PREFIX}k], "
+            f"{trace_id}, {lw.expr(value, index_name=f'{PREFIX}k')}); }}")
+
+
+def dynamic_call(lw, call) -> str:
+    function, ctype, fields = STANDARD_ACTIONS[call.name].dynamic
+    readings, head, tail = proximity(_Together(tuple(call.values.values())))
+    values = {name: lw.expr(v, readings=readings) for name, v in call.values.items()}
+    init = ", ".join(f.format(**values) for f in fields)
+    return f"{head}{{ {ctype} {PREFIX}arg = {{{init}}}; {function}(&{PREFIX}arg); }}{tail}"
