@@ -18,8 +18,8 @@ from epuckc.diagnostics import Collector
 from epuckc.syntax.lexer import KEYWORDS, iter_tokens
 from epuckc.syntax.parser import parse
 from epuckc.base.source import SourceFile
-from epuckc.stdlib.table import (ACTION_ALIASES, AGGREGATES, EVENT_ALIASES, FUNCTIONS,
-                                 READING_ARRAYS, STANDARD_ACTIONS, STANDARD_EVENTS,
+from epuckc.stdlib.table import (ACTION_ALIASES, AGGREGATES, CHOICE_READINGS, EVENT_ALIASES,
+                                 FUNCTIONS, READING_ARRAYS, STANDARD_ACTIONS, STANDARD_EVENTS,
                                  STANDARD_READINGS)
 from epuckc.stdlib.units import UNITS
 
@@ -172,7 +172,7 @@ def expected_name_scope(tokens, k) -> str:
     if tok.value in STANDARD:
         return "support.function.epuck"
     if re.fullmatch(r"ir[0-9]+", tok.value) or tok.value in STANDARD_READINGS \
-            or tok.value in READING_ARRAYS:
+            or tok.value in READING_ARRAYS or tok.value in CHOICE_READINGS:
         return "variable.language.sensor.epuck"
     if (tok.value in FUNCTIONS or tok.value in AGGREGATES) and same_line(after) \
             and after.type == "_LPAR":
