@@ -344,6 +344,16 @@ typedef struct {
     int bits;
 } param_led_bits;
 void action_led_bits(void *param);           /* param_led_bits * */
+/* The e-puck2's RGB LEDs (rt_rgb.c, over the firmware's set_rgb_led): led
+ * 0..3 (LED2, LED4, LED6, LED8), red, green, blue in percent (clamped to
+ * 0..100). */
+typedef struct {
+    int led;
+    int red;
+    int green;
+    int blue;
+} param_led_rgb;
+void action_led_rgb(void *param);            /* param_led_rgb * */
 
 /* The five samples of the library (e_play_sound; e_init_sound at the first
  * play). */

@@ -17,12 +17,13 @@ _PACKAGE = Path(__file__).resolve().parent.parent   # epuckc/
 # runtime_c/Makefile repeats it (CORE), and a test keeps the two equal.
 RUNTIME_CORE = ("epuckrt.c", "rt_motion.c", "rt_sensors.c", "rt_modes.c", "rt_lang.c",
                 "rt_math.c")
-# The runtime's device files (IR messages, the ToF sensor, the camera): in
+# The runtime's device files (IR messages, the ToF sensor, the camera, the
+# e-puck2's RGB LEDs): in
 # the builds of the targets that have the devices (host, Enki worlds, the
 # e-puck2); the e-puck's (dspic) takes only the camera (RUNTIME_DSPIC_DEVICES),
 # and its checker refuses the others' names (E070); the core never calls
 # them, so it links without them.
-RUNTIME_DEVICES = ("rt_comm.c", "rt_tof.c", "rt_camera.c")
+RUNTIME_DEVICES = ("rt_comm.c", "rt_tof.c", "rt_camera.c", "rt_rgb.c")
 RUNTIME_DSPIC_DEVICES = ("rt_camera.c",)
 RUNTIME_CORE_HEADERS = ("epuckrt.h", "rt_internal.h", "rt_platform.h", "utility.h")
 

@@ -234,7 +234,7 @@ class Calls:
             # computed while the program runs: converted by the runtime, with
             # the fixed arguments in the same natural units
             for p in params:
-                if not isinstance(values[p.name], Expr):
+                if not isinstance(values[p.name], Expr) and p.kind != CHOICE:   # (a choice: its C)
                     fixed = self._literal(bound[p.name].value)
                     if fixed is None:
                         return None
@@ -246,7 +246,8 @@ class Calls:
                                  help="a positive `degrees` turns left, a negative one right")
                 return None
             for p in params:
-                self._interval_warning(values[p.name], p, bound[p.name].value, name)
+                if p.kind != CHOICE:
+                    self._interval_warning(values[p.name], p, bound[p.name].value, name)
             return ResolvedCall("standard", name, values, shown, call, dynamic=True)
         geo = self.geo
         if name == "start_curve":

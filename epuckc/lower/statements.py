@@ -55,7 +55,9 @@ def assignment(lw, call) -> str:
 
 def dynamic_call(lw, call) -> str:
     function, ctype, fields = STANDARD_ACTIONS[call.name].dynamic
-    readings, head, tail = proximity(_Together(tuple(call.values.values())))
-    values = {name: lw.expr(v, readings=readings) for name, v in call.values.items()}
+    exprs = tuple(v for v in call.values.values() if not isinstance(v, str))
+    readings, head, tail = proximity(_Together(exprs))
+    values = {name: v if isinstance(v, str) else lw.expr(v, readings=readings)  # a choice: its C
+              for name, v in call.values.items()}
     init = ", ".join(f.format(**values) for f in fields)
     return f"{head}{{ {ctype} {PREFIX}arg = {{{init}}}; {function}(&{PREFIX}arg); }}{tail}"

@@ -128,13 +128,14 @@ DEVICES = {
     "messages": "IR messages between robots (libIrcom: `ircomSend`, `ircomPopMessage`)",
     "tof": "the time-of-flight distance sensor (VL53L0X)",
     "camera": "the colour camera (`e_poxxxx`; the e-puck2's po8030 through `dcmi`)",
+    "rgb_leds": "RGB LEDs (the e-puck2's four, `set_rgb_led`)",
 }
 TARGET_DEVICES = {
     "host": frozenset(DEVICES),
     # the e-puck library the dspic project builds with has no IR messaging
     # (libIrcom is a library apart) and the e-puck has no ToF sensor
     "dspic": frozenset({"camera"}),
-    "epuck2": frozenset({"messages", "tof", "camera"}),
+    "epuck2": frozenset({"messages", "tof", "camera", "rgb_leds"}),
 }
 TARGET_NAMES = {"host": "the simulation (host)", "dspic": "the e-puck (dspic)",
                 "epuck2": "the e-puck2 (epuck2)"}
@@ -151,6 +152,12 @@ LEDS = Choices("LED", tuple(
     + [Choice("all", "SET_LED_ALL", "the eight ring LEDs"),
        Choice("body", "SET_LED_BODY", "the green body LED"),
        Choice("front", "SET_LED_FRONT", "the red front LED")]))
+# The e-puck2's four RGB LEDs, between the red ones of the ring (the
+# firmware's LED2, LED4, LED6, LED8: rgb_led_name_t 0..3).
+RGB_LEDS = Choices("RGB LED", tuple(
+    Choice(f"led{i}", str(k), f"the RGB LED at ring position {i} (the firmware's LED{i + 1})")
+    for k, i in enumerate((1, 3, 5, 7))))
+RGB_MAX = 100               # the firmware's RGB_MAX_INTENSITY: percent
 SOUNDS = Choices("sound", (
     Choice("haa", "SOUND_HAA", "a short \"haa\""),
     Choice("spaah", "SOUND_SPAAH", "\"spaah\""),
@@ -275,6 +282,18 @@ ACTIONS = (
                "a send while one is still on the air replaces the value waiting to go",
                "action_send", runtime_param="param_send", fields=("{value}",),
                dynamic=("action_send", "param_send", ("{value}",)), device="messages"),
+    ActionSpec("led_rgb",
+               (Param("led", CHOICE, "which RGB LED", "one of " + RGB_LEDS.describe() + " [E041]",
+                      choices=RGB_LEDS),)
+               + tuple(Param(colour, INT, f"its {colour} in percent",
+                             f"0..{RGB_MAX} [E042]; a value computed outside is taken as the "
+                             f"nearest end", lo=0, hi=RGB_MAX)
+                       for colour in ("red", "green", "blue")),
+               "sets the colour of one of the e-puck2's RGB LEDs (`set_rgb_led`); 0, 0, 0 "
+               "switches it off", "action_led_rgb", runtime_param="param_led_rgb",
+               fields=("{led}", "{red}", "{green}", "{blue}"),
+               dynamic=("action_led_rgb", "param_led_rgb",
+                        ("{led}", "{red}", "{green}", "{blue}")), device="rgb_leds"),
 )
 
 EVENTS = (

@@ -18,6 +18,7 @@
 #include "ircom/ircomReceive.h"
 #include "ircom/ircomMessages.h"
 #include "sensors/VL53L0X/VL53L0X.h"
+#include "leds.h"
 #include "camera/fast_2_timer/e_poxxxx.h"
 #include "motor_led/advance_one_timer/e_agenda.h"
 #include "epuck_stub.h"
@@ -190,4 +191,20 @@ int e_poxxxx_is_img_ready(void)
     }
     capture = NULL;
     return 1;
+}
+
+/* ---- the e-puck2's RGB LEDs: each change of a colour is traced ---------------- */
+
+void set_rgb_led(rgb_led_name_t led_number, uint8_t red_val, uint8_t green_val,
+                 uint8_t blue_val)
+{
+    static long shown[NUM_RGB_LED];
+    long colour = ((long)red_val << 16) | ((long)green_val << 8) | blue_val;
+
+    if ((int)led_number < 0 || led_number >= NUM_RGB_LED || shown[led_number] == colour + 1)
+        return;
+    shown[led_number] = colour + 1;
+    snprintf(json, sizeof json, ", \"led\": \"led%d\", \"red\": %d, \"green\": %d, "
+             "\"blue\": %d", 2 * (int)led_number + 1, red_val, green_val, blue_val);
+    stub_observe("rgb", json, (int)led_number);
 }

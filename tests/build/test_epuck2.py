@@ -128,19 +128,22 @@ def test_a_full_build_with_the_firmware(tmp_path, example):
     assert (out / "build" / f"{example.stem}.bin").is_file()
 
 
-DEVICES = """# messages, the camera and the ToF sensor in one program
+DEVICES = """# messages, the camera, the ToF sensor and the RGB LEDs in one program
 var turn = 0 steps/s
 rule chase: every 50 ms if seen(red) > 0 and distance > 50 mm do
     turn = bearing(red) / 1 deg * 10 steps/s, set_speed(300 steps/s - turn, 300 steps/s + turn)
 rule tell: every 200 ms do send(clamp(distance / 10 mm, 0, 255))
-rule hear: on message repeat do turn = message_bearing / 1 deg * 1 steps/s
+rule hear: on message repeat do turn = message_bearing / 1 deg * 1 steps/s,
+    led_rgb(led3, clamp(distance / 20 mm, 0, 100), 0, 100 - clamp(distance / 20 mm, 0, 100))
+on immediate do led_rgb(led1, 100, 0, 0)
 """
 
 
 def test_a_full_build_with_messages_the_camera_and_the_tof_sensor(tmp_path):
     """Issue 27: messages (the firmware's src/ircom), the camera (its
     epuck1x e_poxxxx over po8030 and dcmi, started as its main starts it)
-    and the VL53L0X link into the firmware, each from the runtime's own file."""
+    and the VL53L0X link into the firmware, each from the runtime's own file;
+    and issue 25's RGB LEDs (its src/leds.c's set_rgb_led)."""
     firmware = str(require_checkout(
         "EPUCK2_FIRMWARE", "src",
         "EPUCK2_FIRMWARE is not set: the full e-puck2 link needs the firmware"))
@@ -157,7 +160,7 @@ def test_a_full_build_with_messages_the_camera_and_the_tof_sensor(tmp_path):
     defined = {line.split()[-1] for line in symbols.splitlines() if " T " in line}
     assert {"action_send", "event_message", "rt_seen", "rt_bearing", "rt_distance",
             "ircomSend", "ircomPopMessage", "e_poxxxx_launch_capture",
-            "VL53L0X_get_dist_mm"} <= defined
+            "VL53L0X_get_dist_mm", "action_led_rgb", "set_rgb_led"} <= defined
 
 
 def test_a_program_without_the_camera_does_not_start_it(tmp_path):

@@ -157,3 +157,25 @@ def test_go_to_goal_stops_within_a_centimetre(tmp_path, goal):
 def test_the_examples_build_for_16_and_32_bits(tmp_path):
     for name in ("go_to_goal", "weights", "histogram"):
         _build_both(tmp_path, REPO / "examples" / f"{name}.epk")
+
+
+def test_the_ring_and_the_rgb_leds_show_numbers(tmp_path):
+    """led_ring(n) lights LEDs 0..n-1 (n clamped to 0..8), led_bits(b) the
+    bits of b, led_rgb sets an e-puck2 RGB LED's colour, each change traced;
+    the e-puck (dspic) has no RGB LEDs: E070 naming it."""
+    program = tmp_path / "leds.epk"
+    program.write_text("var n = -2\n"
+                       "every 100 ms do n += 3, led_ring(n), led_rgb(led5, n * 10, 0, 100 - n)\n"
+                       "after 450 ms do led_bits(165)\n"
+                       "after 500 ms priority 1 do exit_main\n")
+    records, _ = run_program(program, tmp_path)
+    rings = [r["ring"] for r in records if r["kind"] == "led"]
+    for n, ring in ((1, "10000000"), (4, "11110000"), (7, "11111110"), (10, "11111111")):
+        assert ring in rings, (n, ring, rings)
+    assert rings[-1] == "10100101"              # 165: bits 0, 2, 5, 7
+    colours = [(r["led"], r["red"], r["blue"]) for r in records if r["kind"] == "rgb"]
+    # 10 * n saturates the percent at 100 from n = 10 on; 100 - n goes on
+    assert colours == [("led5", 10, 99), ("led5", 40, 96), ("led5", 70, 93), ("led5", 100, 90)]
+    result = epuckc("check", "--target", "dspic", program)
+    assert result.returncode == 1 and "error[E070]" in result.stderr
+    assert "`led_rgb`" in result.stderr and "the e-puck (dspic) does not have" in result.stderr
