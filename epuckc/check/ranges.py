@@ -132,7 +132,7 @@ class Ranges:
             runs_once = isinstance(stmt, ast.Rule) and not stmt.repeat \
                 and stmt.mode is None and stmt.trigger != "every"
             for step in body.steps:
-                for c in step.calls:
+                for c in ast.calls_within(step.calls):      # (an `if`'s may run)
                     if isinstance(c, ast.Assign) and c.target.name in self.vars:
                         assigns[c.target.name].append(c)
                         place[id(c)] = len(place)

@@ -62,6 +62,7 @@ CODES = {
     "E054": "unknown function",
     "E055": "`repeat` on `every` or `after`",
     "E056": "expression nested too deeply",
+    "E080": "`then` inside an `if` branch",
     # warnings
     "W001": "timer rule that can never fire",
     "W002": "sensor rule that can never fire",
@@ -81,6 +82,7 @@ CODES = {
     "W016": "condition that never changes",
     "W017": "variable never assigned",
     "W020": "an operation that can leave the 16-bit range and saturate",
+    "W080": "an `if` branch that never runs",
 }
 
 _EXPLANATIONS = Path(__file__).resolve().parent / "explanations"

@@ -13,7 +13,10 @@ exactly MAX_DEPTH, so that no stage may need more.
 
 Depth counts operators, function calls and parentheses on the way from the
 expression's root to its deepest leaf: `a + b + c` is 2 deep (the left
-operand of the second `+` is the first), `abs((x))` is 2.
+operand of the second `+` is the first), `abs((x))` is 2. An `if` action
+is a level too, above everything in its branches (its conditions and
+actions, and the `if`s inside): in `if a > 0 { if b > 0 { v = v + 1 } }`
+the `+` is 3 deep.
 """
 from __future__ import annotations
 
@@ -23,7 +26,7 @@ from . import ast
 
 MAX_DEPTH = 200
 
-_NESTING = (ast.BinOp, ast.UnaryOp, ast.FuncCall, ast.Paren)
+_NESTING = (ast.BinOp, ast.UnaryOp, ast.FuncCall, ast.Paren, ast.IfAction)
 
 
 def _children(node):

@@ -52,6 +52,8 @@ _UnaryOp = ast.maker(ast.UnaryOp)
 _FuncCall = ast.maker(ast.FuncCall)
 _Paren = ast.maker(ast.Paren)
 _Assign = ast.maker(ast.Assign)
+_IfBranch = ast.maker(ast.IfBranch)
+_IfAction = ast.maker(ast.IfAction)
 
 
 def _ident(tok) -> ast.Ident:
@@ -188,6 +190,20 @@ class _ToAst:
     def sub_assign_call(self, span, children):
         name, value = children
         return _Assign(_ident(name), "-=", value, span)
+
+    def call(self, span, children):         # `call: ... | if_call`
+        return children[0]
+
+    def if_call(self, span, children):
+        *branches, otherwise = children
+        return _IfAction(tuple(branches), otherwise, span)
+
+    def if_branch(self, span, children):
+        condition, body = children
+        return _IfBranch(condition, body, span)
+
+    def else_branch(self, span, children):
+        return children[0]
 
     def cancel_call(self, span, children):
         (name,) = children
@@ -405,11 +421,18 @@ class ModePlacer:
             return
         deep = too_deep(statement)
         if deep is not None:
-            diags.error("E056", deep.span,
-                        f"this expression is nested more than {MAX_DEPTH} deep (operators, "
-                        f"calls and parentheses)",
-                        help="compute a part of it into a variable first (`part = ...`), "
-                             "then use the variable")
+            if isinstance(deep, ast.IfAction):
+                diags.error("E056", deep.span,
+                            f"this `if` is nested more than {MAX_DEPTH} deep (`if`s inside "
+                            f"`if`s, and the operators, calls and parentheses inside them)",
+                            help="join the conditions with `and`, or use `else if`, which "
+                                 "does not nest")
+            else:
+                diags.error("E056", deep.span,
+                            f"this expression is nested more than {MAX_DEPTH} deep (operators, "
+                            f"calls and parentheses)",
+                            help="compute a part of it into a variable first (`part = ...`), "
+                                 "then use the variable")
             return
         if mode is not None and not isinstance(statement, ast.Rule):
             if isinstance(statement, ast.VarDef):
