@@ -14,7 +14,7 @@ from . import ast
 from . import lalr
 from ..diagnostics import Collector, Note
 from .errors import syntax_error
-from .limits import MAX_DEPTH, too_deep
+from .limits import IF_LEVELS, MAX_DEPTH, too_deep
 from .lexer import KEYWORDS, STATEMENT_STARTS, iter_statements, iter_tokens
 from ..base.resources import grammar_path
 from ..base.source import SourceFile, Span
@@ -423,10 +423,11 @@ class ModePlacer:
         if deep is not None:
             if isinstance(deep, ast.IfAction):
                 diags.error("E056", deep.span,
-                            f"this `if` is nested more than {MAX_DEPTH} deep (`if`s inside "
-                            f"`if`s, and the operators, calls and parentheses inside them)",
-                            help="join the conditions with `and`, or use `else if`, which "
-                                 "does not nest")
+                            f"this `if` is nested more than {MAX_DEPTH} deep (an `if` counts "
+                            f"{IF_LEVELS}, an operator, call or parenthesis inside it 1)",
+                            help="join nested conditions with `and`, use `else if` (which "
+                                 "does not nest), or compute a part of a long expression into "
+                                 "a variable first")
             else:
                 diags.error("E056", deep.span,
                             f"this expression is nested more than {MAX_DEPTH} deep (operators, "
