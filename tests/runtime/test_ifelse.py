@@ -84,3 +84,15 @@ def test_the_16_bit_build_compiles(tmp_path):
     epuckc("compile", prog, "-o", c, check=True)
     subprocess.run([avr, "-mmcu=atmega128", *STRICT, "-Os", *INCLUDES, "-c", str(c),
                     "-o", str(tmp_path / "x.o")], check=True)
+
+
+def test_a_wait_in_a_branch_delays_the_next_step_only_when_taken(tmp_path):
+    from tests.support.programs import run_program
+    program = ("var n = INIT\nevery 10 s do n = 1 - INIT\n"
+               "on immediate do if n > 0 { wait(300 ms) } then led_on(body), n = 5\n"
+               "after 1 s priority 1 do exit_main\n")
+    for init, when in (("1", 301), ("0", 1)):
+        path = tmp_path / f"wait{init}.epk"
+        path.write_text(program.replace("INIT", init), encoding="utf-8")
+        records, _ = run_program(path, tmp_path)
+        assert _sets(records, "n") == [(when, 5)]
