@@ -455,6 +455,20 @@ class ModePlacer:
 
     def finish(self) -> None:
         for mode in self.modes:
+            last = self.program.statements[-1] if self.program.statements else None
+            if isinstance(last, ast.Rule) and last.mode is not None \
+                    and last.mode.name == mode.name.name and any(
+                        isinstance(c, ast.IfAction)
+                        for step in last.body.steps for c in ast.calls_within(step.calls)):
+                # the mode's `}` may have closed an `if` whose own `}` is missing
+                end = Span(last.span.end_line, last.span.end_column - 1, last.span.end_line,
+                           last.span.end_column)
+                self.diags.error("E001", mode.span, f"mode `{mode.name.name}` is not closed",
+                                 help="end the mode's rules with `}`; if the `}` of the last "
+                                      "rule's `if` was meant to close the mode, a `}` of the "
+                                      "`if` is missing before it",
+                                 notes=[Note("this `}` closes an `if`, not the mode", end)])
+                continue
             self.diags.error("E001", mode.span, f"mode `{mode.name.name}` is not closed",
                              help="end the mode's rules with `}`")
         self.modes = []
