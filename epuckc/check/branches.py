@@ -115,7 +115,10 @@ class Branches:
                     self._call(c)       # still checked: their own mistakes are reported
         bounds = {}
         if holds is not None:
-            base = {n: (v.lo, v.hi) for n, v in self.vars.items()}
+            # (only the variables compared: the language server's memo of a
+            # rule then depends on those alone, ide/incremental.py)
+            base = {n: (self.vars[n].lo, self.vars[n].hi)
+                    for n in sorted(conditions.names_of(holds)) if n in self.vars}
             bounds = {n: b for n, b in conditions.narrowed(holds, base).items()
                       if n in self.vars}
         calls = self._calls_narrowed(body.steps[0].calls, bounds)
@@ -134,7 +137,7 @@ class Branches:
                 ok = False
         return calls if ok else None
 
-    _whole_ranges = None    # name -> interval, while some variables are narrowed
+    _whole_ranges = None    # name -> whole interval of each variable narrowed, meanwhile
 
     def _calls_narrowed(self, calls, bounds: dict) -> list:
         """`calls` resolved in order, the variables in `bounds` given those
@@ -146,9 +149,11 @@ class Branches:
             return [r for r in map(self._call, calls) if r is not None]
         outermost = self._whole_ranges is None
         if outermost:
-            self._whole_ranges = {n: (v.lo, v.hi) for n, v in self.vars.items()}
+            self._whole_ranges = {}
         whole = self._whole_ranges
         saved = {n: (self.vars[n].lo, self.vars[n].hi) for n in bounds}
+        for name, interval in saved.items():     # (narrowed for the first time here)
+            whole.setdefault(name, interval)
         out = []
         try:
             for name, (lo, hi) in bounds.items():
