@@ -115,3 +115,29 @@ def test_fmt_keeps_comments_inside_branches():
     assert "# high" in once and "# reset" in once and "# low" in once
     assert format_text(once) == once
     assert once.index("# high") < once.index("# reset") < once.index("# low")
+
+
+def test_an_edit_elsewhere_that_changes_a_branchs_intervals_is_seen():
+    """The language server reuses a rule's check while nothing it read
+    changed; a branch's narrowing reads the intervals of the variables its
+    conditions compare, so an edit of another rule that changes them must
+    re-check it, and say what a full check says."""
+    from pathlib import Path
+    from epuckc.check.frontend import check_file
+    from epuckc.diagnostics import Report
+
+    def full(text):
+        report = Report()
+        check_file(Path("e.epk"), report, shown_name="e.epk", text=text)
+        return sorted((d.code, d.span.line, d.span.column, d.message) for d in report.diagnostics)
+
+    first = ("var n = 0\nvar m = 0\nevery 1 s do n = clamp(ir0 - 1000, -5, 5)\n"
+             "every 2 s priority 1 do if n < 3 { m = n * 3000 }\nwhen m > 5 do stop_motor\n")
+    second = first.replace("clamp(ir0 - 1000, -5, 5)", "clamp(ir0 - 1000, -500, 5)")
+    analyzer = Analyzer("e.epk")
+    for text in (first, second, first):
+        got = sorted((d.code, d.span.line, d.span.column, d.message)
+                     for d in analyzer.analyse(text).diagnostics)
+        assert got == full(text)
+    assert any(d[0] == "W020" for d in full(second)) and not any(
+        d[0] == "W020" for d in full(first))
