@@ -5,11 +5,12 @@ warnings about branches that never run.
 An `if` runs in the poll of the step that holds it, like any other call
 of the step, with the values the calls before it gave (docs/language.md,
 section 2.8). A branch is one step: its calls run together, in order, in
-that same poll. `then` inside a branch [E080] would make the sequencer's
-steps (one poll apart, docs/runtime.md) depend on a condition; so would
-a named action of several steps [E080]. A motion started in a branch is
-a motion like any other: it goes on after the step, and the rule holds the
-motors as it would without the `if`.
+that same poll. `then` inside a branch [E080] would make the steps of
+the rule's sequence (each run once the motion of the one before has
+ended, docs/runtime.md; fixed when compiling) depend on a condition; so
+would a named action of several steps [E080]. A motion started in a
+branch is a motion like any other: it goes on after the step, and the
+rule holds the motors as it would without the `if`.
 
 The whole-program analyses read an `if` as "any branch may run": every
 call of every branch may happen (modes.may_run), which is sound for what
