@@ -96,3 +96,88 @@ def test_a_wait_in_a_branch_delays_the_next_step_only_when_taken(tmp_path):
         path.write_text(program.replace("INIT", init), encoding="utf-8")
         records, _ = run_program(path, tmp_path)
         assert _sets(records, "n") == [(when, 5)]
+
+
+def _chains(rng, count):
+    """`count` random if / else if / else chains over a, b, c: each as its
+    text and the branch (1, 2, ...; 0: none) that the first condition to
+    hold picks, computed here with the runtime's arithmetic (stdlib/arith)."""
+    from epuckc.stdlib import arith
+
+    def atom():
+        x, y = rng.sample("abc", 2)
+        op, k = rng.choice(list(arith.COMPARE)), rng.randint(-40000, 40000) // 2
+        form = rng.randint(0, 3)
+        if form == 0:
+            return f"{x} {op} {k}", lambda v: arith.COMPARE[op](v[x], k)
+        if form == 1:
+            return f"{x} + {y} {op} {k}", lambda v: arith.COMPARE[op](arith.add(v[x], v[y]), k)
+        if form == 2:
+            return f"{x} - {y} {op} {k}", lambda v: arith.COMPARE[op](arith.sub(v[x], v[y]), k)
+        return f"{x} * 3 {op} {y}", lambda v: arith.COMPARE[op](arith.mul(v[x], 3), v[y])
+
+    def condition(depth=0):
+        form = rng.randint(0, 5) if depth < 2 else 0
+        if form <= 2:
+            return atom()
+        if form == 3:
+            text, f = condition(depth + 1)
+            return f"not ({text})", lambda v: not f(v)
+        (t1, f1), (t2, f2) = condition(depth + 1), condition(depth + 1)
+        if form == 4:
+            return f"({t1}) and ({t2})", lambda v: f1(v) and f2(v)
+        return f"({t1}) or ({t2})", lambda v: f1(v) or f2(v)
+
+    out = []
+    for i in range(count):
+        conds = [condition() for _ in range(rng.randint(1, 4))]
+        has_else = rng.random() < 0.5
+        parts = [f"{'if' if k == 0 else 'else if'} {text} {{ r{i} = {k + 1} }}"
+                 for k, (text, _) in enumerate(conds)]
+        if has_else:
+            parts.append(f"else {{ r{i} = {len(conds) + 1} }}")
+
+        def pick(v, conds=conds, has_else=has_else):
+            for k, (_, f) in enumerate(conds):
+                if f(v):
+                    return k + 1
+            return len(conds) + 1 if has_else else 0
+        out.append((" ".join(parts), pick))
+    return out
+
+
+def test_random_chains_take_the_branch_of_the_first_condition_that_holds(tmp_path):
+    """Differential: 40 random chains run in one step after the values they
+    compare were assigned in it; each takes the branch that Python, with the
+    runtime's saturating arithmetic, says the first true condition picks."""
+    import random
+    rng = random.Random(25)
+    chains = _chains(rng, 40)
+    for run in range(3):
+        values = {name: rng.choice([rng.randint(-32768, 32767), rng.randint(-300, 300), 0,
+                                    32767, -32768]) for name in "abc"}
+        _run_chains(tmp_path / f"run{run}", chains, values)
+
+
+def _run_chains(tmp_path, chains, values):
+    """Checks (no error, no condition decided when compiling), runs, and
+    compares each chain's branch with the one expected for `values`."""
+    from tests.support.programs import run_program
+    tmp_path.mkdir()
+    lines = [f"var {n} = 0" for n in "abc"] + [f"var r{i} = 0" for i in range(len(chains))]
+    # (wide intervals, so that no condition is decided when compiling)
+    lines.append("on timer(1 s) do a = random(-32768, 32767), b = random(-32768, 32767), "
+                 "c = random(-32768, 32767)")
+    lines.append("on immediate do " + ", ".join(f"{n} = {v}" for n, v in values.items())
+                 + ", " + ", ".join(text for text, _ in chains))
+    lines.append("after 100 ms priority 1 do exit_main")
+    path = tmp_path / "chains.epk"
+    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    check = epuckc("check", path)
+    assert "error" not in check.stderr, check.stderr
+    assert "W016" not in check.stderr
+    records, _ = run_program(path, tmp_path)
+    got = {r["var"]: r["value"] for r in records if r["kind"] == "set"}
+    expected = [pick(values) for _, pick in chains]
+    assert [got.get(f"r{i}", 0) for i in range(len(chains))] == expected
+    assert len(set(expected)) >= 3          # the chains take different branches
