@@ -181,3 +181,40 @@ def _run_chains(tmp_path, chains, values):
     expected = [pick(values) for _, pick in chains]
     assert [got.get(f"r{i}", 0) for i in range(len(chains))] == expected
     assert len(set(expected)) >= 3          # the chains take different branches
+
+
+def test_traced_values_stay_in_the_checkers_intervals(tmp_path):
+    """Soundness of the variables' intervals with `if`s (an assignment in
+    any branch may run): generated programs with `if` actions that the
+    checker accepts are run, and every value their trace gives a variable
+    lies in the interval the checker computed for it."""
+    import random
+    from pathlib import Path
+    from epuckc.check.frontend import check_file
+    from epuckc.diagnostics import Report
+    from tests.support.language import RandomChoices, language_program
+    rng = RandomChoices(random.Random(2025))
+    ran = checked_sets = 0
+    for attempt in range(400):
+        text = language_program(rng).text
+        if " { " not in text or "=" not in text.split(" { ", 1)[1]:
+            continue
+        result = check_file(Path("g.epk"), Report(), shown_name="g.epk", text=text)
+        if result.checked is None:
+            continue
+        intervals = {n: (v.lo, v.hi) for n, v in result.checked.variables.items()}
+        path = tmp_path / f"g{attempt}.epk"
+        path.write_text(text, encoding="utf-8")
+        trace = tmp_path / f"g{attempt}.jsonl"
+        run = epuckc("run", path, "--time-limit", "2s", "--trace", trace)
+        assert run.returncode in (0, 3), run.stderr      # 3: the time limit
+        records = [json.loads(line) for line in trace.read_text().splitlines()]
+        for r in records:
+            if r["kind"] == "set":
+                lo, hi = intervals[r["var"]]
+                assert lo <= r["value"] <= hi, (r, (lo, hi), text)
+                checked_sets += 1
+        ran += 1
+        if ran == 8:
+            break
+    assert ran == 8 and checked_sets > 50
