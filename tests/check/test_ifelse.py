@@ -123,3 +123,30 @@ def test_a_cycle_through_a_branch_is_e023():
     text = ("var n = 0\naction a = if n > 0 { b }\naction b = n = 0, a\n"
             "every 1 s do a\n")
     assert "E023" in codes(text)
+
+
+def _interval(text, name):
+    v = _check(text)[0].variables[name]
+    return v.lo, v.hi
+
+
+def test_a_capped_counter_keeps_its_cap():
+    # the assignment runs only where its branch's condition (or the guard) held
+    assert _interval("var n = 0\nevery 1 s do if n < 100 { n += 1 }\n"
+                     "when n > 50 do stop_motor\n", "n") == (0, 100)
+    assert _interval("var n = 0\nevery 1 s if n < 100 do n += 1\n"
+                     "when n > 50 do stop_motor\n", "n") == (0, 100)
+    # the failed conditions before an `else` hold too
+    assert _interval("var n = 0\nevery 1 s do if n >= 100 { led_on(body) } else { n += 1 }\n"
+                     "when n > 50 do stop_motor\n", "n") == (0, 100)
+
+
+def test_a_variable_assigned_since_its_condition_is_not_narrowed():
+    # n = 500 after `n < 100` was evaluated: n += 1 can give 501
+    for body in ("if n < 100 { n = 500, n += 1 }",
+                 "if n < 100 { n = 500, if ir0 > 3 { n += 1 } }",
+                 "if n < 100 { bump, n += 1 }"):
+        text = ("var n = 0\naction bump = n = 500\n"
+                f"every 1 s do {body}\nwhen n > 50 do stop_motor\n")
+        lo, hi = _interval(text, "n")
+        assert hi >= 501, body
