@@ -46,7 +46,7 @@ from ..stdlib.table import MOTION_ACTIONS, MOTOR_ACTIONS, STANDARD_READINGS
 from ..syntax import ast
 from . import conditions as cond
 from .messages import _shown
-from .modes import flat_steps
+from .modes import flat_steps, may_run
 
 # Pairs reported one by one; the rest are listed, every one, in one more
 # warning: a file of hundreds of racing rules needs one fix, not thousands
@@ -73,12 +73,17 @@ def _commands_motors(checker, steps, named: dict) -> bool:
             if kind == "standard":
                 if call.name in MOTOR_ACTIONS:
                     return True
+            elif kind == "if":              # any branch may run
+                if any(c.kind == "standard" and c.name in MOTOR_ACTIONS
+                       for c in may_run(checker, [call])):
+                    return True
             elif kind == "named":
                 found = named.get(call.name)
                 if found is None:
                     found = named[call.name] = any(
                         c.kind == "standard" and c.name in MOTOR_ACTIONS
-                        for spliced in flat_steps(checker, [[call]]) for c in spliced)
+                        for spliced in flat_steps(checker, [[call]])
+                        for c in may_run(checker, spliced))
                 if found:
                     return True
     return False
@@ -235,7 +240,8 @@ class _Rules:
     def __init__(self, checker, rules, every_rule):
         self.rules = every_rule         # (any rule may write a variable a guard reads)
         self.index = {id(r): i for i, r in enumerate(every_rule)}
-        flat = {id(r): [c for step in flat_steps(checker, r.body) for c in step]
+        flat = {id(r): [c for step in flat_steps(checker, r.body)
+                         for c in may_run(checker, step)]
                 for r in every_rule}
         self.condition = {id(r): condition_of(r) for r in rules}
         self.memo_names, self.memo_boxes, self.memo_alone = {}, {}, {}
@@ -268,17 +274,17 @@ class _Rules:
         enters, stops, entry_moves = False, [], set()
         for r in every_rule:
             steps = flat_steps(checker, r.body)
-            calls = [c for step in steps for c in step]
+            calls = [c for step in steps for c in may_run(checker, step)]
             if r.mode is None and any(c.kind == "standard" and c.name in MOTION_ACTIONS
                                       for c in calls):
                 return False            # its motion goes on across an entry
             enters = enters or any(c.kind == "enter" for c in calls)
             if _is_enter(r) and steps and any(c.kind == "standard" and c.name in MOTION_ACTIONS
-                                              for c in steps[0]):
+                                              for c in may_run(checker, steps[0])):
                 entry_moves.add(r.mode)
             # a stop not followed by exit_main in its step: the wheels stopped
             # between two polls, which an entry in that poll does not undo
-            if any(_stops_and_goes_on(step) for step in steps):
+            if any(_stops_and_goes_on(checker, step) for step in steps):
                 stops.append(r)
         # An `on enter` that stops runs where nothing moves (the motion of the
         # mode left was stopped), unless an `on enter` of its mode started one.
@@ -349,9 +355,11 @@ def _is_enter(rule) -> bool:
     return rule.event.kind == "standard" and rule.event.name == "enter"
 
 
-def _stops_and_goes_on(step) -> bool:
+def _stops_and_goes_on(checker, step) -> bool:
+    """A step that may stop the wheels and goes on (no `exit_main` after
+    the stop in it that surely runs: one inside an `if` may not)."""
     for i, call in enumerate(step):
-        if call.kind == "standard" and call.name in _STOPPING:
+        if any(c.kind == "standard" and c.name in _STOPPING for c in may_run(checker, [call])):
             return not any(c.kind == "standard" and c.name == "exit_main" for c in step[i:])
     return False
 

@@ -161,6 +161,8 @@ class Calls:
     def _call(self, call) -> Optional[ResolvedCall]:
         if isinstance(call, ast.Assign):
             return self._assign(call)
+        if isinstance(call, ast.IfAction):
+            return self._if_call(call)          # (branches.py)
         if isinstance(call, ast.EnterCall):
             return modes.enter_call(self, call)
         if isinstance(call, ast.CancelCall):

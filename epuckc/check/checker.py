@@ -15,6 +15,7 @@ from ..diagnostics import ERROR, Collector
 from ..stdlib.units import Geometry
 from ..syntax import ast
 from . import modes, races
+from .branches import Branches
 from .calls import Calls
 from .exprs import Exprs
 from .variables import Variables
@@ -29,7 +30,7 @@ from .values import Values
 
 
 class Checker(Names, Externs, RobotSettings, Values, Exprs, Variables, Ranges, Calls, Rules,
-              Overflow):
+              Overflow, Branches):
     """The checker's state and its order of work; each concern's methods live in
     the mixin of its module (names.py, externs.py, robot.py, values.py,
     calls.py, rules.py), the whole-program analyses in modes.py and

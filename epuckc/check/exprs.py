@@ -319,10 +319,10 @@ class Exprs:
         """W016: a comparison that is always true or always false, folded
         (the C never compares a value with itself)."""
         text, truth = self._text(e.node), "true" if e.value else "false"
+        if a.constant and b.constant:
+            return      # two fixed values: written so on purpose (`when 1 == 1`)
         if _same_value(a, b):
             why = "it compares a value with itself"
-        elif a.constant and b.constant:
-            return      # two fixed values: written so on purpose (`when 1 == 1`)
         else:
             why = " and ".join(f"`{self._text(side.node)}` is {_interval(side)}"
                                for side in (a, b) if not side.constant)

@@ -12,7 +12,7 @@ from typing import Optional
 from ..diagnostics import Note
 from ..syntax import ast
 from .messages import _code, did_you_mean
-from .program import ResolvedCall
+from .program import ResolvedCall, branches_of
 from .splice import splice
 
 
@@ -71,8 +71,24 @@ def flat_steps(checker, steps) -> list:
                   checker._flat_actions)
 
 
+def may_run(checker, calls) -> list:
+    """Every call that a step's `calls` may run: each of them and, for an
+    `if`, every call of every branch (any branch may run), the named
+    actions of the branches spliced in (flat_steps); in order."""
+    out, todo = [], list(reversed(calls))
+    while todo:
+        call = todo.pop()
+        out.append(call)
+        if call.kind == "if":
+            inner = [c for branch in branches_of(call)
+                     for step in flat_steps(checker, [branch]) for c in step]
+            todo.extend(reversed(inner))
+    return out
+
+
 def _steps_after_enter(checker, steps) -> Optional[object]:
-    """The first `enter` call of a body that a later step follows, or None."""
+    """The first `enter` call of a body that a later step follows, or None
+    (an `enter` inside an `if` may not run: not this one's)."""
     for step in flat_steps(checker, steps)[:-1]:
         for call in step:
             if call.kind == "enter":
@@ -93,7 +109,7 @@ def check_program(checker, out, complete: bool = True) -> None:
     for body in (list(checker._resolved_actions.values()) + [r.body for r in out.rules]
                  if checker.modes else ()):
         for step in body:
-            for call in step:
+            for call in may_run(checker, step):
                 if call.kind == "enter":
                     entered.add(call.name)
     for name, node in checker.modes.items():
@@ -104,7 +120,8 @@ def check_program(checker, out, complete: bool = True) -> None:
     for rule in out.rules:
         if rule.mode is None:
             continue
-        for call in (c for step in flat_steps(checker, rule.body) for c in step):
+        for call in (c for step in flat_steps(checker, rule.body)
+                     for c in may_run(checker, step)):
             if call.kind == "cancel" and rule_mode.get(call.name) not in (None, rule.mode):
                 other = rule_mode[call.name]
                 diags.error("E045", call.node.span,

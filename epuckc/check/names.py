@@ -65,8 +65,10 @@ class Names:
         return False
 
     def _named_calls(self, name: str) -> list:
-        """The calls of named actions in action `name`'s body."""
-        return [call for step in self.actions[name].body.steps for call in step.calls
+        """The calls of named actions in action `name`'s body (inside its
+        `if`s too)."""
+        return [call for step in self.actions[name].body.steps
+                for call in ast.calls_within(step.calls)
                 if isinstance(call, ast.Call) and not call.args
                 and call.name.name in self.actions and call.name.name not in self.externs]
 

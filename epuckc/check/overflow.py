@@ -74,32 +74,15 @@ class Overflow:
         the intervals its guard leaves its variables: the guard is evaluated
         just before the step runs, in the same poll, so `if n < 3 do n += 1`
         gives `n` 1..3. A variable is back to its whole interval after the
-        first call that may assign it (itself, or a named action)."""
+        first call that may assign it (itself, a named action, or an `if`
+        that may)."""
         bounds = conditions.narrowed(conditions.formula(guard),
                                      {n: (v.lo, v.hi) for n, v in self.vars.items()}) \
             if guard is not None and body.steps else {}
         bounds = {n: b for n, b in bounds.items() if n in self.vars}
         if not bounds:
             return self._body(body)
-        saved = {n: (self.vars[n].lo, self.vars[n].hi) for n in bounds}
-        steps, calls = [], []
-        try:
-            for name, (lo, hi) in bounds.items():
-                self.vars[name].lo, self.vars[name].hi = lo, hi
-            for call in body.steps[0].calls:
-                resolved = self._call(call)
-                if resolved is not None:
-                    calls.append(resolved)
-                if isinstance(call, ast.Assign) and call.target.name in saved:
-                    self.vars[call.target.name].lo, self.vars[call.target.name].hi = \
-                        saved[call.target.name]
-                elif isinstance(call, ast.Call) and call.name.name in self.actions:
-                    for name, (lo, hi) in saved.items():
-                        self.vars[name].lo, self.vars[name].hi = lo, hi
-        finally:
-            for name, (lo, hi) in saved.items():
-                self.vars[name].lo, self.vars[name].hi = lo, hi
-        steps.append(calls)
+        steps = [self._calls_narrowed(body.steps[0].calls, bounds)]    # (branches.py)
         for step in body.steps[1:]:
             steps.append([r for r in map(self._call, step.calls) if r is not None])
         return steps

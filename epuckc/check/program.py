@@ -16,6 +16,8 @@ class ResolvedCall:
     kind: "standard" | "extern" | "named" | "cancel" | "enter" (name: the mode)
           | "assign" (name: the variable; values: {"value": Expr}, the value
           given, `+=` and `-=` included)
+          | "if" (values: {"branches": ((condition Expr, [ResolvedCall]), ...),
+          "otherwise": [ResolvedCall] or None}; see branches_of)
     values: parameter name -> integer in runtime units (for an enumerated
     parameter, the C text of its value: `SET_LED_BODY`); for start_curve
     also `outer_steps` and `inner_speed`. An argument computed while the
@@ -28,6 +30,28 @@ class ResolvedCall:
     shown: dict
     node: object
     dynamic: bool = False
+
+
+def branches_of(call: ResolvedCall) -> list:
+    """The calls of each branch of an `if` (kind "if": values["branches"]
+    are (condition, calls) pairs, values["otherwise"] the `else` calls or
+    None), its `else` last."""
+    found = [calls for _, calls in call.values["branches"]]
+    if call.values["otherwise"] is not None:
+        found.append(call.values["otherwise"])
+    return found
+
+
+def calls_within(calls) -> list:
+    """`calls` and, inside each `if`, every call of every branch, in order
+    (named actions are not looked into: modes.may_run splices them)."""
+    out, todo = [], list(reversed(calls))
+    while todo:
+        call = todo.pop()
+        out.append(call)
+        if call.kind == "if":
+            todo.extend(reversed([c for branch in branches_of(call) for c in branch]))
+    return out
 
 
 BOOL = "bool"          # the kind of a condition's value

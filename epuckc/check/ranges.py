@@ -2,8 +2,12 @@
 their dependency graph at a time, and only where something changed.
 
 A variable's interval is the union of its initial value and of every value
-an assignment can give it. An assignment `v = e` makes v depend on the
-variables e reads (and `v += e` on v itself); those dependencies form a
+an assignment can give it. An assignment inside an `if` branch (or in the
+first step of a guarded rule) is evaluated with the variables its
+conditions compare narrowed to what they leave them, except those a call
+before it may have assigned since (`if n < 100 { n += 1 }` gives 0..100).
+An assignment `v = e` makes v depend on the variables e (and the conditions
+around it) read, and `v += e` on v itself; those dependencies form a
 graph whose strongly connected components (Tarjan, without recursion) are
 solved in dependency order: the components a component reads are final
 before it is iterated, so each one is a small fixpoint of its own
@@ -24,6 +28,7 @@ from __future__ import annotations
 from ..diagnostics import Collector
 from ..stdlib.units import INT16_MAX, INT16_MIN
 from ..syntax import ast
+from . import conditions
 from .messages import _shown
 from .program import BOOL
 
@@ -63,6 +68,44 @@ def _names_read(value) -> frozenset:
         elif cls is ast.FuncCall:
             todo += [a.value for a in node.args or () if hasattr(a, "value")]
     return frozenset(found)
+
+
+def _assignments(calls, context: tuple, actions, spoiled=frozenset()) -> list:
+    """(Assign, context, spoiled) for each assignment of a step's `calls`,
+    those inside `if` branches too: `context` the (condition, held) pairs
+    that hold where it runs (its branch's condition held, the ones before
+    it did not), `spoiled` the variables a call before it in those branches
+    may have assigned since (True: any, after a named action)."""
+    out = []
+    spoiled = spoiled if spoiled is True else set(spoiled)
+    for call in calls:
+        cls = call.__class__
+        if cls is ast.Assign:
+            out.append((call, context, spoiled if spoiled is True else frozenset(spoiled)))
+            if spoiled is not True:
+                spoiled.add(call.target.name)
+        elif cls is ast.IfAction:
+            failed = ()
+            for branch in call.branches:
+                here = context + failed + ((branch.condition, True),)
+                for k, step in enumerate(branch.body.steps):
+                    out += _assignments(step.calls, here if k == 0 else (), actions,
+                                        spoiled if k == 0 else frozenset())
+                failed += ((branch.condition, False),)
+            if call.otherwise is not None:
+                for k, step in enumerate(call.otherwise.steps):
+                    out += _assignments(step.calls, context + failed if k == 0 else (),
+                                        actions, spoiled if k == 0 else frozenset())
+            if spoiled is not True:
+                for inner in ast.calls_within((call,)):
+                    if inner.__class__ is ast.Assign:
+                        spoiled.add(inner.target.name)
+                    elif inner.__class__ is ast.Call and inner.name.name in actions:
+                        spoiled = True
+                        break
+        elif cls is ast.Call and call.name.name in actions:
+            spoiled = True
+    return out
 
 
 def components(graph: dict) -> list:
@@ -125,17 +168,23 @@ class Ranges:
         assigns: dict = {name: [] for name in self.vars}
         place: dict = {}        # id(Assign) -> its place in the file
         once: set = set()       # id(Assign) of the rules that run at most once
+        contexts = self._contexts = {}      # id(Assign) -> what holds where it runs
         for stmt in self.program.statements:
             body = stmt.body if isinstance(stmt, (ast.Rule, ast.ActionDef)) else None
             if body is None:
                 continue
             runs_once = isinstance(stmt, ast.Rule) and not stmt.repeat \
                 and stmt.mode is None and stmt.trigger != "every"
-            for step in body.steps:
-                for c in step.calls:
-                    if isinstance(c, ast.Assign) and c.target.name in self.vars:
+            guard = stmt.guard if isinstance(stmt, ast.Rule) else None
+            for k, step in enumerate(body.steps):
+                # (an `if`'s assignments may run, where its conditions held)
+                start = ((guard, True),) if guard is not None and k == 0 else ()
+                for c, context, spoiled in _assignments(step.calls, start, self.actions):
+                    if c.target.name in self.vars:
                         assigns[c.target.name].append(c)
                         place[id(c)] = len(place)
+                        if context:
+                            contexts[id(c)] = (context, spoiled)
                         if runs_once:
                             once.add(id(c))
         if not any(assigns.values()):
@@ -157,8 +206,12 @@ class Ranges:
                 if known is None or known[0] is not call:
                     # (its text: what its value depends on of itself, where a
                     # statement parsed again has new nodes and new spans)
-                    known = (call, _names_read(call.value),
-                             (call.op, _shown(call.value)) if memo is not None else None)
+                    context = contexts.get(id(call), ((), ()))[0]
+                    known = (call, _names_read(call.value).union(
+                                 *(_names_read(cond) for cond, _ in context)),
+                             (call.op, _shown(call.value),
+                              tuple((_shown(cond), held) for cond, held in context))
+                             if memo is not None else None)
                     if memo is not None:
                         memo.reads[id(call)] = known
                 texts[id(call)] = known[2]
@@ -231,7 +284,7 @@ class Ranges:
             changed = False
             for call in calls:
                 info = self.vars[call.target.name]
-                value = self._assigned(call, info)
+                value = self._assigned_where(call, info)
                 if value is None or value.kind == BOOL:
                     continue
                 lo, hi = min(info.lo, value.lo), max(info.hi, value.hi)
@@ -246,6 +299,38 @@ class Ranges:
                 break
         return grew
 
+    _contexts = None        # id(Assign) -> (conditions that hold where it runs, spoiled)
+
+    def _assigned_where(self, call, info):
+        """The value an assignment gives (variables.py's `_assigned`), with
+        the variables narrowed to what the conditions that hold where it
+        runs leave them (its `if` branches, a rule's guard in its first
+        step), as the checker narrows them for the call (branches.py):
+        except those a call before it, since those conditions were
+        evaluated, may have assigned (`spoiled`; True: every one)."""
+        context, spoiled = (self._contexts or {}).get(id(call), ((), ()))
+        if not context or spoiled is True:
+            return self._assigned(call, info)
+        parts = []
+        for cond, held in context:
+            e = self._expr(cond)
+            if e is not None and e.kind == BOOL:
+                parts.append(conditions.formula(e, held))
+        f = conditions.conjoin(*parts)
+        base = {n: (self.vars[n].lo, self.vars[n].hi)
+                for n in sorted(conditions.names_of(f)) if n in self.vars and n not in spoiled}
+        bounds = {n: b for n, b in conditions.narrowed(f, base).items() if n in base}
+        if not bounds:
+            return self._assigned(call, info)
+        saved = {n: (self.vars[n].lo, self.vars[n].hi) for n in bounds}
+        try:
+            for n, (lo, hi) in bounds.items():
+                self.vars[n].lo, self.vars[n].hi = lo, hi
+            return self._assigned(call, info)
+        finally:
+            for n, (lo, hi) in saved.items():
+                self.vars[n].lo, self.vars[n].hi = lo, hi
+
     def _narrow_ranges(self, calls):
         """Gives back what widening took where the assignments bound it
         (`n = min(n + 1, 1000)`): every value a variable takes is its initial
@@ -256,7 +341,7 @@ class Ranges:
             hulls = {name: (self.vars[name].init, self.vars[name].init) for name in members}
             for call in calls:
                 info = self.vars[call.target.name]
-                value = self._assigned(call, info)
+                value = self._assigned_where(call, info)
                 if value is None or value.kind == BOOL:
                     return              # not every value is known: keep the intervals
                 lo, hi = hulls[info.name]

@@ -66,6 +66,7 @@ CODES = {
     "E062": "an array where one value is wanted, or an index of what is not an array",
     "E063": "`dot` of arrays of different sizes",
     "E070": "a device the target does not have",
+    "E080": "`then` inside an `if` branch",
     # warnings
     "W001": "timer rule that can never fire",
     "W002": "sensor rule that can never fire",
@@ -87,6 +88,7 @@ CODES = {
     "W020": "a value that can leave its range and saturate",
     "W022": "an array index that can leave the array",
     "W030": "a value that can leave the range its action carries",
+    "W080": "an `if` branch that never runs",
 }
 
 _EXPLANATIONS = Path(__file__).resolve().parent / "explanations"

@@ -240,7 +240,8 @@ def completions(analysis: Analysis, line: int, column: int) -> list:
     if prev_type == "_ENTER":
         return items + [Completion(name, "const", "mode") for name in analysis.checker.modes]
     if prev_type in ("_DO", "_THEN") or (prev_type == "_EQUAL" and tokens[0].type == "_ACTION") \
-            or (prev_type == "_COMMA" and call is None and any(t.type == "_DO" for t in tokens)):
+            or (prev_type == "_COMMA" and call is None and any(t.type == "_DO" for t in tokens)) \
+            or (prev_type == "_LBRACE" and "_CANCEL" in expected):      # an `if` branch
         return items + _action_items(analysis) + _var_items(analysis)
     if prev_type in ("_COLON", "_EQUAL", "MINUS"):
         return items + _const_items(analysis)

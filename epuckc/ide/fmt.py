@@ -18,6 +18,8 @@ The rules (docs/formatting.md has them with examples):
   `then` starts a line, then the calls of a step go one per line after their
   `,` (one more indent), and last an argument list fills its lines, breaking
   after a `,` (one more indent);
+- an `if` that does not fit on a line has each branch's actions on lines
+  of their own, one indent in, and `} else {` between them;
 - a robot block that does not fit on a line, or whose last setting is
   followed by a comma, has one setting per line, each with a comma;
 - a comment at the end of a line stays at the end of the line of the same
@@ -282,6 +284,9 @@ class _Builder:
         self.close()
 
     def call(self, node):
+        if isinstance(node, ast.IfAction):
+            self.if_action(node)
+            return
         if isinstance(node, ast.Assign):
             self.token("NAME")
             if node.index is not None:
@@ -304,6 +309,39 @@ class _Builder:
         self.token("NAME")
         if node.args is not None:
             self.arguments(node.args, self.arg)
+
+    def if_action(self, node: ast.IfAction):
+        """`if C { A } else if D { B } else { E }` on one line when it fits,
+        else each branch's actions on their own lines, one indent in, and
+        each `}` at the `if`'s indent."""
+        self.open(_Group())
+        for k, branch in enumerate(node.branches):
+            if k:
+                self.sep(" ")
+                self.token("_ELSE")
+                self.sep(" ")
+            self.token("_IF")
+            self.sep(" ")
+            self.open(_Indent())
+            self.expr(branch.condition)
+            self.close()
+            self.sep(" ")
+            self.branch(branch.body)
+        if node.otherwise is not None:
+            self.sep(" ")
+            self.token("_ELSE")
+            self.sep(" ")
+            self.branch(node.otherwise)
+        self.close()
+
+    def branch(self, body: ast.ActionBody):
+        self.token("_LBRACE")
+        self.open(_Indent())
+        self.sep(LINE)
+        self.body(body)
+        self.close()
+        self.sep(LINE)
+        self.token("_RBRACE")
 
     def arguments(self, items, each, brackets=("_LPAR", "_RPAR")):
         """`(a, b, c)` (or `[a, b, c]`), breaking after the commas when it

@@ -75,7 +75,7 @@ def _calls(statement) -> Iterator:
     body = getattr(statement, "body", None)
     if isinstance(body, ast.ActionBody):
         for step in body.steps:
-            for call in step.calls:
+            for call in ast.calls_within(step.calls):   # inside `if`s too
                 if isinstance(call, ast.Call):
                     yield call
 
@@ -169,6 +169,12 @@ def _children(node) -> Iterator:
     elif isinstance(node, ast.Index):
         yield node.name
         yield node.index
+    elif isinstance(node, ast.IfAction):
+        for branch in node.branches:
+            yield branch.condition
+            yield branch.body
+        if node.otherwise is not None:
+            yield node.otherwise
     elif isinstance(node, ast.ActionDef):
         yield node.body
     elif isinstance(node, ast.BinOp):

@@ -64,8 +64,11 @@ def _arg_names(args, statement) -> Iterator[Occurrence]:
 
 def _body_names(body: ast.ActionBody, statement) -> Iterator[Occurrence]:
     for step in body.steps:
-        for call in step.calls:
-            if isinstance(call, ast.CancelCall):
+        for call in ast.calls_within(step.calls):       # inside `if`s too
+            if isinstance(call, ast.IfAction):
+                for branch in call.branches:
+                    yield from _value_names(branch.condition, statement)
+            elif isinstance(call, ast.CancelCall):
                 yield Occurrence(RULE, call.rule, False, statement, "cancel")
             elif isinstance(call, ast.EnterCall):
                 yield Occurrence(MODE, call.mode, False, statement, "enter")

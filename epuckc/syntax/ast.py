@@ -272,6 +272,45 @@ class ArrayLit(Node):
     span: Span
 
 
+class IfBranch(Node):
+    """`if COND { ACTIONS }` (or `else if ...`): `body` runs when `condition`
+    holds and no branch before it did."""
+    __slots__ = ("condition", "body", "span")
+    condition: object
+    body: "ActionBody"
+    span: Span
+
+
+class IfAction(Node):
+    """`if C { A } else if D { B } else { E }`: an action that runs the body
+    of the first branch whose condition holds, else `otherwise` (the
+    `else { ... }` body, or None). `branches` are IfBranch, in order."""
+    __slots__ = ("branches", "otherwise", "span")
+    branches: tuple
+    otherwise: Optional["ActionBody"]
+    span: Span
+
+
+def calls_within(calls):
+    """Every call of `calls` and, inside each IfAction, of its branches'
+    bodies (any branch may run), in order; without recursion."""
+    todo = list(reversed(calls))
+    while todo:
+        call = todo.pop()
+        yield call
+        if call.__class__ is IfAction:
+            inner = [c for body in if_bodies(call) for step in body.steps for c in step.calls]
+            todo.extend(reversed(inner))
+
+
+def if_bodies(call: "IfAction") -> list:
+    """The ActionBody of each branch of an `if`, its `else` last."""
+    bodies = [b.body for b in call.branches]
+    if call.otherwise is not None:
+        bodies.append(call.otherwise)
+    return bodies
+
+
 class Step(Node):
     """Calls that run together, in order, in one poll: `A, B`."""
     __slots__ = ("calls", "span")

@@ -111,6 +111,8 @@ def syntax_error(exc: lalr.ParseError, chunk: list, following, source: SourceFil
                     help=_fix(tok, prev, expected,
                               f"arguments are named with `:`: write `{prev.value}: ...`"))
         return
+    if _if_error(chunk, tok, prev, expected, span, found, diags):
+        return
     joint = _joining_word(chunk, tok, prev, expected)
     if joint is not None:
         # `sensor(ir0 > 300 and ir7 > 300)`: `and` (read as a unit after a
@@ -147,6 +149,57 @@ def syntax_error(exc: lalr.ParseError, chunk: list, following, source: SourceFil
         return
     diags.error("E001", span, f"expected {wanted}{after}, found {found}",
                 help=_fix(tok, prev, expected, hint))
+
+
+def _open_if_brace(chunk: list, upto: int):
+    """The `{` of an `if` (or `else`) in chunk[:upto] that is not closed, or None."""
+    opened = []
+    for i, t in enumerate(chunk[:upto]):
+        if t.type == "_LBRACE":
+            opened.append(i)
+        elif t.type == "_RBRACE" and opened:
+            opened.pop()
+    for i in reversed(opened):
+        if i > 0 and any(t.type in ("_IF", "_ELSE") for t in chunk[max(0, i - 64):i]):
+            return chunk[i]
+    return None
+
+
+def _if_error(chunk, tok, prev, expected, span, found, diags) -> bool:
+    """The likeliest mistakes in an `if` action, in words: a `}` missing, the
+    braces left out, an empty branch, `elif`. Whether it was one."""
+    if prev is None or not any(t.type in ("_IF", "_ELSE") for t in chunk):
+        return False
+    at = len(chunk) if tok.type == "$END" else next(i for i, t in enumerate(chunk) if t is tok)
+    brace = _open_if_brace(chunk, at)
+    if "_RBRACE" in expected and brace is not None and tok.type != "_RBRACE" \
+            and "_RPAR" not in expected:
+        diags.error("E001", span, f"the `{{` on line {brace.line} (column {brace.column}) is "
+                                  f"never closed: expected `}}` after `{prev.value}`, found {found}",
+                    help=Fix(Span(prev.end_line, prev.end_column, prev.end_line, prev.end_column),
+                             " }", "close the branch with `}` after its last action"))
+        return True
+    if tok.type == "_RBRACE" and prev.type == "_LBRACE":
+        diags.error("E001", Span(prev.line, prev.column, tok.end_line, tok.end_column),
+                    "a branch of an `if` needs at least one action",
+                    help="to act only when the condition is false, negate it: "
+                         "`if not (COND) { ... }`, or remove the empty branch")
+        return True
+    if "_LBRACE" in expected and "_IF" not in expected \
+            and any(t.type == "_IF" for t in chunk[:at]) and prev.type != "_ELSE":
+        diags.error("E001", span, f"expected `{{` after `{prev.value}`, found {found}",
+                    help="an `if`'s actions go in braces: `if COND { ACTIONS } else { ACTIONS }`")
+        return True
+    if prev.type == "_ELSE" and tok.type != "$END":
+        diags.error("E001", span, f"expected `if` or `{{` after `else`, found {found}",
+                    help=Fix(Span(tok.line, tok.column, tok.line, tok.column), "{ ",
+                             "the `else` branch's actions go in braces: `else { ACTIONS }`"))
+        return True
+    if tok.type == "NAME" and tok.value in ("elif", "elsif", "elseif") and "_ELSE" in expected:
+        diags.error("E001", span, f"expected `else` after `}}`, found `{tok.value}`",
+                    help=Fix(span, "else if", f"write `else if`, not `{tok.value}`"))
+        return True
+    return False
 
 
 def _when_fix(chunk: list, source: SourceFile):

@@ -17,7 +17,7 @@ KEYWORDS = {
     "do": "_DO", "then": "_THEN", "repeat": "_REPEAT", "cancel": "_CANCEL",
     "from": "_FROM", "priority": "_PRIORITY", "mode": "_MODE", "initial": "_INITIAL",
     "enter": "_ENTER", "var": "_VAR", "when": "_WHEN", "every": "_EVERY", "after": "_AFTER",
-    "if": "_IF", "and": "_AND", "or": "_OR", "not": "_NOT",
+    "if": "_IF", "else": "_ELSE", "and": "_AND", "or": "_OR", "not": "_NOT",
 }
 PUNCTUATION = {
     "(": "_LPAR", ")": "_RPAR", "{": "_LBRACE", "}": "_RBRACE", ",": "_COMMA",

@@ -13,7 +13,12 @@ exactly MAX_DEPTH, so that no stage may need more.
 
 Depth counts operators, function calls and parentheses on the way from the
 expression's root to its deepest leaf: `a + b + c` is 2 deep (the left
-operand of the second `+` is the first), `abs((x))` is 2.
+operand of the second `+` is the first), `abs((x))` is 2. An `if` action
+counts IF_LEVELS levels, above everything in its branches (its conditions
+and actions, and the `if`s inside): each stage walks a branch with a few
+nested calls (the call, its branches, their steps), where an operator
+costs one. So in `if a > 0 { if b > 0 { v = v + 1 } }` the `+` is 11 deep,
+and 39 `if`s nest (`else if` does not nest: a chain of them is flat).
 """
 from __future__ import annotations
 
@@ -22,8 +27,9 @@ from typing import Optional
 from . import ast
 
 MAX_DEPTH = 200
+IF_LEVELS = 5
 
-_NESTING = (ast.BinOp, ast.UnaryOp, ast.FuncCall, ast.Paren)
+_NESTING = (ast.BinOp, ast.UnaryOp, ast.FuncCall, ast.Paren, ast.IfAction)
 
 
 def _children(node):
@@ -49,7 +55,7 @@ def too_deep(statement) -> Optional[ast.Node]:
     while stack:
         node, depth, root = stack.pop()
         if isinstance(node, _NESTING):
-            depth += 1
+            depth += IF_LEVELS if node.__class__ is ast.IfAction else 1
             if root is None:
                 root = node
             if depth > MAX_DEPTH:

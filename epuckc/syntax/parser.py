@@ -14,7 +14,7 @@ from . import ast
 from . import lalr
 from ..diagnostics import Collector, Note
 from .errors import syntax_error
-from .limits import MAX_DEPTH, too_deep
+from .limits import IF_LEVELS, MAX_DEPTH, too_deep
 from .lexer import KEYWORDS, STATEMENT_STARTS, iter_statements, iter_tokens
 from ..base.resources import grammar_path
 from ..base.source import SourceFile, Span
@@ -53,6 +53,8 @@ _FuncCall = ast.maker(ast.FuncCall)
 _Paren = ast.maker(ast.Paren)
 _Assign = ast.maker(ast.Assign)
 _Index = ast.maker(ast.Index)
+_IfBranch = ast.maker(ast.IfBranch)
+_IfAction = ast.maker(ast.IfAction)
 
 
 def _ident(tok) -> ast.Ident:
@@ -207,6 +209,20 @@ class _ToAst:
     def index_atom(self, span, children):
         name, index = children
         return _Index(_ident(name), index, span)
+
+    def call(self, span, children):         # `call: ... | if_call`
+        return children[0]
+
+    def if_call(self, span, children):
+        *branches, otherwise = children
+        return _IfAction(tuple(branches), otherwise, span)
+
+    def if_branch(self, span, children):
+        condition, body = children
+        return _IfBranch(condition, body, span)
+
+    def else_branch(self, span, children):
+        return children[0]
 
     def cancel_call(self, span, children):
         (name,) = children
@@ -424,11 +440,19 @@ class ModePlacer:
             return
         deep = too_deep(statement)
         if deep is not None:
-            diags.error("E056", deep.span,
-                        f"this expression is nested more than {MAX_DEPTH} deep (operators, "
-                        f"calls and parentheses)",
-                        help="compute a part of it into a variable first (`part = ...`), "
-                             "then use the variable")
+            if isinstance(deep, ast.IfAction):
+                diags.error("E056", deep.span,
+                            f"this `if` is nested more than {MAX_DEPTH} deep (an `if` counts "
+                            f"{IF_LEVELS}, an operator, call or parenthesis inside it 1)",
+                            help="join nested conditions with `and`, use `else if` (which "
+                                 "does not nest), or compute a part of a long expression into "
+                                 "a variable first")
+            else:
+                diags.error("E056", deep.span,
+                            f"this expression is nested more than {MAX_DEPTH} deep (operators, "
+                            f"calls and parentheses)",
+                            help="compute a part of it into a variable first (`part = ...`), "
+                                 "then use the variable")
             return
         if mode is not None and not isinstance(statement, ast.Rule):
             if isinstance(statement, ast.VarDef):
@@ -450,6 +474,20 @@ class ModePlacer:
 
     def finish(self) -> None:
         for mode in self.modes:
+            last = self.program.statements[-1] if self.program.statements else None
+            if isinstance(last, ast.Rule) and last.mode is not None \
+                    and last.mode.name == mode.name.name and any(
+                        isinstance(c, ast.IfAction)
+                        for step in last.body.steps for c in ast.calls_within(step.calls)):
+                # the mode's `}` may have closed an `if` whose own `}` is missing
+                end = Span(last.span.end_line, last.span.end_column - 1, last.span.end_line,
+                           last.span.end_column)
+                self.diags.error("E001", mode.span, f"mode `{mode.name.name}` is not closed",
+                                 help="end the mode's rules with `}`; if the `}` of the last "
+                                      "rule's `if` was meant to close the mode, a `}` of the "
+                                      "`if` is missing before it",
+                                 notes=[Note("this `}` closes an `if`, not the mode", end)])
+                continue
             self.diags.error("E001", mode.span, f"mode `{mode.name.name}` is not closed",
                              help="end the mode's rules with `}`")
         self.modes = []

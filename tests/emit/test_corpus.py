@@ -112,3 +112,30 @@ int main(void){
     records, _ = run_program(prog, tmp_path)
     [end] = [r for r in records if r["kind"] == "exit"]
     assert end["left_steps"] == 388 and abs(end["x_mm"] - 100) < 0.2
+
+
+def test_if_else_takes_the_branch_of_the_readings(tmp_path):
+    """ifelse.epk with something near in front all along: `look` takes its
+    `else if` branch (150 steps/s) at every period; the timer rule's branch
+    counts the turns, turns each way in turn (the named action's `if`),
+    and on the fourth its inner `if` cancels `look` and enters `resting`."""
+    scenario = tmp_path / "near.scn"
+    scenario.write_text("0 ms ir0=900\n", encoding="utf-8")
+    records, _ = run_program(GOLDEN / "ifelse.epk", tmp_path, "--scenario", scenario,
+                             "--time-limit", "22s", expect=3)
+    turns = [(r["t_ms"], r["value"]) for r in records
+             if r["kind"] == "set" and r["var"] == "turns"]
+    assert [v for _, v in turns] == [1, 2, 3, 4]
+    assert [t // 1000 for t, _ in turns] == [5, 10, 15, 20]
+    look = events(records, "rule look")
+    # 150 steps/s for 20 ms: 3 steps a period, until the first turn
+    early = [r["left_steps"] for r in look if r["t_ms"] < 5000]
+    assert early[1] - early[0] == 3
+    entered = [r["t_ms"] for r in records if r["kind"] == "mode"]
+    assert entered[-1] == turns[-1][0]
+    assert max(r["t_ms"] for r in look) < entered[-1]     # cancelled with the entry
+    # the named action's branches turn opposite ways: right on odd turns,
+    # left on even ones (heading when the timer fires, before its dodge)
+    headings = [round(r["heading_deg"]) for r in records if r["kind"] == "event"
+                and "timer" in r["name"]]
+    assert headings == [0, -90, 0, -90]

@@ -136,3 +136,18 @@ def test_the_readable_trace_names_the_call_of_each_step(tmp_path):
                          "2 of 9: start_curve(radius: 0 mm, degrees: 90 deg, speed: SPEED)",
                          "3 of 9: start_straight(speed: SPEED, distance: 20 cm)"]
     assert steps[-1] == "9 of 9: exit_main"
+
+
+def test_zones_slows_near_and_turns_away_from_the_nearer_side(tmp_path):
+    """examples/zones.epk: its `if/else` turns right when the obstacle is
+    nearer on the left (ir7 > ir0 at 1.2 s), left when it is nearer on the
+    right (ir0 > ir7 at 5 s), and slows while something is near."""
+    records, _ = run_program(EXAMPLES / "zones.epk", tmp_path,
+                             "--scenario", EXAMPLES / "obstacle.scn")
+    avoid = events(records, "rule avoid")
+    assert [r["t_ms"] for r in avoid] == [1200, 5000]
+    end = final(records)
+    # -90 then +90: back to the first heading, having driven a step aside
+    assert round(avoid[1]["heading_deg"]) == -90 and round(end["heading_deg"]) == 0
+    assert [v for _, v in [(r["t_ms"], r["value"]) for r in records
+                           if r["kind"] == "set" and r["var"] == "turns"]] == [1, 2]

@@ -46,6 +46,16 @@ mode b {
 when n >= 3 priority 2 do set_speed(left: 200, right: -150)
 after 2 s do exit_main
 """,
+    "if_else": """\
+var n = 0
+var phase = 0
+every 7 ms do n = clamp(n + 3, 0, 300),
+    if n > 200 { phase = 3, set_speed(-200, 200) }
+    else if n > 100 { phase = 2, start_straight(300, 2 cm) }
+    else if n % 2 == 0 { phase = 1 } else { phase = 0, n += 1 }
+every 50 ms priority 1 do if phase == 3 and n >= 300 { n = 0, stop_motor, if phase > 2 { phase = 4 } }
+after 2 s priority 2 do exit_main
+""",
 }
 
 

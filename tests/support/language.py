@@ -6,9 +6,10 @@ guards, `every`/`after`, `wait` in sequences, `set_speed`, `random`,
 odometry, modes with their own rules and variables, priorities, arrays
 (constant and variable ones, the readings' arrays, elements with fixed and
 computed indices, `sum`/`min`/`max`/`argmin`/`argmax`/`dot`), the math
-functions (`atan2`, `hypot`, `sqrt`, `sin`, `cos`), and now and then an
-expression nested or chained right at or beyond the depth limit
-(syntax/limits.py).
+functions (`atan2`, `hypot`, `sqrt`, `sin`, `cos`), `if` / `else if` /
+`else` actions (nested, now and then with a `then` inside a branch, which
+is E080), and now and then an expression, or `if`s, nested or chained
+right at or beyond the depth limit (syntax/limits.py).
 
 Most programs are well-kinded so that most are accepted and go on to the
 C compilers; some mix kinds or break the rules on purpose, so that the
@@ -18,7 +19,7 @@ from __future__ import annotations
 
 from hypothesis import strategies as st
 
-from epuckc.syntax.limits import MAX_DEPTH
+from epuckc.syntax.limits import IF_LEVELS, MAX_DEPTH
 
 from .hostile import Program
 
@@ -192,7 +193,31 @@ def language_program(r: Choices) -> Program:
             return deep(kind)
         return number(kind, r.integers(0, 4))
 
-    def action():
+    def if_action(depth):
+        parts = [f"if {condition(r.integers(0, 2))} {{ {branch(depth)} }}"]
+        for _ in range(r.integers(0, 2)):
+            parts.append(f"else if {condition(r.integers(0, 2))} {{ {branch(depth)} }}")
+        if r.boolean():
+            parts.append(f"else {{ {branch(depth)} }}")
+        return " ".join(parts)
+
+    def branch(depth):
+        calls = [action(depth + 1) for _ in range(r.integers(1, 2))]
+        if len(calls) > 1 and r.integers(0, 29) == 29:
+            return " then ".join(calls)         # E080, on purpose
+        return ", ".join(calls)
+
+    def deep_ifs():
+        """`if`s nested at or just beyond the depth limit."""
+        n = MAX_DEPTH // IF_LEVELS + r.choice([-1, 0, 1])
+        name = r.choice(sorted(variables)) if variables else "ir0"
+        return f"if {name} > 0 {{ " * n + "led_toggle(body)" + " }" * n
+
+    def action(depth=0):
+        if depth < 3 and r.integers(0, 5) == 5:
+            return if_action(depth)
+        if depth == 0 and r.integers(0, 199) == 199:
+            return deep_ifs()
         form = r.integers(0, 9)
         if form == 0 and var_arrays:
             name = r.choice(var_arrays)

@@ -17,7 +17,7 @@ from epuckc.diagnostics import Report
 from epuckc.emit.program import emit_program
 from epuckc.ide.fmt import format_text
 from epuckc.ide.incremental import Analyzer
-from epuckc.syntax.limits import MAX_DEPTH
+from epuckc.syntax.limits import IF_LEVELS, MAX_DEPTH
 
 from tests.support.cli import run_cli
 from tests.support.ide_walk import answer_everywhere
@@ -48,6 +48,13 @@ def shapes(n: int) -> dict:
         "guard": "every 70 ms if " + "(" * (n - 1) + "v > 2" + ")" * (n - 1) + " do v = v + 1",
         "speed": "every 80 ms priority 3 do set_speed(" + "(" * (n - 1) + "v * 1 steps/s"
                  + ")" * (n - 1) + ", 0 steps/s)",
+        # `if`s inside `if`s: IF_LEVELS each, then parentheses to make n
+        "ifs": "every 90 ms do " + "if v > 0 { " * ((n - 1) // IF_LEVELS) + "v = "
+               + "(" * ((n - 1) % IF_LEVELS) + "v + 1" + ")" * ((n - 1) % IF_LEVELS)
+               + " }" * ((n - 1) // IF_LEVELS),
+        # `else if` does not nest: a long chain is flat
+        "chain": "every 100 ms do if v > 0 { v = 0 }" + " else if v > 1 { v = 1 }" * 300
+                 + " else { v = " + "(" * (n - IF_LEVELS) + "v" + ")" * (n - IF_LEVELS) + " }",
     }
 
 

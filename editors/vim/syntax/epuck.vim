@@ -8,7 +8,7 @@ endif
 syntax case match
 
 syntax keyword epuckDeclaration robot const var action extern event rule mode initial
-syntax keyword epuckKeyword on do then repeat cancel from priority enter when every after if
+syntax keyword epuckKeyword on do then repeat cancel from priority enter when every after if else
 syntax keyword epuckKeyword and or not
 syntax keyword epuckBuiltin start_straight start_curve stop_motor set_timer reset_timer
 syntax keyword epuckBuiltin start_sensor stop_sensor exit_main immediate timer sensor

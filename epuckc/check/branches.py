@@ -1,0 +1,178 @@
+"""`if C { A } else if D { B } else { E }` as an action: its conditions,
+its branches, what it tells the variables inside each branch, and the
+warnings about branches that never run.
+
+An `if` runs in the poll of the step that holds it, like any other call
+of the step, with the values the calls before it gave (docs/language.md,
+section 2.8). A branch is one step: its calls run together, in order, in
+that same poll. `then` inside a branch [E080] would make the steps of
+the rule's sequence (each run once the motion of the one before has
+ended, docs/runtime.md; fixed when compiling) depend on a condition; so
+would a named action of several steps [E080]. A motion started in a
+branch is a motion like any other: it goes on after the step, and the
+rule holds the motors as it would without the `if`.
+
+The whole-program analyses read an `if` as "any branch may run": every
+call of every branch may happen (modes.may_run), which is sound for what
+they conclude from calls that may happen (W009, W010, E045, the variables'
+intervals) and leaves out of what they conclude from calls that must
+happen (W011's `enter`, arbitration's `set_timer` first) the calls of a
+branch.
+"""
+from __future__ import annotations
+
+from typing import Optional
+
+from ..base.source import Span
+from ..diagnostics import Note
+from ..syntax import ast
+from . import conditions
+from .messages import _code
+from .modes import flat_steps
+from .program import ResolvedCall
+
+
+class Branches:
+    """The checker's `if` actions (a part of Checker)."""
+
+    def _if_call(self, call: ast.IfAction) -> Optional[ResolvedCall]:
+        """An `if`: each condition checked (W016 where it is decided when
+        compiling, W080 for the branches that follow an always-true one),
+        each branch's calls resolved with the intervals its condition (and
+        the failed ones before it) leave the variables."""
+        ok = True
+        branches, failed = [], []           # failed: the formulas of the conditions before
+        decided_true = None                 # the first condition that always holds
+        for branch in call.branches:
+            start = len(self.diags.items)
+            condition = self._condition(branch.condition)
+            if condition is None:
+                ok = False
+                calls = self._branch(branch.body, None)
+                continue
+            last = branch is call.branches[-1] and call.otherwise is None
+            # (always true before other branches: W080 says it, with them)
+            if condition.constant and decided_true is None and (
+                    not condition.value or last) and not any(
+                    d.code == "W016" for d in self.diags.items[start:]):
+                self.diags.warning(
+                    "W016", branch.condition.span,
+                    f"this condition is always {'true' if condition.value else 'false'}",
+                    help="its branch runs every time: write its actions without the `if`"
+                    if condition.value else "its branch never runs: remove it, or compare "
+                    "a variable or a reading")
+            here = conditions.conjoin(conditions.formula(condition), *failed)
+            failed.append(conditions.formula(condition, False))
+            calls = self._branch(branch.body, here if decided_true is None else None)
+            if calls is None:
+                ok = False
+            branches.append((condition, calls))
+            if condition.constant and condition.value and decided_true is None:
+                decided_true = branch
+        otherwise = None
+        if call.otherwise is not None:
+            otherwise = self._branch(call.otherwise, conditions.conjoin(*failed)
+                                     if decided_true is None else None)
+            if otherwise is None:
+                ok = False
+        if decided_true is not None:
+            self._dead_branches(call, decided_true)
+        if not ok:
+            return None
+        return ResolvedCall("if", "if", {"branches": tuple(branches), "otherwise": otherwise},
+                            {}, call, dynamic=True)
+
+    def _dead_branches(self, call: ast.IfAction, decided: ast.IfBranch):
+        """W080: the branches after a condition that always holds."""
+        later = list(call.branches[call.branches.index(decided) + 1:])
+        bodies = [b.span for b in later] + ([call.otherwise.span] if call.otherwise else [])
+        if not bodies:
+            return
+        first = bodies[0]
+        kinds = ([f"{len(later)} `else if`" if len(later) > 1 else "`else if`"] if later
+                 else []) + (["`else`"] if call.otherwise else [])
+        many = len(bodies) > 1
+        self.diags.warning(
+            "W080", Span(first.line, first.column, bodies[-1].end_line, bodies[-1].end_column),
+            f"the {' and '.join(kinds)} branch{'es' if many else ''} never "
+            f"run{'' if many else 's'}: `{self._text(decided.condition)}` is always true",
+            help="remove the branches that never run, or make the condition one that can "
+                 "be false",
+            notes=[Note("the condition that always holds", decided.condition.span)])
+
+    def _branch(self, body: ast.ActionBody, holds) -> Optional[list]:
+        """A branch's calls (one step [E080]), checked with the intervals the
+        formula `holds` leaves the variables (None: none narrowed)."""
+        if len(body.steps) > 1:
+            first_then = body.steps[1]
+            self.diags.error(
+                "E080", first_then.span,
+                "`then` cannot go inside an `if` branch: a branch is one step, whose "
+                "actions run together in one poll",
+                help="put the sequence in a named action run by a rule, or make the `if` "
+                     "its own step: `if C { A } then B` runs B after the `if` whatever it chose")
+            for step in body.steps[1:]:
+                for c in step.calls:
+                    self._call(c)       # still checked: their own mistakes are reported
+        bounds = {}
+        if holds is not None:
+            # (only the variables compared: the language server's memo of a
+            # rule then depends on those alone, ide/incremental.py)
+            base = {n: (self.vars[n].lo, self.vars[n].hi)
+                    for n in sorted(conditions.names_of(holds)) if n in self.vars}
+            bounds = {n: b for n, b in conditions.narrowed(holds, base).items()
+                      if n in self.vars}
+        calls = self._calls_narrowed(body.steps[0].calls, bounds)
+        ok = len(body.steps) == 1
+        for resolved in calls:
+            if resolved.kind == "named" and len(flat_steps(self, [[resolved]])) > 1:
+                node = self.actions[resolved.name]
+                self.diags.error(
+                    "E080", resolved.node.span,
+                    f"action {_code(resolved.name)} has several steps (`then`): it cannot run "
+                    f"inside an `if` branch, which is one step",
+                    help="run it from a rule of its own (`when COND do "
+                         f"{resolved.name}`), or split it so that the branch runs its first "
+                         "step only",
+                    notes=[Note(f"{_code(resolved.name)} is defined here", node.span)])
+                ok = False
+        return calls if ok else None
+
+    _whole_ranges = None    # name -> whole interval of each variable narrowed, meanwhile
+
+    def _calls_narrowed(self, calls, bounds: dict) -> list:
+        """`calls` resolved in order, the variables in `bounds` given those
+        intervals until a call may assign them (an assignment to one, a
+        named action, or an `if` whose branches may): from the next call
+        on, such a variable has its whole interval again (the one over
+        every assignment, not the one an enclosing branch narrowed)."""
+        if not bounds:
+            return [r for r in map(self._call, calls) if r is not None]
+        outermost = self._whole_ranges is None
+        if outermost:
+            self._whole_ranges = {}
+        whole = self._whole_ranges
+        saved = {n: (self.vars[n].lo, self.vars[n].hi) for n in bounds}
+        for name, interval in saved.items():     # (narrowed for the first time here)
+            whole.setdefault(name, interval)
+        out = []
+        try:
+            for name, (lo, hi) in bounds.items():
+                self.vars[name].lo, self.vars[name].hi = lo, hi
+            for call in calls:
+                resolved = self._call(call)
+                if resolved is not None:
+                    out.append(resolved)
+                for inner in ast.calls_within((call,)):
+                    if isinstance(inner, ast.Assign) and inner.target.name in whole:
+                        info = self.vars[inner.target.name]
+                        info.lo, info.hi = whole[inner.target.name]
+                    elif isinstance(inner, ast.Call) and inner.name.name in self.actions:
+                        for name, (lo, hi) in whole.items():
+                            self.vars[name].lo, self.vars[name].hi = lo, hi
+        finally:
+            for name, (lo, hi) in saved.items():
+                self.vars[name].lo, self.vars[name].hi = lo, hi
+            if outermost:
+                self._whole_ranges = None
+        return out
