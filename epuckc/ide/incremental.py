@@ -46,6 +46,7 @@ from typing import Optional
 from ..base.source import SourceFile, Span
 from ..check.checker import Checker
 from ..check.program import CheckedProgram
+from ..check.races import RaceMemo
 from ..check.ranges import RangeMemo
 from ..diagnostics import Collector, Diagnostic
 from ..syntax import ast
@@ -67,6 +68,7 @@ class _Memo:
         self.actions = None     # the result of resolving the named actions
         self.rules: dict = {}   # id(rule node) -> what the rule came to (see _rule)
         self.ranges = RangeMemo()   # the variables' intervals by component (check/ranges.py)
+        self.races = RaceMemo()     # W009's facts of each rule and its last pairs (check/races.py)
 
 
 class _Capture:
@@ -180,6 +182,7 @@ class IncrementalChecker(Checker):
         super().__init__(program, diags, **options)
         self.memo = memo
         self.range_memo = memo.ranges
+        self.race_memo = memo.races
         self._known: Optional[set] = None
         self._env_now = None
 
@@ -363,6 +366,19 @@ class Analysis:
         self._line_starts = None
 
 
+def _idents(d: Diagnostic) -> tuple:
+    """The statements (ids) whose virtual lines `d` has, in its spans or
+    in its words (W009 names rules by their lines)."""
+    found = {span.line // VLINE for span in (d.span, *(n.span for n in d.notes if n.span),
+                                              *(f.span for f in d.fixes))}
+    for text in (d.message, d.help or "", *(n.message for n in d.notes)):
+        if _VIRTUAL_LINE.search(text):
+            for match in _LINE_WORDS.finditer(text):
+                found.update(int(n) // VLINE for n in match.group(2).split(", "))
+    found.discard(0)
+    return tuple(sorted(found))
+
+
 class Analyzer:
     """Analyses successive versions of one document (see the module's doc)."""
 
@@ -373,6 +389,7 @@ class Analyzer:
         self._prev: Optional[tuple] = None
         self._next_id = 1
         self._memo = _Memo()
+        self._real: dict = {}   # id(Diagnostic) -> (it, statements, their lines, in real lines)
 
     def analyse(self, text: str) -> Analysis:
         collecting = gc.isenabled()
@@ -504,22 +521,40 @@ class Analyzer:
         entry = Entry(0, program.statements, [], 0, source.line_count)
         return self._finish(text, [0], [1], [entry], program, checker, checked, diags.items)
 
+    @staticmethod
+    def _real_diagnostic(analysis: Analysis, d: Diagnostic) -> Diagnostic:
+        """`d` in the text's lines (its spans, and the lines its words name)."""
+        real = analysis.real
+        if d.span.line >= VLINE or any(n.span and n.span.line >= VLINE for n in d.notes) \
+                or any(f.span.line >= VLINE for f in d.fixes):
+            d = replace(d, span=real(d.span),
+                        notes=tuple(replace(n, span=real(n.span)) if n.span else n
+                                    for n in d.notes),
+                        fixes=tuple(replace(f, span=real(f.span)) for f in d.fixes))
+        if _VIRTUAL_LINE.search(d.message) or any(_VIRTUAL_LINE.search(n.message)
+                                                  for n in d.notes):
+            d = analysis.real_words(d)
+        return d
+
     def _finish(self, text, starts, lines, entries, program, checker, checked,
                 items) -> Analysis:
         analysis = Analysis(self.name, text, starts, lines, entries, program, checker, checked)
-        real = analysis.real
+        # a diagnostic in real lines is kept while the statements it names
+        # start on the same lines (the same object: the server keeps what it
+        # made of it)
+        first_lines = {e.id: line for e, line in zip(entries, lines)}
+        cache, kept = self._real, {}
         shown = []
         for d in items:
-            if d.span.line >= VLINE or any(n.span and n.span.line >= VLINE for n in d.notes) \
-                    or any(f.span.line >= VLINE for f in d.fixes):
-                d = replace(d, span=real(d.span),
-                            notes=tuple(replace(n, span=real(n.span)) if n.span else n
-                                        for n in d.notes),
-                            fixes=tuple(replace(f, span=real(f.span)) for f in d.fixes))
-            if _VIRTUAL_LINE.search(d.message) or any(_VIRTUAL_LINE.search(n.message)
-                                                      for n in d.notes):
-                d = analysis.real_words(d)
-            shown.append(d)
+            hit = cache.get(id(d))
+            if hit is None or hit[0] is not d or \
+                    tuple(first_lines.get(i) for i in hit[1]) != hit[2]:
+                idents = _idents(d)
+                hit = (d, idents, tuple(first_lines.get(i) for i in idents),
+                       self._real_diagnostic(analysis, d) if idents else d)
+            kept[id(d)] = hit
+            shown.append(hit[3])
+        self._real = kept
         shown.sort(key=Diagnostic.sort_key)
         analysis.diagnostics = shown
         return analysis
