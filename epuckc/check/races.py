@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from ..diagnostics import Note
 from .arbitration import (describe, head_text, _is_enter, _code, _Rules, _racing_pairs, EXPAND_RULES,
-                          _events_that_never_occur, _early, RuleFacts, entry_stops)
+                          _events_that_never_occur, _early, RuleFacts)
 from . import conditions as cond
 from .messages import _shown
 
