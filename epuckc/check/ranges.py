@@ -37,12 +37,20 @@ NARROW_PASSES = 2
 
 class RangeMemo:
     """What one document's intervals were computed from, kept between two
-    analyses: the environment (geometry and constants), each assignment's
-    reads, and each component's inputs and result."""
+    analyses: the environment (geometry and constants), each statement's
+    assignments, each variable's assignments and declaration, the graph
+    and its components, each component's inputs and result, and every
+    variable's interval."""
     def __init__(self):
         self.env = None
-        self.reads: dict = {}       # id(Assign) -> (Assign, names it reads, its text)
-        self.components: dict = {}  # members -> (inputs, {name: (lo, hi)})
+        self.statements: dict = {}  # id(statement) -> (it, runs once, its assignments' entries)
+        self.names = None           # the variables, in order
+        self.assigns: dict = {}     # variable -> its assignments' entries, in file order
+        self.decls: dict = {}       # variable -> (kind, initial value)
+        self.graph = None           # variable -> the variables it depends on
+        self.order: list = []       # its components: (members, members' set, what they read)
+        self.results: dict = {}     # members -> (inputs, {name: (lo, hi)})
+        self.ranges: dict = {}      # variable -> (lo, hi)
 
 
 def _names_read(value) -> frozenset:
@@ -63,6 +71,20 @@ def _names_read(value) -> frozenset:
         elif cls is ast.FuncCall:
             todo += [a.value for a in node.args or () if hasattr(a, "value")]
     return frozenset(found)
+
+
+def _inputs(checker, entries: list, members: tuple, outside) -> tuple:
+    """What a component's result is computed from: its assignments' text
+    (kept in their entries) and whether each runs once, its members'
+    declarations, the intervals it reads of other components."""
+    for entry in entries:
+        if entry[3] is None:
+            entry[3] = (entry[0].op, _shown(entry[0].value))
+    variables = checker.vars
+    return (tuple((e[3], e[1]) for e in entries),
+            tuple((m, variables[m].kind, variables[m].init) for m in members),
+            tuple((n, variables[n].kind, variables[n].lo, variables[n].hi)
+                  for n in sorted(outside)))
 
 
 def components(graph: dict) -> list:
@@ -119,84 +141,96 @@ class Ranges:
     range_memo = None       # a RangeMemo where the language server keeps one
 
     def _var_ranges(self):
-        """Each variable's interval, component by component."""
+        """Each variable's interval, component by component. With the
+        language server's memo, a component is evaluated again only when
+        its assignments or its members' declarations changed (a variable's
+        assignments are the same objects, in the same order, when no
+        statement assigning it was parsed again), or when an interval it
+        reads moved; and then only if its inputs' text differs."""
         if not self.vars:
             return
-        assigns: dict = {name: [] for name in self.vars}
-        place: dict = {}        # id(Assign) -> its place in the file
-        once: set = set()       # id(Assign) of the rules that run at most once
+        keep = self.range_memo is not None
+        memo = self.range_memo if keep else RangeMemo()
+        env = (self.geo, tuple(self.consts.items()))
+        if memo.env != env:
+            memo.results, memo.ranges = {}, {}
+        memo.env = env
+        variables = self.vars
+        assigns: dict = {name: [] for name in variables}
+        place: dict = {}            # id(Assign) -> its place in the file
+        known, seen = memo.statements, {}
         for stmt in self.program.statements:
             body = stmt.body if isinstance(stmt, (ast.Rule, ast.ActionDef)) else None
             if body is None:
                 continue
             runs_once = isinstance(stmt, ast.Rule) and not stmt.repeat \
                 and stmt.mode is None and stmt.trigger != "every"
-            for step in body.steps:
-                for c in step.calls:
-                    if isinstance(c, ast.Assign) and c.target.name in self.vars:
-                        assigns[c.target.name].append(c)
-                        place[id(c)] = len(place)
-                        if runs_once:
-                            once.add(id(c))
-        if not any(assigns.values()):
+            hit = known.get(id(stmt))
+            if hit is None or hit[0] is not stmt or hit[1] != runs_once:
+                # an entry: [the Assign, runs once, the names it reads, its text (later)]
+                hit = (stmt, runs_once, tuple([c, runs_once, _names_read(c.value), None]
+                                              for step in body.steps for c in step.calls
+                                              if isinstance(c, ast.Assign)))
+            seen[id(stmt)] = hit
+            for entry in hit[2]:
+                found = assigns.get(entry[0].target.name)
+                if found is not None:
+                    found.append(entry)
+                    place[id(entry[0])] = len(place)
+        memo.statements = seen
+        if not place:
             return
-        memo = self.range_memo
-        if memo is not None:
-            env = (self.geo, tuple(self.consts.items()))
-            if memo.env != env:
-                memo.env, memo.components = env, {}
-            memo.env = env
-        reads = {}      # id(Assign) -> the variables it reads
-        texts = {}      # id(Assign) -> its text (with a memo)
-        graph = {}
-        variables = self.vars.keys()
-        for name, calls in assigns.items():
-            needs = set()
-            for call in calls:
-                known = memo.reads.get(id(call)) if memo is not None else None
-                if known is None or known[0] is not call:
-                    # (its text: what its value depends on of itself, where a
-                    # statement parsed again has new nodes and new spans)
-                    known = (call, _names_read(call.value),
-                             (call.op, _shown(call.value)) if memo is not None else None)
-                    if memo is not None:
-                        memo.reads[id(call)] = known
-                texts[id(call)] = known[2]
-                names = known[1] & variables
-                if call.op != "=":
-                    names |= {name}
-                reads[id(call)] = names
-                needs |= names
-            graph[name] = sorted(needs)
-        live = {}
-        for members in components(graph):
-            calls = sorted((c for m in members for c in assigns[m]),
-                           key=lambda c: place[id(c)])      # in file order
-            if not calls:
+        names = tuple(variables)
+        same_names = names == memo.names
+        old_assigns, old_decls, old_graph = memo.assigns, memo.decls, memo.graph
+        graph, decls, dirty = {}, {}, set()
+        keys = variables.keys()
+        for name, entries in assigns.items():
+            info = variables[name]
+            decl = decls[name] = (info.kind, info.init)
+            if same_names and entries == old_assigns.get(name) and decl == old_decls.get(name):
+                graph[name] = old_graph[name]
                 continue
-            inside = set(members)
-            outside = sorted({n for c in calls for n in reads[id(c)]} - inside)
-            inputs = (tuple((texts[id(c)], id(c) in once) for c in calls)
-                      if memo is not None else None,
-                      tuple((m, self.vars[m].kind, self.vars[m].init) for m in members),
-                      tuple((n, self.vars[n].kind, self.vars[n].lo, self.vars[n].hi)
-                            for n in outside))
-            known = memo.components.get(members) if memo is not None else None
-            if known is not None and known[0] == inputs:
-                result = known[1]
+            dirty.add(name)
+            needs = set()
+            for entry in entries:
+                needs |= entry[2] & keys
+                if entry[0].op != "=":
+                    needs.add(name)
+            graph[name] = sorted(needs)
+        memo.names, memo.assigns, memo.decls = names, assigns, decls
+        if graph != old_graph:
+            memo.graph, memo.order = graph, []
+            for members in components(graph):
+                inside = frozenset(members)
+                memo.order.append((members, inside, inside.union(*(graph[m] for m in members))))
+        results, old_results, old_ranges = {}, memo.results, memo.ranges
+        moved = set()               # variables whose interval is not the last analysis's
+        for members, inside, reads in memo.order:
+            old = old_results.get(members)
+            if old is not None and not (dirty & reads) and not (moved & reads):
+                result = old[1]
+                results[members] = old
             else:
-                result = self._solve(calls, once)
-                if memo is not None:
-                    memo.components[members] = (inputs, result)
-            for m, (lo, hi) in result.items():
-                info = self.vars[m]
-                info.lo, info.hi = lo, hi
-            live[members] = True
-        if memo is not None:
-            if len(memo.components) > 2 * len(live) + 100:
-                memo.components = {k: v for k, v in memo.components.items() if k in live}
-            if len(memo.reads) > 2 * len(reads) + 100:
-                memo.reads = {k: v for k, v in memo.reads.items() if k in reads}
+                entries = [e for m in members for e in assigns[m]]
+                if not entries:
+                    continue
+                if len(members) > 1:
+                    entries.sort(key=lambda e: place[id(e[0])])     # in file order
+                inputs = _inputs(self, entries, members, reads - inside) if keep else None
+                if old is not None and old[0] == inputs:
+                    result = old[1]
+                else:
+                    result = self._solve([e[0] for e in entries],
+                                         {id(e[0]) for e in entries if e[1]})
+                results[members] = (inputs, result)
+            for m, bounds in result.items():
+                info = variables[m]
+                info.lo, info.hi = bounds
+                if old_ranges.get(m) != bounds:
+                    moved.add(m)
+        memo.results = results
+        memo.ranges = {name: (info.lo, info.hi) for name, info in variables.items()}
 
     def _solve(self, calls: list, once: set) -> dict:
         """A component's intervals: its assignments (in file order) joined

@@ -195,7 +195,12 @@ class IncrementalChecker(Checker):
                 tuple(self.broken_externs.items()), tuple(self.rule_names),
                 tuple(self.modes.items()), tuple(self.vars.items()))
 
-    def _replay(self, diags, facts):
+    def _replay(self, diags, facts, own=()):
+        """Put a step's diagnostics and facts back. `own`: diagnostics
+        within the step's own statement, which no other step can say too
+        (their spans are its virtual lines); the others are said once."""
+        if own:
+            self.diags.items.extend(own)
         if diags:
             known = self._known
             if known is None:
@@ -241,8 +246,9 @@ class IncrementalChecker(Checker):
         return True
 
     def _rule(self, rule: ast.Rule):
-        # hit: [node, geometry, lookups, result, diagnostics, facts, the
-        # declarations (env) it was last found valid with]
+        # hit: [node, geometry, lookups, result, diagnostics said once,
+        # facts, the declarations (env) it was last found valid with, its
+        # own diagnostics (see _replay)]
         hit = self.memo.rules.get(id(rule))
         if hit is None or hit[0] is not rule:
             hit = None
@@ -254,10 +260,20 @@ class IncrementalChecker(Checker):
         if hit is None:
             with _Capture(self) as cap, _Watch(self) as watch:
                 resolved = super()._rule(rule)
-            hit = [rule, self.geo, watch.deps, resolved, cap.diags, cap.facts, self._env_now]
+            ident = rule.span.line // VLINE
+            own = [d for d in cap.diags if ident and _within(d, ident)]
+            shared = [d for d in cap.diags if not (ident and _within(d, ident))]
+            hit = [rule, self.geo, watch.deps, resolved, shared, cap.facts, self._env_now, own]
             self.memo.rules[id(rule)] = hit
-        self._replay(hit[4], hit[5])
+        self._replay(hit[4], hit[5], hit[7])
         return hit[3]
+
+
+def _within(d: Diagnostic, ident: int) -> bool:
+    """Whether every place `d` names is in statement `ident` (virtual lines)."""
+    return all(span.line // VLINE == ident and span.end_line // VLINE == ident
+               for span in (d.span, *(n.span for n in d.notes if n.span),
+                            *(f.span for f in d.fixes)))
 
 
 # ---- the analysis of one version of a document ----------------------------------
