@@ -21,6 +21,8 @@ evaluated again: an edit costs the components it reaches, not the program.
 """
 from __future__ import annotations
 
+import itertools
+
 from ..diagnostics import Collector
 from ..stdlib.units import INT16_MAX, INT16_MIN
 from ..syntax import ast
@@ -51,6 +53,12 @@ class RangeMemo:
         self.order: list = []       # its components: (members, members' set, what they read)
         self.results: dict = {}     # members -> (inputs, {name: (lo, hi)})
         self.ranges: dict = {}      # variable -> (lo, hi)
+
+
+def _runs_once(stmt) -> bool:
+    """A rule that runs at most once (its assignments are joined once each)."""
+    return isinstance(stmt, ast.Rule) and not stmt.repeat and stmt.mode is None \
+        and stmt.trigger != "every"
 
 
 def _names_read(value) -> frozenset:
@@ -157,28 +165,28 @@ class Ranges:
         memo.env = env
         variables = self.vars
         assigns: dict = {name: [] for name in variables}
-        place: dict = {}            # id(Assign) -> its place in the file
         known, seen = memo.statements, {}
         for stmt in self.program.statements:
-            body = stmt.body if isinstance(stmt, (ast.Rule, ast.ActionDef)) else None
-            if body is None:
-                continue
-            runs_once = isinstance(stmt, ast.Rule) and not stmt.repeat \
-                and stmt.mode is None and stmt.trigger != "every"
             hit = known.get(id(stmt))
-            if hit is None or hit[0] is not stmt or hit[1] != runs_once:
-                # an entry: [the Assign, runs once, the names it reads, its text (later)]
-                hit = (stmt, runs_once, tuple([c, runs_once, _names_read(c.value), None]
-                                              for step in body.steps for c in step.calls
-                                              if isinstance(c, ast.Assign)))
-            seen[id(stmt)] = hit
+            if hit is not None and hit[0] is stmt and (
+                    not hit[2] or hit[1] == _runs_once(stmt)):
+                seen[id(stmt)] = hit
+            else:
+                body = stmt.body if isinstance(stmt, (ast.Rule, ast.ActionDef)) else None
+                runs_once = _runs_once(stmt)
+                # an entry: [the Assign, runs once, the names it reads, its text
+                # (later), its statement's id, its place in the statement]
+                calls = () if body is None else [c for step in body.steps for c in step.calls
+                                                 if isinstance(c, ast.Assign)]
+                hit = seen[id(stmt)] = (stmt, runs_once, tuple(
+                    [c, runs_once, _names_read(c.value), None, id(stmt), j]
+                    for j, c in enumerate(calls)))
             for entry in hit[2]:
                 found = assigns.get(entry[0].target.name)
                 if found is not None:
                     found.append(entry)
-                    place[id(entry[0])] = len(place)
         memo.statements = seen
-        if not place:
+        if not any(assigns.values()):
             return
         names = tuple(variables)
         same_names = names == memo.names
@@ -206,6 +214,7 @@ class Ranges:
                 memo.order.append((members, inside, inside.union(*(graph[m] for m in members))))
         results, old_results, old_ranges = {}, memo.results, memo.ranges
         moved = set()               # variables whose interval is not the last analysis's
+        statement_place = None
         for members, inside, reads in memo.order:
             old = old_results.get(members)
             if old is not None and not (dirty & reads) and not (moved & reads):
@@ -215,8 +224,10 @@ class Ranges:
                 entries = [e for m in members for e in assigns[m]]
                 if not entries:
                     continue
-                if len(members) > 1:
-                    entries.sort(key=lambda e: place[id(e[0])])     # in file order
+                if len(members) > 1:                                # in file order
+                    if statement_place is None:
+                        statement_place = dict(zip(seen, itertools.count()))
+                    entries.sort(key=lambda e: (statement_place[e[4]], e[5]))
                 inputs = _inputs(self, entries, members, reads - inside) if keep else None
                 if old is not None and old[0] == inputs:
                     result = old[1]

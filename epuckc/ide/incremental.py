@@ -250,6 +250,12 @@ class IncrementalChecker(Checker):
         # facts, the declarations (env) it was last found valid with, its
         # own diagnostics (see _replay)]
         hit = self.memo.rules.get(id(rule))
+        if hit is not None and hit[0] is rule and hit[6] is self._env_now and not hit[4]:
+            if hit[7]:          # (the common case, inline: most rules are replayed)
+                self.diags.items.extend(hit[7])
+            for f, values in hit[5]:
+                getattr(self, f).update(values)
+            return hit[3]
         if hit is None or hit[0] is not rule:
             hit = None
         elif hit[6] is not self._env_now:
