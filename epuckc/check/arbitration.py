@@ -234,7 +234,7 @@ class RuleFacts:
     uses), computed once per rule; the language server keeps them between
     edits while the named actions are the same (races.RaceMemo)."""
     __slots__ = ("writes", "motor", "moves_outside", "enters", "entry_moves", "stops",
-                 "condition", "names", "key")
+                 "condition", "names", "shape", "key", "pair")
 
     def __init__(self, checker, rule, named: dict):
         steps = flat_steps(checker, rule.body)
@@ -250,11 +250,13 @@ class RuleFacts:
         # between two polls, which an entry in that poll does not undo
         self.stops = any(_stops_and_goes_on(step) for step in steps)
         self.condition = condition_of(rule)
-        self.names = frozenset(cond.names_of(self.condition))
+        self.names = tuple(sorted(cond.names_of(self.condition)))
+        self.shape = _timing_shape(rule)
         # what the pair analysis reads of the rule, besides its place: equal
         # keys (and places) give equal pairs
         self.key = (_is_enter(rule), rule.priority, self.writes,
-                    (_timing_shape(rule), self.condition, _early(rule)) if self.motor else None)
+                    (self.shape, self.condition, _early(rule)) if self.motor else None)
+        self.pair = None    # (the intervals its condition reads, rule_facts' answers)
 
 
 def entry_stops(checker, every_rule, facts: dict) -> bool:
@@ -429,12 +431,19 @@ def rule_facts(group: list, facts: _Rules) -> list:
     its condition can hold)."""
     shapes: dict = {}
     info = []
+    base, variables = facts.base, facts.variables
     for r in group:
-        f = facts.condition[id(r)]
-        reads_vars = f is not cond.TRUE and bool(facts._names(f) & facts.variables)
-        info.append((shapes.setdefault(_timing_shape(r), len(shapes)), f is cond.TRUE,
-                     None if f is cond.TRUE else facts._boxes(f), reads_vars,
-                     f is cond.TRUE or facts._alone(f)))
+        rf = facts.facts[id(r)]
+        f = rf.condition
+        # (kept by the rule's facts while the intervals its condition reads are the same)
+        key = tuple((n, n in variables, base.get(n)) for n in rf.names)
+        if rf.pair is None or rf.pair[0] != key:
+            rf.pair = (key, f is not cond.TRUE and not variables.isdisjoint(rf.names),
+                       None if f is cond.TRUE else cond.boxes(f, base),
+                       f is cond.TRUE or cond.satisfiable(f, base))
+        _, reads_vars, boxes, alone = rf.pair
+        info.append((shapes.setdefault(rf.shape, len(shapes)), f is cond.TRUE, boxes,
+                     reads_vars, alone))
     return info
 
 
