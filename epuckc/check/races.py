@@ -26,41 +26,43 @@ class RaceMemo:
         self.named: dict = {}       # named action -> whether it commands the motors
         self.rules: dict = {}       # id(ResolvedRule) -> (rule, RuleFacts)
         self.pairs = None           # (key, pairs, blocks, by_timing_only), rules as indices
-        self.said = ()              # the last warnings, reused when equal
+        self.said = ()              # (what the last warnings were made from, them, the rules)
 
 
-def _facts(checker, rules, memo: RaceMemo) -> dict:
-    """id(rule) -> RuleFacts of every rule, from `memo` where the rule is
-    the same object and the named actions are the same."""
+def _facts(checker, rules, memo: RaceMemo, never) -> tuple:
+    """(id(rule) -> RuleFacts of every rule, from `memo` where the rule is
+    the same object and the named actions are the same; their keys in
+    order; the places of the rules that command the motors, but those
+    whose event never occurs)."""
     env = tuple(checker._resolved_actions.items())
     if memo.env != env:
         memo.env, memo.named, memo.rules = env, {}, {}
     known, named = memo.rules, memo.named
-    out = {}
-    for r in rules:
+    out, keys, motor = {}, [], []
+    for i, r in enumerate(rules):
         hit = known.get(id(r))
         if hit is None or hit[0] is not r:
             hit = known[id(r)] = (r, RuleFacts(checker, r, named))
-        out[id(r)] = hit[1]
+        f = out[id(r)] = hit[1]
+        keys.append(f.key)
+        if f.motor and not (r.event.kind == "standard" and r.event.name in never):
+            motor.append(i)
     if len(known) > 2 * len(out) + 100:
         memo.rules = {k: v for k, v in known.items() if k in out}
-    return out
+    return out, keys, motor
 
 
 def check_program(checker, out) -> None:
     memo = getattr(checker, "race_memo", None) or RaceMemo()
     never = _events_that_never_occur(checker)
     rules = out.rules
-    facts = _facts(checker, rules, memo)
-    motor = [i for i, r in enumerate(rules) if facts[id(r)].motor
-             and not (r.event.kind == "standard" and r.event.name in never)]
+    facts, keys, motor = _facts(checker, rules, memo, never)
     if len(motor) < 2:
         return
     motor_rules = [rules[i] for i in motor]
     found = _Rules(checker, motor_rules, rules, facts)
     read = set().union(*(facts[id(r)].names for r in motor_rules))
-    key = (frozenset(never), found.entry_stops, tuple(motor),
-           tuple(facts[id(r)].key for r in rules),
+    key = (frozenset(never), found.entry_stops, tuple(motor), tuple(keys),
            tuple((n, checker.vars[n].lo, checker.vars[n].hi) for n in sorted(read)
                  if n in checker.vars))
     if memo.pairs is not None and memo.pairs[0] == key:
@@ -72,14 +74,23 @@ def check_program(checker, out) -> None:
         at = found.index
         memo.pairs = (key, [(at[id(a)], at[id(b)]) for a, b in pairs],
                       [_block(at, *block) for block in blocks], found.by_timing_only)
+    # what the warnings say depends on the rules they name (and, for the
+    # pairs' help, on every rule): the same objects say the same
+    # (by their ids: memo.said keeps the rules alive)
+    said_from = (found.by_timing_only, tuple(map(id, rules)) if pairs else (),
+                 tuple((id(a), id(b)) for a, b in pairs),
+                 tuple((id(a), id(b), tuple(map(id, xs)), tuple(map(id, ys)))
+                       for a, b, xs, ys in blocks))
     diags = checker.diags
+    if memo.said and memo.said[0] == said_from:
+        diags.items.extend(memo.said[1])
+        return
     first = len(diags.items)
     _report(checker, pairs, blocks, found)
     said = diags.items[first:]
-    if said == list(memo.said):
-        diags.items[first:] = memo.said     # the same objects: what caches them keeps them
-    else:
-        memo.said = tuple(said)
+    if memo.said and said == list(memo.said[1]):
+        diags.items[first:] = memo.said[1]  # the same objects: what caches them keeps them
+    memo.said = (said_from, tuple(diags.items[first:]), rules, blocks)
 
 
 def _block(to, a, b, xs, ys) -> tuple:
