@@ -38,6 +38,7 @@ from __future__ import annotations
 
 import bisect
 import gc
+import operator
 import re
 from dataclasses import dataclass, replace
 from pathlib import Path
@@ -55,6 +56,7 @@ from .statements import (_CR_ENDS_LINES, _MARGIN, _ONCE, VLINE, Entry, _boundari
                          _common_suffix, _parse_chunk, line_starts)
 
 # words that name lines in a diagnostic's text, and those of them that are virtual
+_ID = operator.attrgetter("id")
 _LINE_WORDS = re.compile(r"\b(lines?) (\d+(?:, \d+)*)")
 _VIRTUAL_LINE = re.compile(r"\blines? (?:\d+, )*?\d{7,}")
 
@@ -94,7 +96,7 @@ class Analysis:
         if ident == 0:
             return line
         if self._starts is None:
-            self._starts = {e.id: line for e, line in zip(self.entries, self.lines)}
+            self._starts = dict(zip(map(_ID, self.entries), self.lines))
         return self._starts[ident] + line % VLINE - 1
 
     def real_words(self, d: Diagnostic) -> Diagnostic:
@@ -187,6 +189,7 @@ class Analyzer:
         self._prev: Optional[tuple] = None
         self._next_id = 1
         self._memo = _Memo()
+        self._line_starts = None    # of the last text split (_chunks)
         self._real: dict = {}   # id(Diagnostic) -> (it, statements, their lines, in real lines)
 
     def analyse(self, text: str) -> Analysis:
@@ -228,11 +231,13 @@ class Analyzer:
         placer.finish()
         checker = IncrementalChecker(program, diags, self._memo, **self.options)
         checked = checker.check()
-        live = {id(s) for s in program.statements}
         memo = self._memo.rules
-        if len(memo) > 2 * len(live) + 100:
+        if len(memo) > 2 * len(program.statements) + 100:
+            live = {id(s) for s in program.statements}
             self._memo.rules = {k: v for k, v in memo.items() if k in live}
-        return self._finish(text, starts, lines, entries, program, checker, checked, items)
+        analysis = self._finish(text, starts, lines, entries, program, checker, checked, items)
+        analysis._line_starts = self._line_starts     # (the split's: the same text's)
+        return analysis
 
     def _chunks(self, text: str) -> Optional[tuple]:
         """The statements of `text`: (starts, lines, entries). Only the
@@ -307,6 +312,7 @@ class Analyzer:
             self._prev = None
             return None
         self._prev = (text, starts, keywords, lines, entries, keys, bad)
+        self._line_starts = starts_of_lines
         return starts, lines, entries
 
     def _whole(self, text: str) -> Analysis:
@@ -340,7 +346,7 @@ class Analyzer:
         # a diagnostic in real lines is kept while the statements it names
         # start on the same lines (the same object: the server keeps what it
         # made of it)
-        first_lines = {e.id: line for e, line in zip(entries, lines)}
+        first_lines = analysis._starts = dict(zip(map(_ID, entries), lines))
         cache, kept = self._real, {}
         shown = []
         for d in items:

@@ -67,12 +67,14 @@ class Lines:
     """LSP positions of a text: lines end at \\n, \\r\\n or \\r (LSP's line
     ends), characters are counted in the negotiated encoding."""
 
-    def __init__(self, text: str, encoding: str):
+    def __init__(self, text: str, encoding: str, starts: Optional[list] = None):
+        """`starts`: the offsets where lines start at \\n, when known."""
         self.text = text
         self.encoding = encoding
         self.has_cr = "\r" in text
         ends = _LINE_END_RE if self.has_cr else _NEWLINE_RE
-        self.starts = [0] + [m.end() for m in ends.finditer(text)]
+        self.starts = starts if starts is not None and not self.has_cr else \
+            [0] + [m.end() for m in ends.finditer(text)]
 
     def _line_end(self, line: int) -> int:
         end = self.starts[line + 1] if line + 1 < len(self.starts) else len(self.text)
@@ -163,7 +165,9 @@ class Document:
     def lines(self, encoding: str) -> Lines:
         if self._lines is None or self._lines.text is not self.text \
                 or self._lines.encoding != encoding:
-            self._lines = Lines(self.text, encoding)
+            analysis = self.analysis        # (its lines are these when no \r ends one)
+            self._lines = Lines(self.text, encoding, analysis.line_starts if analysis is not None
+                                and analysis.text is self.text else None)
         return self._lines
 
 
