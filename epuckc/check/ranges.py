@@ -55,6 +55,9 @@ class RangeMemo:
         self.ranges: dict = {}      # variable -> (lo, hi)
 
 
+_ANY = object()     # (a statement whose assignments do not depend on its mode)
+
+
 def _runs_once(stmt) -> bool:
     """A rule that runs at most once (its assignments are joined once each)."""
     return isinstance(stmt, ast.Rule) and not stmt.repeat and stmt.mode is None \
@@ -167,22 +170,22 @@ class Ranges:
         assigns: dict = {name: [] for name in variables}
         known, seen = memo.statements, {}
         for stmt in self.program.statements:
+            # hit: (statement, its mode when it is a rule with assignments, else
+            # _ANY, ((target, entry), ...))
             hit = known.get(id(stmt))
-            if hit is not None and hit[0] is stmt and (
-                    not hit[2] or hit[1] == _runs_once(stmt)):
-                seen[id(stmt)] = hit
-            else:
+            if hit is None or hit[0] is not stmt or (hit[1] is not _ANY and hit[1] is not stmt.mode):
                 body = stmt.body if isinstance(stmt, (ast.Rule, ast.ActionDef)) else None
                 runs_once = _runs_once(stmt)
                 # an entry: [the Assign, runs once, the names it reads, its text
                 # (later), its statement's id, its place in the statement]
                 calls = () if body is None else [c for step in body.steps for c in step.calls
                                                  if isinstance(c, ast.Assign)]
-                hit = seen[id(stmt)] = (stmt, runs_once, tuple(
-                    [c, runs_once, _names_read(c.value), None, id(stmt), j]
+                hit = (stmt, stmt.mode if calls and isinstance(stmt, ast.Rule) else _ANY, tuple(
+                    (c.target.name, [c, runs_once, _names_read(c.value), None, id(stmt), j])
                     for j, c in enumerate(calls)))
-            for entry in hit[2]:
-                found = assigns.get(entry[0].target.name)
+            seen[id(stmt)] = hit
+            for name, entry in hit[2]:
+                found = assigns.get(name)
                 if found is not None:
                     found.append(entry)
         memo.statements = seen

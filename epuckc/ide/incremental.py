@@ -57,6 +57,7 @@ from .statements import (_CR_ENDS_LINES, _MARGIN, _ONCE, VLINE, Entry, _boundari
 
 # words that name lines in a diagnostic's text, and those of them that are virtual
 _ID = operator.attrgetter("id")
+_FIRST, _SECOND = operator.itemgetter(0), operator.itemgetter(1)
 _LINE_WORDS = re.compile(r"\b(lines?) (\d+(?:, \d+)*)")
 _VIRTUAL_LINE = re.compile(r"\blines? (?:\d+, )*?\d{7,}")
 
@@ -349,18 +350,21 @@ class Analyzer:
         first_lines = analysis._starts = dict(zip(map(_ID, entries), lines))
         cache, kept = self._real, {}
         shown = []
+        get = first_lines.get
         for d in items:
+            # hit: (d, its statements, their first lines, (sort key, d in real lines))
             hit = cache.get(id(d))
-            if hit is None or hit[0] is not d or \
-                    tuple(first_lines.get(i) for i in hit[1]) != hit[2]:
+            if hit is None or hit[0] is not d or (
+                    get(hit[1][0]) != hit[2][0] if len(hit[1]) == 1
+                    else tuple(map(get, hit[1])) != hit[2]):
                 idents = _idents(d)
-                hit = (d, idents, tuple(first_lines.get(i) for i in idents),
-                       self._real_diagnostic(analysis, d) if idents else d)
+                real = self._real_diagnostic(analysis, d) if idents else d
+                hit = (d, idents, tuple(map(get, idents)), (real.sort_key(), real))
             kept[id(d)] = hit
             shown.append(hit[3])
         self._real = kept
-        shown.sort(key=Diagnostic.sort_key)
-        analysis.diagnostics = shown
+        shown.sort(key=_FIRST)
+        analysis.diagnostics = list(map(_SECOND, shown))
         return analysis
 
 
