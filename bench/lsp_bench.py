@@ -214,7 +214,8 @@ def expressions_main(args) -> int:
     doc = Document("file:///bench/bench.epk", text, 1, server)
     server.docs[doc.uri] = doc
     t0 = time.thread_time()
-    doc.analyse()                   # opening the file: the full analysis
+    analysis = doc.analyse()        # opening the file: the full analysis, published
+    [server.diagnostic(doc, analysis, d) for d in analysis.diagnostics]
     opened = time.thread_time() - t0
     rng = random.Random(1)
     error_times = [server_edit(server, doc, *e) for e in error_edits(text, rng, args.edits)]
@@ -230,7 +231,7 @@ def expressions_main(args) -> int:
     share = lambda xs: f"{statistics.median(xs) / full * 100:5.1f} % of a full check"
     print(f"python {platform.python_version()} on {platform.machine()}, {os.cpu_count()} cpus; "
           f"{args.rules} rules of variables and expressions, {len(text)} bytes (CPU time)")
-    print(f"open (full analysis)                 : {opened * 1000:6.1f} ms")
+    print(f"open (full analysis, published)      : {opened * 1000:6.1f} ms")
     print(f"full check (parse + check)           : {ms(full_times)}")
     print(f"one-rule edit, an error in and out   : {ms(error_times)}  {share(error_times)}")
     print(f"one-rule edit, a number              : {ms(number_times)}  {share(number_times)}")

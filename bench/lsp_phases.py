@@ -63,7 +63,8 @@ def main(argv=None) -> int:
     text = lb.expression_program(args.rules)
     server = EpuckServer()
     doc = Document("file:///bench/bench.epk", text, 1, server)
-    doc.analyse()
+    analysis = doc.analyse()        # opened and published
+    [server.diagnostic(doc, analysis, d) for d in analysis.diagnostics]
     edits = {"error": lb.error_edits, "number": lb.edits,
              "interval": lb.interval_edits}[args.kind](text, random.Random(1), args.edits)
     spent.clear()
