@@ -23,13 +23,20 @@ a 1,000-rule file only the edited statement is lexed, parsed and checked:
    about it; virtual lines are turned into real ones only for what is
    shown (`Analysis.real`, and `Analysis.real_words` for the lines a
    message names). Lines below VLINE are real lines.
-4. **Checking**: the declarations (names, the robot block) and the
-   whole-program checks (rules that can never fire, unused names,
+4. **Checking** (recheck.py): the declarations (names, the robot block)
+   and the whole-program checks (rules that can never fire, unused names,
    capacity) run every time, over all statements: they are cheap loops.
    Resolving each rule, the expensive part, is replayed (its diagnostics
    and the facts the whole-program checks need) when the rule is the same
-   object and every name it looked up (`_Watched`) still means the same;
-   named actions are replayed as a whole when no declaration changed.
+   object and every name it looked up (`_Watched`) still means the same
+   (a guard's narrowing looks up only the variables it names); named
+   actions are replayed as a whole when no declaration changed. The
+   variables' intervals are solved again only for the components of their
+   dependency graph that an edit reaches (check/ranges.py), and W009 keeps
+   each rule's facts and its last pairs (check/races.py).
+5. **Showing**: a diagnostic is put in real lines once, and again only when
+   a statement it names moved; the server keeps its LSP form while it is
+   the same object on lines of the same text (lsp.py).
 
 A file with 20 or more runs of bad characters is checked whole, because
 the lexer stops at the 20th and that cut depends on the whole file.
