@@ -110,13 +110,16 @@ class Analysis:
     def real_words(self, d: Diagnostic) -> Diagnostic:
         """A diagnostic whose words name lines (`(line 12)`, `the rules of
         lines 14, 15`: W009 names rules so) with those lines made real."""
+        if self._starts is None:
+            self._starts = dict(zip(map(_ID, self.entries), self.lines))
+        starts = self._starts
+
         def lines(match):
             # (in the order of the file, as the checker lists them: virtual
             # lines follow statements' ids, not their places)
-            numbers = ", ".join(str(n) for n in sorted(
-                self.real_line(int(n)) if int(n) >= VLINE else int(n)
-                for n in match.group(2).split(", ")))
-            return f"{match.group(1)} {numbers}"
+            numbers = sorted(starts[n // VLINE] + n % VLINE - 1 if n >= VLINE else n
+                             for n in map(int, match.group(2).split(", ")))
+            return f"{match.group(1)} {', '.join(map(str, numbers))}"
 
         def fix(text):
             return _LINE_WORDS.sub(lines, text) if text else text
