@@ -285,7 +285,9 @@ class EpuckServer(LanguageServer):
         if lines.has_cr:     # (lines counted as the checker counts them only without \r)
             return self._diagnostic(doc, analysis, d)
         spans = (d.span,) + tuple(n.span for n in d.notes if n.span is not None)
-        texts = tuple(lines.text_of(span.line - 1, span.end_line - 1) for span in spans)
+        count = len(lines.starts)       # (a span past the end is clamped to the last line)
+        texts = tuple((lines.text_of(span.line - 1, span.end_line - 1), span.end_line > count
+                       and count) for span in spans)
         cache = doc.lsp_diagnostics
         hit = cache.get(id(d))
         if hit is not None and hit[0] is d and hit[1] == texts:
