@@ -151,29 +151,95 @@ def main(argv=None) -> int:
     return 0
 
 
+# what makes one rule of expression_program wrong, by its shape (and undoes it)
+_ERRORS = (("led_toggle(", "led_togle("), ("set_speed(", "set_sped("), (" ms do ", " kg do "),
+           ("repeat if", "repeat iff"))
+
+
+def error_edits(text: str, rng: random.Random, count: int):
+    """(start, end, new text) of edits that make one rule of
+    expression_program wrong (a misspelt action, a duration in kg, a
+    misspelt keyword: every shape of rule), each undone by the next: the
+    issue's edits, which change no interval."""
+    lines = text.split("\n")
+    offsets = [0]
+    for line in lines:
+        offsets.append(offsets[-1] + len(line) + 1)
+    rules = [i for i, line in enumerate(lines) if line.startswith(("on ", "every ", "when "))]
+    out = []
+    while len(out) < count:
+        i = rng.choice(rules)
+        for old, new in _ERRORS:
+            at = lines[i].find(old)
+            if at >= 0:
+                start = offsets[i] + at
+                out += [(start, start + len(old), new), (start, start + len(new), old)]
+                break
+    return out[:count]
+
+
+def _p(xs, q):
+    return sorted(xs)[min(len(xs) - 1, int(len(xs) * q))]
+
+
+def requests_during_edits(server, doc, text: str, rng: random.Random, count: int):
+    """Hover and completion right after each of `count` edits (the first
+    request after an edit analyses the new text, as in the editor when it
+    comes before the debounce): CPU times of each request, hover first."""
+    hover = server.protocol.fm.features[lsp.TEXT_DOCUMENT_HOVER]
+    complete = server.protocol.fm.features[lsp.TEXT_DOCUMENT_COMPLETION]
+    ident = lsp.TextDocumentIdentifier(doc.uri)
+    hovers, completions = [], []
+    for start, end, new in error_edits(text, rng, count):
+        lines = Lines(doc.text, server.encoding)
+        doc.apply(lsp.TextDocumentContentChangePartial(
+            range=lsp.Range(lines.position(start), lines.position(end)), text=new),
+            server.encoding)
+        lines = Lines(doc.text, server.encoding)
+        at = doc.text.find("v", start + len(new))           # a variable after the edit
+        t0 = time.thread_time()
+        hover(lsp.HoverParams(ident, lines.position(at + 1)))
+        t1 = time.thread_time()
+        complete(lsp.CompletionParams(ident, lines.position(at)))
+        t2 = time.thread_time()
+        hovers.append(t1 - t0)
+        completions.append(t2 - t1)
+    return hovers, completions
+
+
 def expressions_main(args) -> int:
+    from epuckc.ide.lsp import create_server
     text = expression_program(args.rules)
-    server = EpuckServer()
+    server = create_server()
     doc = Document("file:///bench/bench.epk", text, 1, server)
+    server.docs[doc.uri] = doc
     t0 = time.thread_time()
-    doc.analyse()                   # opening the file: the full analysis
+    analysis = doc.analyse()        # opening the file: the full analysis, published
+    [server.diagnostic(doc, analysis, d) for d in analysis.diagnostics]
     opened = time.thread_time() - t0
     rng = random.Random(1)
-    rule_times = [server_edit(server, doc, *e) for e in edits(text, rng, args.edits)]
+    error_times = [server_edit(server, doc, *e) for e in error_edits(text, rng, args.edits)]
+    number_times = [server_edit(server, doc, *e) for e in edits(text, rng, args.edits)]
     interval_times = [server_edit(server, doc, *e)
                       for e in interval_edits(doc.text, rng, args.edits)]
+    hovers, completions = requests_during_edits(server, doc, doc.text, rng,
+                                                max(100, args.edits))
     full_times = [full_check(doc.text) for _ in range(max(5, args.edits // 4))]
+    full = statistics.median(full_times)
     ms = lambda xs: (f"median {statistics.median(xs) * 1000:6.1f} ms, "
-                     f"p90 {sorted(xs)[int(len(xs) * 0.9)] * 1000:6.1f} ms")
+                     f"p90 {_p(xs, 0.9) * 1000:6.1f} ms, max {max(xs) * 1000:6.1f} ms")
+    share = lambda xs: f"{statistics.median(xs) / full * 100:5.1f} % of a full check"
     print(f"python {platform.python_version()} on {platform.machine()}, {os.cpu_count()} cpus; "
           f"{args.rules} rules of variables and expressions, {len(text)} bytes (CPU time)")
-    print(f"open (full analysis)                 : {opened * 1000:6.1f} ms")
+    print(f"open (full analysis, published)      : {opened * 1000:6.1f} ms")
     print(f"full check (parse + check)           : {ms(full_times)}")
-    print(f"one-rule edit, no interval changes   : {ms(rule_times)}")
-    print(f"one-rule edit that changes intervals : {ms(interval_times)}")
-    print(f"edits / full check                   : "
-          f"{statistics.median(rule_times) / statistics.median(full_times) * 100:.1f} %, "
-          f"{statistics.median(interval_times) / statistics.median(full_times) * 100:.1f} %")
+    print(f"one-rule edit, an error in and out   : {ms(error_times)}  {share(error_times)}")
+    print(f"one-rule edit, a number              : {ms(number_times)}  {share(number_times)}")
+    print(f"one-rule edit that changes intervals : {ms(interval_times)}  {share(interval_times)}")
+    print(f"hover after an edit (p50 / p99)      : {statistics.median(hovers) * 1000:6.1f} / "
+          f"{_p(hovers, 0.99) * 1000:6.1f} ms ({len(hovers)} edits)")
+    print(f"completion after an edit (p50 / p99) : {statistics.median(completions) * 1000:6.1f} / "
+          f"{_p(completions, 0.99) * 1000:6.1f} ms")
     return 0
 
 

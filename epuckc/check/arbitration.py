@@ -234,62 +234,95 @@ def _events_that_never_occur(checker) -> set:
     return never
 
 
-class _Rules:
-    """What the pair checks need of each rule, computed once."""
+class RuleFacts:
+    """What W009 reads of one resolved rule (through the named actions it
+    uses), computed once per rule; the language server keeps them between
+    edits while the named actions are the same (races.RaceMemo)."""
+    __slots__ = ("writes", "motor", "moves_outside", "enters", "entry_moves", "stops",
+                 "condition", "names", "shape", "key", "pair")
 
-    def __init__(self, checker, rules, every_rule):
+    def __init__(self, checker, rule, named: dict):
+        steps = flat_steps(checker, rule.body)
+        calls = [c for step in steps for c in may_run(checker, step)]     # (an `if`'s: any branch)
+        self.writes = frozenset(c.name for c in calls if c.kind == "assign")
+        self.motor = _commands_motors(checker, rule.body, named)
+        self.moves_outside = rule.mode is None and any(
+            c.kind == "standard" and c.name in MOTION_ACTIONS for c in calls)
+        self.enters = any(c.kind == "enter" for c in calls)
+        self.entry_moves = _is_enter(rule) and bool(steps) and any(
+            c.kind == "standard" and c.name in MOTION_ACTIONS for c in may_run(checker, steps[0]))
+        # a stop not followed by exit_main in its step: the wheels stopped
+        # between two polls, which an entry in that poll does not undo
+        self.stops = any(_stops_and_goes_on(checker, step) for step in steps)
+        self.condition = condition_of(rule)
+        self.names = tuple(sorted(cond.names_of(self.condition)))
+        self.shape = _timing_shape(rule)
+        # what the pair analysis reads of the rule, besides its place: equal
+        # keys (and places) give equal pairs
+        self.key = (_is_enter(rule), rule.priority, self.writes,
+                    (self.shape, self.condition, _early(rule)) if self.motor else None)
+        self.pair = None    # (the intervals its condition reads, rule_facts' answers)
+
+
+def entry_stops(checker, every_rule, facts: dict) -> bool:
+    """Whether no `stop_motor` event can occur in the poll after a mode's
+    entry (see the module's doc); `facts`: id(rule) -> RuleFacts."""
+    if any(e.kind == "action" for e in checker.externs.values()):
+        return False
+    enters, stops, entry_moves = False, [], set()
+    for r in every_rule:
+        f = facts[id(r)]
+        if f.moves_outside:
+            return False                # its motion goes on across an entry
+        enters = enters or f.enters
+        if f.entry_moves:
+            entry_moves.add(r.mode)
+        if f.stops:
+            stops.append(r)
+    # An `on enter` that stops runs where nothing moves (the motion of the
+    # mode left was stopped), unless an `on enter` of its mode started one.
+    stops = [r for r in stops if not _is_enter(r) or r.mode in entry_moves]
+    return not (enters and stops)
+
+
+class _Rules:
+    """What the pair checks need of each rule, computed once (`facts`:
+    id(rule) -> RuleFacts, computed here when not given); the walk's order
+    only when a pair asks for it."""
+
+    def __init__(self, checker, rules, every_rule, facts: dict = None):
+        if facts is None:
+            named: dict = {}
+            facts = {id(r): RuleFacts(checker, r, named) for r in every_rule}
+        self.facts = facts
         self.rules = every_rule         # (any rule may write a variable a guard reads)
         self.index = {id(r): i for i, r in enumerate(every_rule)}
-        flat = {id(r): [c for step in flat_steps(checker, r.body)
-                         for c in may_run(checker, step)]
-                for r in every_rule}
-        self.condition = {id(r): condition_of(r) for r in rules}
+        self.condition = {id(r): facts[id(r)].condition for r in rules}
         self.memo_names, self.memo_boxes, self.memo_alone = {}, {}, {}
         self.memo_timing: dict = {}
-        self.writes = {id(r): {c.name for c in flat[id(r)] if c.kind == "assign"}
-                       for r in every_rule}
         self.base = {name: (info.lo, info.hi) for name, info in checker.vars.items()}
         self.base.update((name, (r.lo, r.hi)) for name, r in STANDARD_READINGS.items())
         self.variables = set(checker.vars)
-        # the variables written by the rules before each place of the walk
-        ordered = self.ordered = sorted(every_rule, key=self.key)
-        self.place = {id(r): i for i, r in enumerate(ordered)}
-        self.before, written = [], frozenset()
-        self.write_places: dict = {}    # variable -> the places that write it, in order
-        for i, r in enumerate(ordered):
-            self.before.append(written)
-            if self.writes[id(r)]:
-                written = written | self.writes[id(r)]
-                for name in self.writes[id(r)]:
-                    self.write_places.setdefault(name, []).append(i)
-        self.entry_stops = self._entry_stops(checker, every_rule)
+        self._walk = None
+        self.entry_stops = entry_stops(checker, every_rule, facts)
         self.by_timing_only = False     # a big group was compared by timing alone
 
-    @staticmethod
-    def _entry_stops(checker, every_rule) -> bool:
-        """Whether no `stop_motor` event can occur in the poll after a
-        mode's entry (see the module's doc)."""
-        if any(e.kind == "action" for e in checker.externs.values()):
-            return False
-        enters, stops, entry_moves = False, [], set()
-        for r in every_rule:
-            steps = flat_steps(checker, r.body)
-            calls = [c for step in steps for c in may_run(checker, step)]
-            if r.mode is None and any(c.kind == "standard" and c.name in MOTION_ACTIONS
-                                      for c in calls):
-                return False            # its motion goes on across an entry
-            enters = enters or any(c.kind == "enter" for c in calls)
-            if _is_enter(r) and steps and any(c.kind == "standard" and c.name in MOTION_ACTIONS
-                                              for c in may_run(checker, steps[0])):
-                entry_moves.add(r.mode)
-            # a stop not followed by exit_main in its step: the wheels stopped
-            # between two polls, which an entry in that poll does not undo
-            if any(_stops_and_goes_on(checker, step) for step in steps):
-                stops.append(r)
-        # An `on enter` that stops runs where nothing moves (the motion of the
-        # mode left was stopped), unless an `on enter` of its mode started one.
-        stops = [r for r in stops if not _is_enter(r) or r.mode in entry_moves]
-        return not (enters and stops)
+    def writes(self, rule) -> frozenset:
+        """The variables the rule's action (named actions spliced) assigns."""
+        return self.facts[id(rule)].writes
+
+    def walk(self) -> tuple:
+        """(place: id(rule) -> its place in a poll's walk, write_places:
+        variable -> the places that write it, in order)."""
+        if self._walk is None:
+            ordered = sorted(self.rules, key=self.key)
+            place = {id(r): i for i, r in enumerate(ordered)}
+            write_places: dict = {}
+            for i, r in enumerate(ordered):
+                for name in self.facts[id(r)].writes:
+                    write_places.setdefault(name, []).append(i)
+            self._walk = place, write_places
+        return self._walk
 
     def key(self, rule) -> tuple:
         """The rule's place in a poll's walk: a mode's `on enter` rules
@@ -303,14 +336,18 @@ class _Rules:
         before the later one's turn (a `when` condition without a guard is
         compiled with the others and may be evaluated early in the poll:
         then every action before the later one's turn counts)."""
-        first, later = sorted((self.place[id(a)], self.place[id(b)]))
-        if _early(a) or _early(b):
-            return self.before[later] & among
-        found = set()                   # from the first one's action on: a write
-        for name in among:              # in first..later-1
-            places = self.write_places.get(name, ())
-            i = bisect.bisect_left(places, first)
-            if i < len(places) and places[i] < later:
+        place, write_places = self.walk()
+        first, later = sorted((place[id(a)], place[id(b)]))
+        found = set()
+        early = _early(a) or _early(b)
+        for name in among:
+            places = write_places.get(name, ())
+            if early:                   # any write before the later one's turn
+                if places and places[0] < later:
+                    found.add(name)
+                continue
+            i = bisect.bisect_left(places, first)   # from the first one's action on:
+            if i < len(places) and places[i] < later:   # a write in first..later-1
                 found.add(name)
         return found
 
@@ -401,12 +438,19 @@ def rule_facts(group: list, facts: _Rules) -> list:
     its condition can hold)."""
     shapes: dict = {}
     info = []
+    base, variables = facts.base, facts.variables
     for r in group:
-        f = facts.condition[id(r)]
-        reads_vars = f is not cond.TRUE and bool(facts._names(f) & facts.variables)
-        info.append((shapes.setdefault(_timing_shape(r), len(shapes)), f is cond.TRUE,
-                     None if f is cond.TRUE else facts._boxes(f), reads_vars,
-                     f is cond.TRUE or facts._alone(f)))
+        rf = facts.facts[id(r)]
+        f = rf.condition
+        # (kept by the rule's facts while the intervals its condition reads are the same)
+        key = tuple((n, n in variables, base.get(n)) for n in rf.names)
+        if rf.pair is None or rf.pair[0] != key:
+            rf.pair = (key, f is not cond.TRUE and not variables.isdisjoint(rf.names),
+                       None if f is cond.TRUE else cond.boxes(f, base),
+                       f is cond.TRUE or cond.satisfiable(f, base))
+        _, reads_vars, boxes, alone = rf.pair
+        info.append((shapes.setdefault(rf.shape, len(shapes)), f is cond.TRUE, boxes,
+                     reads_vars, alone))
     return info
 
 

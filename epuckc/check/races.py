@@ -4,22 +4,109 @@ fix that fits it; in a big program, by kinds of rules, every rule listed."""
 from __future__ import annotations
 
 from ..diagnostics import Note
-from .arbitration import (describe, head_text, _is_enter, _code, _Rules, _racing_pairs, EXPAND_RULES, _commands_motors, _events_that_never_occur, _early)
+from .arbitration import (describe, head_text, _is_enter, _code, _Rules, _racing_pairs, EXPAND_RULES,
+                          _events_that_never_occur, _early, RuleFacts)
 from . import conditions as cond
 from .messages import _shown
 
 MAX_REPORTS = 10
 
 
+class RaceMemo:
+    """W009 kept between two analyses of one document (the language
+    server's, ide/incremental.py): each rule's facts (while the named
+    actions are the same), and the last pair analysis with what it was
+    computed from (each rule's facts' key, the intervals the motor rules'
+    conditions read, which events never occur, whether an entry stops).
+    An edit that leaves those the same (a rule that commands no motor and
+    writes the same variables, a changed number in an action) reuses the
+    pairs; any other computes them again."""
+    def __init__(self):
+        self.env = None
+        self.named: dict = {}       # named action -> whether it commands the motors
+        self.rules: dict = {}       # id(ResolvedRule) -> (rule, RuleFacts)
+        self.pairs = None           # (key, pairs, blocks, by_timing_only), rules as indices
+        self.said = ()              # (what the last warnings were made from, them, the rules)
+
+
+def _facts(checker, rules, memo: RaceMemo, never) -> tuple:
+    """(id(rule) -> RuleFacts of every rule, from `memo` where the rule is
+    the same object and the named actions are the same; their keys in
+    order; the places of the rules that command the motors, but those
+    whose event never occurs)."""
+    env = tuple(checker._resolved_actions.items())
+    if memo.env != env:
+        memo.env, memo.named, memo.rules = env, {}, {}
+    known, named = memo.rules, memo.named
+    out, keys, motor = {}, [], []
+    for i, r in enumerate(rules):
+        hit = known.get(id(r))
+        if hit is None or hit[0] is not r:
+            hit = known[id(r)] = (r, RuleFacts(checker, r, named))
+        f = out[id(r)] = hit[1]
+        keys.append(f.key)
+        if f.motor and not (r.event.kind == "standard" and r.event.name in never):
+            motor.append(i)
+    if len(known) > 2 * len(out) + 100:
+        memo.rules = {k: v for k, v in known.items() if k in out}
+    return out, keys, motor
+
+
 def check_program(checker, out) -> None:
-    named: dict = {}
+    memo = getattr(checker, "race_memo", None) or RaceMemo()
     never = _events_that_never_occur(checker)
-    motor_rules = [r for r in out.rules
-                   if _commands_motors(checker, r.body, named)
-                   and not (r.event.kind == "standard" and r.event.name in never)]
-    if len(motor_rules) < 2:
+    rules = out.rules
+    facts, keys, motor = _facts(checker, rules, memo, never)
+    if len(motor) < 2:
         return
-    facts = _Rules(checker, motor_rules, out.rules)
+    motor_rules = [rules[i] for i in motor]
+    found = _Rules(checker, motor_rules, rules, facts)
+    read = set().union(*(facts[id(r)].names for r in motor_rules))
+    key = (frozenset(never), found.entry_stops, tuple(motor), tuple(keys),
+           tuple((n, checker.vars[n].lo, checker.vars[n].hi) for n in sorted(read)
+                 if n in checker.vars))
+    if memo.pairs is not None and memo.pairs[0] == key:
+        _, pairs, blocks, found.by_timing_only = memo.pairs
+        pairs = [(rules[a], rules[b]) for a, b in pairs]
+        blocks = [_block(rules, *block) for block in blocks]
+    else:
+        pairs, blocks = _pairs(motor_rules, found)
+        at = found.index
+        memo.pairs = (key, [(at[id(a)], at[id(b)]) for a, b in pairs],
+                      [_block(at, *block) for block in blocks], found.by_timing_only)
+    # what the warnings say depends on the rules they name (and, for the
+    # pairs' help, on every rule): the same objects say the same
+    # (by their ids: memo.said keeps the rules alive)
+    said_from = (found.by_timing_only, tuple(map(id, rules)) if pairs else (),
+                 tuple((id(a), id(b)) for a, b in pairs),
+                 tuple((id(a), id(b), tuple(map(id, xs)), tuple(map(id, ys)))
+                       for a, b, xs, ys in blocks))
+    diags = checker.diags
+    if memo.said and memo.said[0] == said_from:
+        diags.items.extend(memo.said[1])
+        return
+    first = len(diags.items)
+    _report(checker, pairs, blocks, found)
+    said = diags.items[first:]
+    if memo.said and said == list(memo.said[1]):
+        diags.items[first:] = memo.said[1]  # the same objects: what caches them keeps them
+    memo.said = (said_from, tuple(diags.items[first:]), rules, blocks)
+
+
+def _block(to, a, b, xs, ys) -> tuple:
+    """A block of rules as indices (`to`: id(rule) -> index), or back
+    (`to`: the rules); a kind with itself is one list, as found."""
+    if isinstance(to, dict):
+        a, b, xs2 = to[id(a)], to[id(b)], [to[id(r)] for r in xs]
+        ys2 = xs2 if ys is xs else [to[id(r)] for r in ys]
+    else:
+        a, b, xs2 = to[a], to[b], [to[i] for i in xs]
+        ys2 = xs2 if ys is xs else [to[i] for i in ys]
+    return a, b, xs2, ys2
+
+
+def _pairs(motor_rules, facts: _Rules) -> tuple:
+    """The racing pairs of small groups and the blocks of big ones."""
     by_priority: dict = {}
     for r in motor_rules:
         by_priority.setdefault(r.priority, []).append(r)
@@ -30,6 +117,10 @@ def check_program(checker, out) -> None:
             blocks += found
         else:
             pairs += found
+    return pairs, blocks
+
+
+def _report(checker, pairs, blocks, facts: _Rules) -> None:
     if blocks:              # a big program: the pairs by kinds of rules
         _report_blocks(checker, blocks, facts)
     pairs.sort(key=lambda p: (facts.index[id(p[0])], facts.index[id(p[1])]))
@@ -115,7 +206,7 @@ def _help(loser, winner, facts: _Rules) -> str:
                     f"exclude each other (e.g. `>` in one and `<=` in the other), or "
                     f"{priority}")
     if unstable:
-        writers = [r for r in facts.rules if facts.writes[id(r)] & unstable
+        writers = [r for r in facts.rules if facts.writes(r) & unstable
                    and facts.key(r) < max(facts.key(loser), facts.key(winner))
                    and (facts.key(r) >= facts.key(loser) or _early(loser) or _early(winner))]
         names = ", ".join(sorted(_code(n) for n in unstable))
@@ -123,7 +214,7 @@ def _help(loser, winner, facts: _Rules) -> str:
         why = (f"their conditions on {names} would exclude each other, but "
                f"{describe(writers[0])} changes {them} in the poll before {describe(winner)} "
                f"reads {them}")
-        if writers == [loser] and not (facts.writes[id(winner)] & unstable) \
+        if writers == [loser] and not (facts.writes(winner) & unstable) \
                 and not _is_enter(loser) and not _is_enter(winner):
             return (f"{why}: move {describe(winner)} above {describe(loser)} in the file, so "
                     f"that it reads {them} first, or {priority}")

@@ -25,6 +25,8 @@ evaluated again: an edit costs the components it reaches, not the program.
 """
 from __future__ import annotations
 
+import itertools
+
 from ..diagnostics import Collector
 from ..stdlib.units import INT16_MAX, INT16_MIN
 from ..syntax import ast
@@ -42,12 +44,29 @@ NARROW_PASSES = 2
 
 class RangeMemo:
     """What one document's intervals were computed from, kept between two
-    analyses: the environment (geometry and constants), each assignment's
-    reads, and each component's inputs and result."""
+    analyses: the environment (geometry and constants), each statement's
+    assignments, each variable's assignments and declaration, the graph
+    and its components, each component's inputs and result, and every
+    variable's interval."""
     def __init__(self):
         self.env = None
-        self.reads: dict = {}       # id(Assign) -> (Assign, names it reads, its text)
-        self.components: dict = {}  # members -> (inputs, {name: (lo, hi)})
+        self.statements: dict = {}  # id(statement) -> (it, runs once, its assignments' entries)
+        self.names = None           # the variables, in order
+        self.assigns: dict = {}     # variable -> its assignments' entries, in file order
+        self.decls: dict = {}       # variable -> (kind, initial value)
+        self.graph = None           # variable -> the variables it depends on
+        self.order: list = []       # its components: (members, members' set, what they read)
+        self.results: dict = {}     # members -> (inputs, {name: (lo, hi)})
+        self.ranges: dict = {}      # variable -> (lo, hi)
+
+
+_ANY = object()     # (a statement whose assignments do not depend on its mode)
+
+
+def _runs_once(stmt) -> bool:
+    """A rule that runs at most once (its assignments are joined once each)."""
+    return isinstance(stmt, ast.Rule) and not stmt.repeat and stmt.mode is None \
+        and stmt.trigger != "every"
 
 
 def _names_read(value) -> frozenset:
@@ -108,6 +127,21 @@ def _assignments(calls, context: tuple, actions, spoiled=frozenset()) -> list:
     return out
 
 
+def _inputs(checker, entries: list, members: tuple, outside) -> tuple:
+    """What a component's result is computed from: its assignments' text
+    (kept in their entries) and whether each runs once, its members'
+    declarations, the intervals it reads of other components."""
+    for entry in entries:
+        if entry[3] is None:        # (and the conditions that hold where it runs)
+            entry[3] = (entry[0].op, _shown(entry[0].value),
+                        tuple((_shown(cond), held) for cond, held in entry[6]), entry[7])
+    variables = checker.vars
+    return (tuple((e[3], e[1]) for e in entries),
+            tuple((m, variables[m].kind, variables[m].init) for m in members),
+            tuple((n, variables[n].kind, variables[n].lo, variables[n].hi)
+                  for n in sorted(outside)))
+
+
 def components(graph: dict) -> list:
     """The strongly connected components of `graph` (node -> the nodes it
     depends on), each a tuple in the order of `graph`, dependencies first.
@@ -162,94 +196,110 @@ class Ranges:
     range_memo = None       # a RangeMemo where the language server keeps one
 
     def _var_ranges(self):
-        """Each variable's interval, component by component."""
+        """Each variable's interval, component by component. With the
+        language server's memo, a component is evaluated again only when
+        its assignments or its members' declarations changed (a variable's
+        assignments are the same objects, in the same order, when no
+        statement assigning it was parsed again), or when an interval it
+        reads moved; and then only if its inputs' text differs."""
         if not self.vars:
             return
-        assigns: dict = {name: [] for name in self.vars}
-        place: dict = {}        # id(Assign) -> its place in the file
-        once: set = set()       # id(Assign) of the rules that run at most once
-        contexts = self._contexts = {}      # id(Assign) -> what holds where it runs
+        keep = self.range_memo is not None
+        memo = self.range_memo if keep else RangeMemo()
+        # (the named actions: what an assignment in a branch counts as spoiling)
+        env = (self.geo, tuple(self.consts.items()), frozenset(self.actions))
+        if memo.env != env:
+            memo.results, memo.ranges, memo.statements = {}, {}, {}
+        memo.env = env
+        variables = self.vars
+        assigns: dict = {name: [] for name in variables}
+        known, seen = memo.statements, {}
         for stmt in self.program.statements:
-            body = stmt.body if isinstance(stmt, (ast.Rule, ast.ActionDef)) else None
-            if body is None:
-                continue
-            runs_once = isinstance(stmt, ast.Rule) and not stmt.repeat \
-                and stmt.mode is None and stmt.trigger != "every"
-            guard = stmt.guard if isinstance(stmt, ast.Rule) else None
-            for k, step in enumerate(body.steps):
-                # (an `if`'s assignments may run, where its conditions held)
-                start = ((guard, True),) if guard is not None and k == 0 else ()
-                for c, context, spoiled in _assignments(step.calls, start, self.actions):
-                    if c.target.name in self.vars:
-                        assigns[c.target.name].append(c)
-                        place[id(c)] = len(place)
-                        if context:
-                            contexts[id(c)] = (context, spoiled)
-                        if runs_once:
-                            once.add(id(c))
+            # hit: (statement, its mode when it is a rule with assignments, else
+            # _ANY, ((target, entry), ...))
+            hit = known.get(id(stmt))
+            if hit is None or hit[0] is not stmt or (hit[1] is not _ANY and hit[1] is not stmt.mode):
+                body = stmt.body if isinstance(stmt, (ast.Rule, ast.ActionDef)) else None
+                runs_once = _runs_once(stmt)
+                # an entry: [the Assign, runs once, the names it reads (its
+                # conditions' too), its text (later), its statement's id, its
+                # place in the statement, the conditions that hold where it
+                # runs, the variables assigned before it since]
+                guard = stmt.guard if isinstance(stmt, ast.Rule) else None
+                calls = []
+                for k, step in enumerate(() if body is None else body.steps):
+                    # (an `if`'s assignments may run, where its conditions held)
+                    start = ((guard, True),) if guard is not None and k == 0 else ()
+                    calls += _assignments(step.calls, start, self.actions)
+                hit = (stmt, stmt.mode if calls and isinstance(stmt, ast.Rule) else _ANY, tuple(
+                    (c.target.name, [c, runs_once, _names_read(c.value).union(
+                        *(_names_read(cond) for cond, _ in context)), None, id(stmt), j,
+                        context, spoiled])
+                    for j, (c, context, spoiled) in enumerate(calls)))
+            seen[id(stmt)] = hit
+            for name, entry in hit[2]:
+                found = assigns.get(name)
+                if found is not None:
+                    found.append(entry)
+        memo.statements = seen
+        self._contexts = {id(e[0]): (e[6], e[7]) for entries in assigns.values()
+                          for e in entries if e[6]}
         if not any(assigns.values()):
             return
-        memo = self.range_memo
-        if memo is not None:
-            env = (self.geo, tuple(self.consts.items()))
-            if memo.env != env:
-                memo.env, memo.components = env, {}
-            memo.env = env
-        reads = {}      # id(Assign) -> the variables it reads
-        texts = {}      # id(Assign) -> its text (with a memo)
-        graph = {}
-        variables = self.vars.keys()
-        for name, calls in assigns.items():
-            needs = set()
-            for call in calls:
-                known = memo.reads.get(id(call)) if memo is not None else None
-                if known is None or known[0] is not call:
-                    # (its text: what its value depends on of itself, where a
-                    # statement parsed again has new nodes and new spans)
-                    context = contexts.get(id(call), ((), ()))[0]
-                    known = (call, _names_read(call.value).union(
-                                 *(_names_read(cond) for cond, _ in context)),
-                             (call.op, _shown(call.value),
-                              tuple((_shown(cond), held) for cond, held in context))
-                             if memo is not None else None)
-                    if memo is not None:
-                        memo.reads[id(call)] = known
-                texts[id(call)] = known[2]
-                names = known[1] & variables
-                if call.op != "=":
-                    names |= {name}
-                reads[id(call)] = names
-                needs |= names
-            graph[name] = sorted(needs)
-        live = {}
-        for members in components(graph):
-            calls = sorted((c for m in members for c in assigns[m]),
-                           key=lambda c: place[id(c)])      # in file order
-            if not calls:
+        names = tuple(variables)
+        same_names = names == memo.names
+        old_assigns, old_decls, old_graph = memo.assigns, memo.decls, memo.graph
+        graph, decls, dirty = {}, {}, set()
+        keys = variables.keys()
+        for name, entries in assigns.items():
+            info = variables[name]
+            decl = decls[name] = (info.kind, info.init)
+            if same_names and entries == old_assigns.get(name) and decl == old_decls.get(name):
+                graph[name] = old_graph[name]
                 continue
-            inside = set(members)
-            outside = sorted({n for c in calls for n in reads[id(c)]} - inside)
-            inputs = (tuple((texts[id(c)], id(c) in once) for c in calls)
-                      if memo is not None else None,
-                      tuple((m, self.vars[m].kind, self.vars[m].init) for m in members),
-                      tuple((n, self.vars[n].kind, self.vars[n].lo, self.vars[n].hi)
-                            for n in outside))
-            known = memo.components.get(members) if memo is not None else None
-            if known is not None and known[0] == inputs:
-                result = known[1]
+            dirty.add(name)
+            needs = set()
+            for entry in entries:
+                needs |= entry[2] & keys
+                if entry[0].op != "=":
+                    needs.add(name)
+            graph[name] = sorted(needs)
+        memo.names, memo.assigns, memo.decls = names, assigns, decls
+        if graph != old_graph:
+            memo.graph, memo.order = graph, []
+            for members in components(graph):
+                inside = frozenset(members)
+                memo.order.append((members, inside, inside.union(*(graph[m] for m in members))))
+        results, old_results, old_ranges = {}, memo.results, memo.ranges
+        moved = set()               # variables whose interval is not the last analysis's
+        statement_place = None
+        for members, inside, reads in memo.order:
+            old = old_results.get(members)
+            if old is not None and not (dirty & reads) and not (moved & reads):
+                result = old[1]
+                results[members] = old
             else:
-                result = self._solve(calls, once)
-                if memo is not None:
-                    memo.components[members] = (inputs, result)
-            for m, (lo, hi) in result.items():
-                info = self.vars[m]
-                info.lo, info.hi = lo, hi
-            live[members] = True
-        if memo is not None:
-            if len(memo.components) > 2 * len(live) + 100:
-                memo.components = {k: v for k, v in memo.components.items() if k in live}
-            if len(memo.reads) > 2 * len(reads) + 100:
-                memo.reads = {k: v for k, v in memo.reads.items() if k in reads}
+                entries = [e for m in members for e in assigns[m]]
+                if not entries:
+                    continue
+                if len(members) > 1:                                # in file order
+                    if statement_place is None:
+                        statement_place = dict(zip(seen, itertools.count()))
+                    entries.sort(key=lambda e: (statement_place[e[4]], e[5]))
+                inputs = _inputs(self, entries, members, reads - inside) if keep else None
+                if old is not None and old[0] == inputs:
+                    result = old[1]
+                else:
+                    result = self._solve([e[0] for e in entries],
+                                         {id(e[0]) for e in entries if e[1]})
+                results[members] = (inputs, result)
+            for m, bounds in result.items():
+                info = variables[m]
+                info.lo, info.hi = bounds
+                if old_ranges.get(m) != bounds:
+                    moved.add(m)
+        memo.results = results
+        memo.ranges = {name: (info.lo, info.hi) for name, info in variables.items()}
 
     def _solve(self, calls: list, once: set) -> dict:
         """A component's intervals: its assignments (in file order) joined

@@ -535,3 +535,21 @@ def format_text(text: str, filename: str = "<stdin>") -> str:
 # ---- the command line ------------------------------------------------------------------
 
 
+def line_edits(old: str, new: str) -> list:
+    """(start offset, end offset, new text) that turn `old` into `new`,
+    whole lines at a time, so that an editor keeps the cursor and the
+    folds of the lines that did not change."""
+    import difflib
+
+    def split(text):
+        return [line for line in re.split(r"(?<=\n)", text) if line]
+    old_lines, new_lines = split(old), split(new)
+    offsets = [0]
+    for line in old_lines:
+        offsets.append(offsets[-1] + len(line))
+    edits = []
+    matcher = difflib.SequenceMatcher(None, old_lines, new_lines, autojunk=False)
+    for tag, i1, i2, j1, j2 in matcher.get_opcodes():
+        if tag != "equal":
+            edits.append((offsets[i1], offsets[i2], "".join(new_lines[j1:j2])))
+    return edits

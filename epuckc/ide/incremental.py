@@ -23,13 +23,20 @@ a 1,000-rule file only the edited statement is lexed, parsed and checked:
    about it; virtual lines are turned into real ones only for what is
    shown (`Analysis.real`, and `Analysis.real_words` for the lines a
    message names). Lines below VLINE are real lines.
-4. **Checking**: the declarations (names, the robot block) and the
-   whole-program checks (rules that can never fire, unused names,
+4. **Checking** (recheck.py): the declarations (names, the robot block)
+   and the whole-program checks (rules that can never fire, unused names,
    capacity) run every time, over all statements: they are cheap loops.
    Resolving each rule, the expensive part, is replayed (its diagnostics
    and the facts the whole-program checks need) when the rule is the same
-   object and every name it looked up (`_Watched`) still means the same;
-   named actions are replayed as a whole when no declaration changed.
+   object and every name it looked up (`_Watched`) still means the same
+   (a guard's narrowing looks up only the variables it names); named
+   actions are replayed as a whole when no declaration changed. The
+   variables' intervals are solved again only for the components of their
+   dependency graph that an edit reaches (check/ranges.py), and W009 keeps
+   each rule's facts and its last pairs (check/races.py).
+5. **Showing**: a diagnostic is put in real lines once, and again only when
+   a statement it names moved; the server keeps its LSP form while it is
+   the same object on lines of the same text (lsp.py).
 
 A file with 20 or more runs of bad characters is checked whole, because
 the lexer stops at the 20th and that cut depends on the whole file.
@@ -38,6 +45,7 @@ from __future__ import annotations
 
 import bisect
 import gc
+import operator
 import re
 from dataclasses import dataclass, replace
 from pathlib import Path
@@ -46,216 +54,19 @@ from typing import Optional
 from ..base.source import SourceFile, Span
 from ..check.checker import Checker
 from ..check.program import CheckedProgram
-from ..check.ranges import RangeMemo
 from ..diagnostics import Collector, Diagnostic
 from ..syntax import ast
 from ..syntax.lexer import MAX_LEXICAL_ERRORS
 from ..syntax.parser import ModePlacer, parse
+from .recheck import IncrementalChecker, _Memo
 from .statements import (_CR_ENDS_LINES, _MARGIN, _ONCE, VLINE, Entry, _boundaries, _common_prefix,
                          _common_suffix, _parse_chunk, line_starts)
 
 # words that name lines in a diagnostic's text, and those of them that are virtual
+_ID = operator.attrgetter("id")
+_FIRST, _SECOND = operator.itemgetter(0), operator.itemgetter(1)
 _LINE_WORDS = re.compile(r"\b(lines?) (\d+(?:, \d+)*)")
 _VIRTUAL_LINE = re.compile(r"\blines? (?:\d+, )*?\d{7,}")
-
-# ---- checking, reusing results ----------------------------------------------
-
-class _Memo:
-    """What the incremental checker keeps between two analyses."""
-    def __init__(self):
-        self.env = None
-        self.actions = None     # the result of resolving the named actions
-        self.rules: dict = {}   # id(rule node) -> what the rule came to (see _rule)
-        self.ranges = RangeMemo()   # the variables' intervals by component (check/ranges.py)
-
-
-class _Capture:
-    """Run a step of the checker with fresh diagnostics and fresh sets of
-    facts, and remember both, so that the step can be replayed.
-
-    The checker's memories within one file (a constant's chain followed
-    once, a problem of a definition said once) start empty too, so that
-    the step does all its own lookups (and notes them, see _Watched) and
-    says all its own diagnostics; what is said twice is dropped when the
-    steps are put together (IncrementalChecker._replay), as the whole
-    file's check says it once."""
-    FACTS = ("called", "used_actions", "const_used", "vars_used", "vars_assigned")
-    FRESH = ("_const_memo", "_const_reported", "_const_diagnostics")
-
-    def __init__(self, checker: Checker):
-        self.checker = checker
-
-    def __enter__(self):
-        c = self.checker
-        fresh = [f for f in self.FRESH if hasattr(c, f)]
-        self.saved = (c.diags, {f: getattr(c, f) for f in self.FACTS},
-                      {f: getattr(c, f) for f in fresh})
-        c.diags = Collector(c.diags.source)
-        for f in self.FACTS:
-            setattr(c, f, set())
-        for f in fresh:
-            setattr(c, f, type(getattr(c, f))())
-        return self
-
-    def __exit__(self, *exc):
-        c = self.checker
-        self.diags = c.diags.items
-        self.facts = tuple((f, v) for f in self.FACTS if (v := getattr(c, f)))
-        c.diags, saved_facts, saved_fresh = self.saved
-        for f in self.FACTS:
-            setattr(c, f, saved_facts[f])
-        for f, value in saved_fresh.items():
-            setattr(c, f, value)
-        return False
-
-
-_MISSING = object()
-_ALL = object()
-_TABLES = ("consts", "actions", "externs", "broken_externs", "rule_names", "modes", "vars")
-
-
-class _Watched:
-    """A read-only view of one of the checker's name tables that notes
-    what a rule looked up in it: (table, name, what was found), or
-    (table, _ALL, every entry) when it looked at the whole table (the
-    candidates of a did-you-mean)."""
-    __slots__ = ("_table", "_attr", "_deps")
-
-    def __init__(self, table: dict, attr: str, deps: list):
-        self._table, self._attr, self._deps = table, attr, deps
-
-    def _all(self):
-        self._deps.append((self._attr, _ALL, tuple(self._table.items())))
-        return self._table
-
-    def get(self, name, default=None):
-        found = self._table.get(name, _MISSING)
-        self._deps.append((self._attr, name, found))
-        return default if found is _MISSING else found
-
-    def __contains__(self, name):
-        return self.get(name, _MISSING) is not _MISSING
-
-    def __getitem__(self, name):
-        found = self.get(name, _MISSING)
-        if found is _MISSING:
-            raise KeyError(name)
-        return found
-
-    def __iter__(self):
-        return iter(self._all())
-
-    def __len__(self):
-        return len(self._all())
-
-    def __getattr__(self, attr):        # items(), keys(), values(), ...
-        return getattr(self._all(), attr)
-
-
-class _Watch:
-    """Check one rule with its name tables watched (see _Watched)."""
-
-    def __init__(self, checker: Checker):
-        self.checker = checker
-        self.deps: list = []
-
-    def __enter__(self):
-        c = self.checker
-        self.saved = [getattr(c, t) for t in _TABLES]
-        for t, table in zip(_TABLES, self.saved):
-            setattr(c, t, _Watched(table, t, self.deps))
-        return self
-
-    def __exit__(self, *exc):
-        for t, table in zip(_TABLES, self.saved):
-            setattr(self.checker, t, table)
-        return False
-
-
-class IncrementalChecker(Checker):
-    """The checker, with named actions and rules replayed from `memo` when
-    nothing they can see has changed."""
-
-    def __init__(self, program, diags, memo: _Memo, **options):
-        super().__init__(program, diags, **options)
-        self.memo = memo
-        self.range_memo = memo.ranges
-        self._known: Optional[set] = None
-        self._env_now = None
-
-    def _env(self):
-        """Everything a rule or a named action can depend on besides itself:
-        the geometry and every declaration (AST nodes compare by identity
-        first, so this is cheap when nothing changed)."""
-        return (self.geo, tuple(self.consts.items()), tuple(self.actions.items()),
-                tuple((n, e.kind, e.params, e.node) for n, e in self.externs.items()),
-                tuple(self.broken_externs.items()), tuple(self.rule_names),
-                tuple(self.modes.items()), tuple(self.vars.items()))
-
-    def _replay(self, diags, facts):
-        if diags:
-            known = self._known
-            if known is None:
-                known = self._known = set(self.diags.items)
-            for d in diags:
-                # a constant's bad value is reported once, at its first use
-                if d not in known:
-                    known.add(d)
-                    self.diags.items.append(d)
-        for f, values in facts:
-            getattr(self, f).update(values)
-
-    def _resolve_actions(self, out: CheckedProgram):
-        env = self._env()
-        memo = self.memo
-        if memo.env != env:
-            memo.env, memo.actions = env, None
-        self._env_now = memo.env    # the same object as long as nothing changes
-        if memo.actions is None:
-            with _Capture(self) as cap:
-                super()._resolve_actions(out)
-            memo.actions = (dict(out.actions), dict(out.action_nodes),
-                            dict(self._resolved_actions), cap.diags, cap.facts)
-        actions, nodes, resolved, diags, facts = memo.actions
-        out.actions.update(actions)
-        out.action_nodes.update(nodes)
-        self._resolved_actions.update(resolved)
-        self._replay(diags, facts)
-
-    def _still_valid(self, geo, deps) -> bool:
-        """Does everything a rule looked up still say the same?"""
-        if geo is not self.geo and geo != self.geo:
-            return False
-        for attr, name, found in deps:
-            table = getattr(self, attr)
-            if name is _ALL:
-                if tuple(table.items()) != found:
-                    return False
-            else:
-                now = table.get(name, _MISSING)
-                if now is not found and now != found:
-                    return False
-        return True
-
-    def _rule(self, rule: ast.Rule):
-        # hit: [node, geometry, lookups, result, diagnostics, facts, the
-        # declarations (env) it was last found valid with]
-        hit = self.memo.rules.get(id(rule))
-        if hit is None or hit[0] is not rule:
-            hit = None
-        elif hit[6] is not self._env_now:
-            if self._still_valid(hit[1], hit[2]):
-                hit[6] = self._env_now
-            else:
-                hit = None
-        if hit is None:
-            with _Capture(self) as cap, _Watch(self) as watch:
-                resolved = super()._rule(rule)
-            hit = [rule, self.geo, watch.deps, resolved, cap.diags, cap.facts, self._env_now]
-            self.memo.rules[id(rule)] = hit
-        self._replay(hit[4], hit[5])
-        return hit[3]
-
 
 # ---- the analysis of one version of a document ----------------------------------
 
@@ -293,19 +104,22 @@ class Analysis:
         if ident == 0:
             return line
         if self._starts is None:
-            self._starts = {e.id: line for e, line in zip(self.entries, self.lines)}
+            self._starts = dict(zip(map(_ID, self.entries), self.lines))
         return self._starts[ident] + line % VLINE - 1
 
     def real_words(self, d: Diagnostic) -> Diagnostic:
         """A diagnostic whose words name lines (`(line 12)`, `the rules of
         lines 14, 15`: W009 names rules so) with those lines made real."""
+        if self._starts is None:
+            self._starts = dict(zip(map(_ID, self.entries), self.lines))
+        starts = self._starts
+
         def lines(match):
             # (in the order of the file, as the checker lists them: virtual
             # lines follow statements' ids, not their places)
-            numbers = ", ".join(str(n) for n in sorted(
-                self.real_line(int(n)) if int(n) >= VLINE else int(n)
-                for n in match.group(2).split(", ")))
-            return f"{match.group(1)} {numbers}"
+            numbers = sorted(starts[n // VLINE] + n % VLINE - 1 if n >= VLINE else n
+                             for n in map(int, match.group(2).split(", ")))
+            return f"{match.group(1)} {', '.join(map(str, numbers))}"
 
         def fix(text):
             return _LINE_WORDS.sub(lines, text) if text else text
@@ -363,6 +177,19 @@ class Analysis:
         self._line_starts = None
 
 
+def _idents(d: Diagnostic) -> tuple:
+    """The statements (ids) whose virtual lines `d` has, in its spans or
+    in its words (W009 names rules by their lines)."""
+    found = {span.line // VLINE for span in (d.span, *(n.span for n in d.notes if n.span),
+                                              *(f.span for f in d.fixes))}
+    for text in (d.message, d.help or "", *(n.message for n in d.notes)):
+        if _VIRTUAL_LINE.search(text):
+            for match in _LINE_WORDS.finditer(text):
+                found.update(int(n) // VLINE for n in match.group(2).split(", "))
+    found.discard(0)
+    return tuple(sorted(found))
+
+
 class Analyzer:
     """Analyses successive versions of one document (see the module's doc)."""
 
@@ -373,6 +200,8 @@ class Analyzer:
         self._prev: Optional[tuple] = None
         self._next_id = 1
         self._memo = _Memo()
+        self._line_starts = None    # of the last text split (_chunks)
+        self._real: dict = {}   # id(Diagnostic) -> (it, statements, their lines, in real lines)
 
     def analyse(self, text: str) -> Analysis:
         collecting = gc.isenabled()
@@ -413,11 +242,13 @@ class Analyzer:
         placer.finish()
         checker = IncrementalChecker(program, diags, self._memo, **self.options)
         checked = checker.check()
-        live = {id(s) for s in program.statements}
         memo = self._memo.rules
-        if len(memo) > 2 * len(live) + 100:
+        if len(memo) > 2 * len(program.statements) + 100:
+            live = {id(s) for s in program.statements}
             self._memo.rules = {k: v for k, v in memo.items() if k in live}
-        return self._finish(text, starts, lines, entries, program, checker, checked, items)
+        analysis = self._finish(text, starts, lines, entries, program, checker, checked, items)
+        analysis._line_starts = self._line_starts     # (the split's: the same text's)
+        return analysis
 
     def _chunks(self, text: str) -> Optional[tuple]:
         """The statements of `text`: (starts, lines, entries). Only the
@@ -492,6 +323,7 @@ class Analyzer:
             self._prev = None
             return None
         self._prev = (text, starts, keywords, lines, entries, keys, bad)
+        self._line_starts = starts_of_lines
         return starts, lines, entries
 
     def _whole(self, text: str) -> Analysis:
@@ -504,24 +336,45 @@ class Analyzer:
         entry = Entry(0, program.statements, [], 0, source.line_count)
         return self._finish(text, [0], [1], [entry], program, checker, checked, diags.items)
 
+    @staticmethod
+    def _real_diagnostic(analysis: Analysis, d: Diagnostic) -> Diagnostic:
+        """`d` in the text's lines (its spans, and the lines its words name)."""
+        real = analysis.real
+        if d.span.line >= VLINE or any(n.span and n.span.line >= VLINE for n in d.notes) \
+                or any(f.span.line >= VLINE for f in d.fixes):
+            d = replace(d, span=real(d.span),
+                        notes=tuple(replace(n, span=real(n.span)) if n.span else n
+                                    for n in d.notes),
+                        fixes=tuple(replace(f, span=real(f.span)) for f in d.fixes))
+        if _VIRTUAL_LINE.search(d.message) or any(_VIRTUAL_LINE.search(n.message)
+                                                  for n in d.notes):
+            d = analysis.real_words(d)
+        return d
+
     def _finish(self, text, starts, lines, entries, program, checker, checked,
                 items) -> Analysis:
         analysis = Analysis(self.name, text, starts, lines, entries, program, checker, checked)
-        real = analysis.real
+        # a diagnostic in real lines is kept while the statements it names
+        # start on the same lines (the same object: the server keeps what it
+        # made of it)
+        first_lines = analysis._starts = dict(zip(map(_ID, entries), lines))
+        cache, kept = self._real, {}
         shown = []
+        get = first_lines.get
         for d in items:
-            if d.span.line >= VLINE or any(n.span and n.span.line >= VLINE for n in d.notes) \
-                    or any(f.span.line >= VLINE for f in d.fixes):
-                d = replace(d, span=real(d.span),
-                            notes=tuple(replace(n, span=real(n.span)) if n.span else n
-                                        for n in d.notes),
-                            fixes=tuple(replace(f, span=real(f.span)) for f in d.fixes))
-            if _VIRTUAL_LINE.search(d.message) or any(_VIRTUAL_LINE.search(n.message)
-                                                      for n in d.notes):
-                d = analysis.real_words(d)
-            shown.append(d)
-        shown.sort(key=Diagnostic.sort_key)
-        analysis.diagnostics = shown
+            # hit: (d, its statements, their first lines, (sort key, d in real lines))
+            hit = cache.get(id(d))
+            if hit is None or hit[0] is not d or (
+                    get(hit[1][0]) != hit[2][0] if len(hit[1]) == 1
+                    else tuple(map(get, hit[1])) != hit[2]):
+                idents = _idents(d)
+                real = self._real_diagnostic(analysis, d) if idents else d
+                hit = (d, idents, tuple(map(get, idents)), (real.sort_key(), real))
+            kept[id(d)] = hit
+            shown.append(hit[3])
+        self._real = kept
+        shown.sort(key=_FIRST)
+        analysis.diagnostics = list(map(_SECOND, shown))
         return analysis
 
 

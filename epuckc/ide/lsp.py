@@ -20,6 +20,7 @@ Decisions:
 """
 from __future__ import annotations
 
+import functools
 import logging
 import re
 import sys
@@ -38,6 +39,7 @@ from ..syntax import ast
 
 from . import navigate
 from .completion import completions
+from .fmt import line_edits
 from .hover import hover as hover_at
 from ..diagnostics.codes import explanation_path
 from ..diagnostics import ERROR
@@ -65,11 +67,14 @@ class Lines:
     """LSP positions of a text: lines end at \\n, \\r\\n or \\r (LSP's line
     ends), characters are counted in the negotiated encoding."""
 
-    def __init__(self, text: str, encoding: str):
+    def __init__(self, text: str, encoding: str, starts: Optional[list] = None):
+        """`starts`: the offsets where lines start at \\n, when known."""
         self.text = text
         self.encoding = encoding
-        ends = _LINE_END_RE if "\r" in text else _NEWLINE_RE
-        self.starts = [0] + [m.end() for m in ends.finditer(text)]
+        self.has_cr = "\r" in text
+        ends = _LINE_END_RE if self.has_cr else _NEWLINE_RE
+        self.starts = starts if starts is not None and not self.has_cr else \
+            [0] + [m.end() for m in ends.finditer(text)]
 
     def _line_end(self, line: int) -> int:
         end = self.starts[line + 1] if line + 1 < len(self.starts) else len(self.text)
@@ -83,6 +88,13 @@ class Lines:
         if self.encoding == "utf-8":
             return len(s.encode("utf-8", "surrogatepass"))
         return len(s)
+
+    def text_of(self, first: int, last: int) -> str:
+        """The text of lines first..last (from 0), clamped to the text."""
+        starts = self.starts
+        first = min(max(first, 0), len(starts) - 1)
+        last = max(first, min(last, len(starts) - 1))
+        return self.text[starts[first]:starts[last + 1] if last + 1 < len(starts) else len(self.text)]
 
     def position(self, offset: int) -> lsp.Position:
         import bisect
@@ -124,6 +136,7 @@ class Document:
         self.published = None       # the text whose diagnostics were published
         self.timer = None
         self._lines = None
+        self.lsp_diagnostics: dict = {}     # id(Diagnostic) -> (it, its lines' text, LSP's)
 
     def base_dir(self) -> Optional[Path]:
         """Where extern C files are looked for: the file's folder, as
@@ -152,8 +165,17 @@ class Document:
     def lines(self, encoding: str) -> Lines:
         if self._lines is None or self._lines.text is not self.text \
                 or self._lines.encoding != encoding:
-            self._lines = Lines(self.text, encoding)
+            analysis = self.analysis        # (its lines are these when no \r ends one)
+            self._lines = Lines(self.text, encoding, analysis.line_starts if analysis is not None
+                                and analysis.text is self.text else None)
         return self._lines
+
+
+@functools.lru_cache(maxsize=None)
+def _explanation_href(code: str) -> Optional[str]:
+    """The URI of a code's explanation file (the files ship with epuckc)."""
+    path = explanation_path(code)
+    return path.as_uri() if path else None
 
 
 def _path_of(uri: str) -> Optional[Path]:
@@ -255,6 +277,29 @@ class EpuckServer(LanguageServer):
         return analysis.position(offset)
 
     def diagnostic(self, doc: Document, analysis: Analysis, d) -> lsp.Diagnostic:
+        """The LSP diagnostic of `d` (real lines). Kept by the document
+        while `d` is the same object (the incremental checker hands the same
+        objects again for what an edit did not reach) and the lines its
+        ranges are on have the same text."""
+        lines = doc.lines(self.encoding)
+        if lines.has_cr:     # (lines counted as the checker counts them only without \r)
+            return self._diagnostic(doc, analysis, d)
+        spans = (d.span,) + tuple(n.span for n in d.notes if n.span is not None)
+        count = len(lines.starts)       # (a span past the end is clamped to the last line)
+        texts = tuple((lines.text_of(span.line - 1, span.end_line - 1), span.end_line > count
+                       and count) for span in spans)
+        cache = doc.lsp_diagnostics
+        hit = cache.get(id(d))
+        if hit is not None and hit[0] is d and hit[1] == texts:
+            return hit[2]
+        converted = self._diagnostic(doc, analysis, d)
+        if len(cache) > 2 * len(analysis.diagnostics) + 100:
+            live = {id(x) for x in analysis.diagnostics}
+            doc.lsp_diagnostics = cache = {k: v for k, v in cache.items() if k in live}
+        cache[id(d)] = (d, texts, converted)
+        return converted
+
+    def _diagnostic(self, doc: Document, analysis: Analysis, d) -> lsp.Diagnostic:
         message = d.message
         related = []
         for note in d.notes:
@@ -265,13 +310,13 @@ class EpuckServer(LanguageServer):
                     lsp.Location(doc.uri, self.range(doc, analysis, note.span)), note.message))
         if d.help:
             message += f"\nhelp: {d.help}"
-        path = explanation_path(d.code)
+        href = _explanation_href(d.code)
         return lsp.Diagnostic(
             range=self.range(doc, analysis, d.span), message=message,
             severity=lsp.DiagnosticSeverity.Error if d.severity == ERROR
             else lsp.DiagnosticSeverity.Warning,
             code=d.code, source="epuckc",
-            code_description=lsp.CodeDescription(href=path.as_uri()) if path else None,
+            code_description=lsp.CodeDescription(href=href) if href else None,
             related_information=related or None)
 
     def publish(self, doc: Document):
@@ -536,26 +581,6 @@ def create_server() -> EpuckServer:
                 for start, end, new in line_edits(text, formatted)]
 
     return server
-
-
-def line_edits(old: str, new: str) -> list:
-    """(start offset, end offset, new text) that turn `old` into `new`,
-    whole lines at a time, so that an editor keeps the cursor and the
-    folds of the lines that did not change."""
-    import difflib
-
-    def split(text):
-        return [line for line in re.split(r"(?<=\n)", text) if line]
-    old_lines, new_lines = split(old), split(new)
-    offsets = [0]
-    for line in old_lines:
-        offsets.append(offsets[-1] + len(line))
-    edits = []
-    matcher = difflib.SequenceMatcher(None, old_lines, new_lines, autojunk=False)
-    for tag, i1, i2, j1, j2 in matcher.get_opcodes():
-        if tag != "equal":
-            edits.append((offsets[i1], offsets[i2], "".join(new_lines[j1:j2])))
-    return edits
 
 
 def _fix_title(old: str, new: str) -> str:

@@ -185,7 +185,7 @@ class _Lowerer:
         if call.kind == "assign":
             return _Primitive(None, "", statements.assignment(self, call), text)
         if call.kind == "if":
-            return _Primitive(None, "", self.if_statement(call, owner), text)
+            return _Primitive(None, "", statements.if_statement(self, call, owner), text)
         if call.dynamic:
             return _Primitive(None, "", statements.dynamic_call(self, call), text)
         function = STANDARD_ACTIONS[call.name].runtime if call.kind == "standard" else call.name
@@ -203,32 +203,6 @@ class _Lowerer:
             self.params[key] = name
         param = self.params[key]
         return _Primitive(function, param, f"{function}({void_ref(param)});", text)
-
-    def if_statement(self, call: ResolvedCall, owner: str) -> str:
-        """An `if` as the C `if (...) { ... } else if ...` of its branches,
-        each branch's primitives in order (its named actions spliced in: a
-        branch is one step). Its lines after the first are indented for
-        the function body the template prints it in."""
-        lines = []
-        for k, (condition, calls) in enumerate(call.values["branches"]):
-            head = "if" if k == 0 else "} else if"
-            lines.append(f"{head} ({self.expr(condition)}) {{")
-            lines += self.branch_lines(calls, owner)
-        if call.values["otherwise"] is not None:
-            lines.append("} else {")
-            lines += self.branch_lines(call.values["otherwise"], owner)
-        lines.append("}")
-        return "\n    ".join(lines)
-
-    def branch_lines(self, calls: list, owner: str) -> list:
-        """The C lines of a branch's calls, one indent in."""
-        prims = []
-        for call in calls:
-            if call.kind == "named":
-                prims += [p for step in self.named_steps(call.name) for p in step]
-            else:
-                prims.append(self.primitive(call, owner))
-        return ["    " + line for p in prims for line in p.statement.split("\n    ")]
 
     def param_struct(self, call: ResolvedCall) -> tuple[str, str, str]:
         v = call.values

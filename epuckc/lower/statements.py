@@ -1,6 +1,7 @@
 """The C of the statements that compute values while the program runs: an
-assignment (of a variable, or of an array's element), and a standard
-action whose arguments are computed (`set_speed(left: ..., right: ...)`).
+assignment (of a variable, or of an array's element), a standard action
+whose arguments are computed (`set_speed(left: ..., right: ...)`), and an
+`if` with its branches.
 A statement that reads three proximity sensors or more reads them with one
 call (`rt_proximity`: the values of this poll) rather than one `rt_ir`
 each. `lw` is the lowerer (program.py), whose `expr` prints expressions."""
@@ -61,3 +62,31 @@ def dynamic_call(lw, call) -> str:
               for name, v in call.values.items()}
     init = ", ".join(f.format(**values) for f in fields)
     return f"{head}{{ {ctype} {PREFIX}arg = {{{init}}}; {function}(&{PREFIX}arg); }}{tail}"
+
+
+def if_statement(lw, call, owner: str) -> str:
+    """An `if` as the C `if (...) { ... } else if ...` of its branches,
+    each branch's primitives in order (its named actions spliced in: a
+    branch is one step). Its lines after the first are indented for
+    the function body the template prints it in."""
+    lines = []
+    for k, (condition, calls) in enumerate(call.values["branches"]):
+        head = "if" if k == 0 else "} else if"
+        lines.append(f"{head} ({lw.expr(condition)}) {{")
+        lines += _branch_lines(lw, calls, owner)
+    if call.values["otherwise"] is not None:
+        lines.append("} else {")
+        lines += _branch_lines(lw, call.values["otherwise"], owner)
+    lines.append("}")
+    return "\n    ".join(lines)
+
+
+def _branch_lines(lw, calls: list, owner: str) -> list:
+    """The C lines of a branch's calls, one indent in."""
+    prims = []
+    for call in calls:
+        if call.kind == "named":
+            prims += [p for step in lw.named_steps(call.name) for p in step]
+        else:
+            prims.append(lw.primitive(call, owner))
+    return ["    " + line for p in prims for line in p.statement.split("\n    ")]

@@ -176,7 +176,10 @@ def test_a_bad_character_before_a_statement_gives_the_same_errors():
 VARIABLE_FRAGMENTS = ["v0", "v1", " + 1", " - 7", " * 3", " / 2", "max(", "clamp(", ", 5)", "7",
                       "var v9 = 4\n", "var v0 = 2\n", "v1 += 1, ", "v0 = v1, ", " if v0 > 3",
                       "when v1 < 0 do stop_motor\n", "every 10 ms do v0 = v0 + 1\n", "=", "+=",
-                      "(", ")", "\n", "abs(", "ir0", "set_speed(v0 * 1 steps/s, 0 steps/s)"]
+                      "(", ")", "\n", "abs(", "ir0", "set_speed(v0 * 1 steps/s, 0 steps/s)",
+                      # (W009: rules that command the motors, their guards and priorities)
+                      "every 100 ms if v0 < 3 do stop_motor\n", " priority 2", ", stop_motor",
+                      "set_speed(300 steps/s, 300 steps/s)", " if v1 >= 2", "v0_1", "v0_2"]
 
 
 def _programs_with_variables() -> list:
@@ -209,3 +212,129 @@ def test_random_edits_of_programs_with_variables_equal_a_full_check(which, edits
 
 
 _PROGRAMS_WITH_VARIABLES = _programs_with_variables()
+
+
+def test_the_programs_with_variables_exercise_w009():
+    """The property above compares W009 too: its programs have races."""
+    assert sum("W009" in {d.code for d in full_check(p)} for p in _PROGRAMS_WITH_VARIABLES) >= 3
+
+
+def test_a_big_group_of_racing_rules_edit_after_edit_equals_a_full_check():
+    """W009 by kinds of rules (more than EXPAND_RULES motor rules of one
+    priority), its pairs kept or computed again, and the intervals, over
+    random edits: errors put in and out, numbers, assignments, guards."""
+    import sys
+    sys.path.insert(0, str(REPO / "bench"))
+    from lsp_bench import error_edits, interval_edits
+    rng = random.Random(31)
+    text = _expression_program(200)
+    analyzer = Analyzer("prog.epk")
+    assert "W009" in {d.code for d in analyzer.analyse(text).diagnostics}
+    for step in range(30):
+        kind = step % 3
+        if kind == 0:
+            start, end, new = error_edits(text, rng, 1)[0]
+        elif kind == 1:
+            start, end, new = interval_edits(text, rng, 1)[0]
+            new = str(rng.randint(0, 9))
+        else:
+            start = rng.randrange(len(text))
+            end, new = start + rng.choice([0, 1, 2]), rng.choice(VARIABLE_FRAGMENTS)
+        text = text[:start] + new + text[end:]
+        assert analyzer.analyse(text).diagnostics == full_check(text), (step, new)
+
+
+# ---- issue 31: what an edit reaches, and only that ---------------------------------
+
+def _expression_program(rules: int) -> str:
+    import sys
+    sys.path.insert(0, str(REPO / "bench"))
+    from lsp_bench import expression_program
+    return expression_program(rules)
+
+
+def _counting(monkeypatch, owner, name: str) -> list:
+    """Calls of owner.name, counted (each call's first argument after self)."""
+    calls, real = [], getattr(owner, name)
+    if isinstance(owner, type):
+        monkeypatch.setattr(owner, name, lambda self, *a: calls.append(a[:1]) or real(self, *a))
+    else:
+        monkeypatch.setattr(owner, name, lambda *a: calls.append(a[:1]) or real(*a))
+    return calls
+
+
+def test_w009_pairs_are_computed_again_only_when_what_they_read_changes(monkeypatch):
+    """An edit to a rule that commands no motor and writes the same
+    variables keeps W009's pairs; an edit to a motor rule's guard computes
+    them again; both report what a full check reports."""
+    from epuckc.check import races
+    text = _expression_program(200)
+    analyzer = Analyzer("prog.epk")
+    assert "W009" in {d.code for d in analyzer.analyse(text).diagnostics}
+    computed = _counting(monkeypatch, races, "_pairs")
+    sensor = text.index("on sensor(ir3 > 300)")
+    edited = text[:sensor] + "on sensor(ir3 > 310)" + text[sensor + len("on sensor(ir3 > 300)"):]
+    analysis = analyzer.analyse(edited)
+    assert computed == []
+    assert analysis.diagnostics == full_check(edited)
+    guard = edited.index(" < ", edited.index("set_speed") - 60)
+    number = edited[guard + 3:].split(" ")[0]
+    edited = edited[:guard + 3] + str(int(number) + 500) + edited[guard + 3 + len(number):]
+    computed.clear()
+    analysis = analyzer.analyse(edited)
+    assert len(computed) == 1
+    assert analysis.diagnostics == full_check(edited)
+
+
+def test_an_interval_that_moves_rechecks_only_the_rules_that_read_it(monkeypatch):
+    import re
+    import epuckc.ide.incremental as inc
+    text = _expression_program(200)
+    analyzer = Analyzer("prog.epk")
+    analyzer.analyse(text)
+    checked = _counting(monkeypatch, inc.Checker, "_rule")
+    tried = 0
+    for at in [m.start() + 2 for m in re.finditer(r", 1000\)", text)]:
+        before = dict(analyzer._memo.ranges.ranges)
+        edited = text[:at] + "9" + text[at + 1:]           # min(v + 1, 9000): the bound moves
+        checked.clear()
+        analysis = analyzer.analyse(edited)
+        rechecked = {analysis.real(rule.span).line for (rule,) in checked}
+        moved = {n for n, r in analyzer._memo.ranges.ranges.items() if before.get(n) != r}
+        assert analysis.diagnostics == full_check(edited)
+        analyzer.analyse(text)          # and back
+        if not moved:
+            continue
+        tried += 1
+        line = edited.count("\n", 0, at) + 1
+        words = re.compile(r"\b(" + "|".join(sorted(moved)) + r")\b")
+        expected = {i + 1 for i, src in enumerate(edited.split("\n"))
+                    if src.startswith(("on ", "every ", "when ")) and words.search(src)}
+        assert rechecked == expected | {line}, (moved, line)
+        assert len(rechecked) < len(analysis.checked.rules) / 4
+        if tried == 4:
+            break
+    assert tried == 4
+
+
+def test_components_an_edit_does_not_reach_are_not_solved_again(monkeypatch):
+    from epuckc.check.ranges import Ranges
+    text = _expression_program(200)
+    analyzer = Analyzer("prog.epk")
+    analyzer.analyse(text)
+    solved = _counting(monkeypatch, Ranges, "_solve")
+    # a number of a rule that assigns a variable, not in the assignment:
+    # parsed again, the same assignment's text, nothing solved
+    at = text.index("led_toggle(led1)")
+    edited = text[:at] + "led_toggle(led2)" + text[at + len("led_toggle(led1)"):]
+    analysis = analyzer.analyse(edited)
+    assert solved == []
+    assert analysis.diagnostics == full_check(edited)
+    # the assignment itself: its component alone (the groups of five
+    # variables do not read each other)
+    at = edited.index(" - 1, 0)") + 3
+    edited = edited[:at] + "3" + edited[at + 1:]
+    solved.clear()
+    analysis = analyzer.analyse(edited)
+    assert len(solved) == 1
+    assert analysis.diagnostics == full_check(edited)

@@ -1,0 +1,287 @@
+"""Checking a document again after an edit, reusing what did not change
+(the checker's part of ide/incremental.py, which has the whole story).
+
+Resolving each rule, the expensive part, is replayed (its diagnostics and
+the facts the whole-program checks need) when the rule is the same object
+and every name it looked up (`_Watched`) still means the same; named
+actions are replayed as a whole when no declaration changed; the
+variables' intervals (check/ranges.py) and W009 (check/races.py) keep
+their own memos here (`_Memo`).
+"""
+from __future__ import annotations
+
+from typing import Optional
+
+from ..check import conditions as cond
+from ..check.checker import Checker
+from ..check.program import CheckedProgram
+from ..check.races import RaceMemo
+from ..check.ranges import RangeMemo
+from ..diagnostics import Collector, Diagnostic
+from ..syntax import ast
+from .statements import VLINE
+
+# ---- checking, reusing results ----------------------------------------------
+
+class _Memo:
+    """What the incremental checker keeps between two analyses."""
+    def __init__(self):
+        self.env = None
+        self.actions = None     # the result of resolving the named actions
+        self.rules: dict = {}   # id(rule node) -> what the rule came to (see _rule)
+        self.ranges = RangeMemo()   # the variables' intervals by component (check/ranges.py)
+        self.races = RaceMemo()     # W009's facts of each rule and its last pairs (check/races.py)
+
+
+class _Capture:
+    """Run a step of the checker with fresh diagnostics and fresh sets of
+    facts, and remember both, so that the step can be replayed.
+
+    The checker's memories within one file (a constant's chain followed
+    once, a problem of a definition said once) start empty too, so that
+    the step does all its own lookups (and notes them, see _Watched) and
+    says all its own diagnostics; what is said twice is dropped when the
+    steps are put together (IncrementalChecker._replay), as the whole
+    file's check says it once."""
+    FACTS = ("called", "used_actions", "const_used", "vars_used", "vars_assigned")
+    FRESH = ("_const_memo", "_const_reported", "_const_diagnostics")
+
+    def __init__(self, checker: Checker):
+        self.checker = checker
+
+    def __enter__(self):
+        c = self.checker
+        fresh = [f for f in self.FRESH if hasattr(c, f)]
+        self.saved = (c.diags, {f: getattr(c, f) for f in self.FACTS},
+                      {f: getattr(c, f) for f in fresh})
+        c.diags = Collector(c.diags.source)
+        for f in self.FACTS:
+            setattr(c, f, set())
+        for f in fresh:
+            setattr(c, f, type(getattr(c, f))())
+        return self
+
+    def __exit__(self, *exc):
+        c = self.checker
+        self.diags = c.diags.items
+        self.facts = tuple((f, v) for f in self.FACTS if (v := getattr(c, f)))
+        c.diags, saved_facts, saved_fresh = self.saved
+        for f in self.FACTS:
+            setattr(c, f, saved_facts[f])
+        for f, value in saved_fresh.items():
+            setattr(c, f, value)
+        return False
+
+
+_MISSING = object()
+_ALL = object()
+_TABLES = ("consts", "actions", "externs", "broken_externs", "rule_names", "modes", "vars")
+
+
+class _Watched:
+    """A read-only view of one of the checker's name tables that notes
+    what a rule looked up in it: (table, name, what was found), or
+    (table, _ALL, every entry) when it looked at the whole table (the
+    candidates of a did-you-mean)."""
+    __slots__ = ("_table", "_attr", "_deps")
+
+    def __init__(self, table: dict, attr: str, deps: list):
+        self._table, self._attr, self._deps = table, attr, deps
+
+    def _all(self):
+        self._deps.append((self._attr, _ALL, tuple(self._table.items())))
+        return self._table
+
+    def get(self, name, default=None):
+        found = self._table.get(name, _MISSING)
+        self._deps.append((self._attr, name, found))
+        return default if found is _MISSING else found
+
+    def __contains__(self, name):
+        return self.get(name, _MISSING) is not _MISSING
+
+    def __getitem__(self, name):
+        found = self.get(name, _MISSING)
+        if found is _MISSING:
+            raise KeyError(name)
+        return found
+
+    def __iter__(self):
+        return iter(self._all())
+
+    def __len__(self):
+        return len(self._all())
+
+    def __getattr__(self, attr):        # items(), keys(), values(), ...
+        return getattr(self._all(), attr)
+
+
+class _Narrowing:
+    """The watched table of variables as a guard's narrowing sees it
+    (IncrementalChecker._guarded_body): its items are those of the
+    variables the guard names, the only ones `conditions.narrowed` reads,
+    so that the rule depends on them and not on every variable."""
+    __slots__ = ("_watched", "_names")
+
+    def __init__(self, watched: _Watched, names):
+        self._watched, self._names = watched, sorted(names)
+
+    def items(self):
+        found = ((n, self._watched.get(n, _MISSING)) for n in self._names)
+        return [(n, v) for n, v in found if v is not _MISSING]
+
+    def get(self, name, default=None):
+        return self._watched.get(name, default)
+
+    def __contains__(self, name):
+        return name in self._watched
+
+    def __getitem__(self, name):
+        return self._watched[name]
+
+    def __iter__(self):
+        return iter(self._watched)
+
+    def __len__(self):
+        return len(self._watched)
+
+    def __getattr__(self, attr):
+        return getattr(self._watched, attr)
+
+
+class _Watch:
+    """Check one rule with its name tables watched (see _Watched)."""
+
+    def __init__(self, checker: Checker):
+        self.checker = checker
+        self.deps: list = []
+
+    def __enter__(self):
+        c = self.checker
+        self.saved = [getattr(c, t) for t in _TABLES]
+        for t, table in zip(_TABLES, self.saved):
+            setattr(c, t, _Watched(table, t, self.deps))
+        return self
+
+    def __exit__(self, *exc):
+        for t, table in zip(_TABLES, self.saved):
+            setattr(self.checker, t, table)
+        return False
+
+
+class IncrementalChecker(Checker):
+    """The checker, with named actions and rules replayed from `memo` when
+    nothing they can see has changed."""
+
+    def __init__(self, program, diags, memo: _Memo, **options):
+        super().__init__(program, diags, **options)
+        self.memo = memo
+        self.range_memo = memo.ranges
+        self.race_memo = memo.races
+        self._known: Optional[set] = None
+        self._env_now = None
+
+    def _env(self):
+        """Everything a rule or a named action can depend on besides itself:
+        the geometry and every declaration (AST nodes compare by identity
+        first, so this is cheap when nothing changed)."""
+        return (self.geo, tuple(self.consts.items()), tuple(self.actions.items()),
+                tuple((n, e.kind, e.params, e.node) for n, e in self.externs.items()),
+                tuple(self.broken_externs.items()), tuple(self.rule_names),
+                tuple(self.modes.items()), tuple(self.vars.items()))
+
+    def _replay(self, diags, facts, own=()):
+        """Put a step's diagnostics and facts back. `own`: diagnostics
+        within the step's own statement, which no other step can say too
+        (their spans are its virtual lines); the others are said once."""
+        if own:
+            self.diags.items.extend(own)
+        if diags:
+            known = self._known
+            if known is None:
+                known = self._known = set(self.diags.items)
+            for d in diags:
+                # a constant's bad value is reported once, at its first use
+                if d not in known:
+                    known.add(d)
+                    self.diags.items.append(d)
+        for f, values in facts:
+            getattr(self, f).update(values)
+
+    def _resolve_actions(self, out: CheckedProgram):
+        env = self._env()
+        memo = self.memo
+        if memo.env != env:
+            memo.env, memo.actions = env, None
+        self._env_now = memo.env    # the same object as long as nothing changes
+        if memo.actions is None:
+            with _Capture(self) as cap:
+                super()._resolve_actions(out)
+            memo.actions = (dict(out.actions), dict(out.action_nodes),
+                            dict(self._resolved_actions), cap.diags, cap.facts)
+        actions, nodes, resolved, diags, facts = memo.actions
+        out.actions.update(actions)
+        out.action_nodes.update(nodes)
+        self._resolved_actions.update(resolved)
+        self._replay(diags, facts)
+
+    def _still_valid(self, geo, deps) -> bool:
+        """Does everything a rule looked up still say the same?"""
+        if geo is not self.geo and geo != self.geo:
+            return False
+        for attr, name, found in deps:
+            table = getattr(self, attr)
+            if name is _ALL:
+                if tuple(table.items()) != found:
+                    return False
+            else:
+                now = table.get(name, _MISSING)
+                if now is not found and now != found:
+                    return False
+        return True
+
+    def _guarded_body(self, body, guard):
+        table = self.vars
+        if guard is None or not body.steps or not isinstance(table, _Watched):
+            return super()._guarded_body(body, guard)
+        self.vars = _Narrowing(table, cond.names_of(cond.formula(guard)))
+        try:
+            return super()._guarded_body(body, guard)
+        finally:
+            self.vars = table
+
+    def _rule(self, rule: ast.Rule):
+        # hit: [node, geometry, lookups, result, diagnostics said once,
+        # facts, the declarations (env) it was last found valid with, its
+        # own diagnostics (see _replay)]
+        hit = self.memo.rules.get(id(rule))
+        if hit is not None and hit[0] is rule and hit[6] is self._env_now and not hit[4]:
+            if hit[7]:          # (the common case, inline: most rules are replayed)
+                self.diags.items.extend(hit[7])
+            for f, values in hit[5]:
+                getattr(self, f).update(values)
+            return hit[3]
+        if hit is None or hit[0] is not rule:
+            hit = None
+        elif hit[6] is not self._env_now:
+            if self._still_valid(hit[1], hit[2]):
+                hit[6] = self._env_now
+            else:
+                hit = None
+        if hit is None:
+            with _Capture(self) as cap, _Watch(self) as watch:
+                resolved = super()._rule(rule)
+            ident = rule.span.line // VLINE
+            own = [d for d in cap.diags if ident and _within(d, ident)]
+            shared = [d for d in cap.diags if not (ident and _within(d, ident))]
+            hit = [rule, self.geo, watch.deps, resolved, shared, cap.facts, self._env_now, own]
+            self.memo.rules[id(rule)] = hit
+        self._replay(hit[4], hit[5], hit[7])
+        return hit[3]
+
+
+def _within(d: Diagnostic, ident: int) -> bool:
+    """Whether every place `d` names is in statement `ident` (virtual lines)."""
+    return all(span.line // VLINE == ident and span.end_line // VLINE == ident
+               for span in (d.span, *(n.span for n in d.notes if n.span),
+                            *(f.span for f in d.fixes)))
