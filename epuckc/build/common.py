@@ -31,12 +31,19 @@ GENERATED_CFLAGS = HOST_CFLAGS + ["-Werror"]
 USER_CFLAGS = HOST_CFLAGS
 
 
+# The user's C on the host and in worlds also calls the C main model at
+# every basic block (runtime_c/host/cmain.c: main's clock in dsPIC cycles,
+# the watchdog's last place), with the lines addr2line names.
+HOST_USER_FLAGS = ["-fsanitize-coverage=trace-pc", "-g"]
+
+
 # How gcc runs, not what it makes: no temporary assembly files.
 BUILD_FLAGS = ["-pipe"]
 
 
 # The runtime's files for each target, relative to runtime_c/.
-HOST_SOURCES = [*RUNTIME_CORE, "host/platform_host.c", "host/epuck_stub.c"]
+HOST_SOURCES = [*RUNTIME_CORE, "host/platform_host.c", "host/epuck_stub.c", "host/cmain.c",
+                "host/epuck_more.c"]
 
 
 HOST_INCLUDES = [".", "epuck_api", "host"]
@@ -94,13 +101,13 @@ class Program:
     generated: bool = True
     header_name: Optional[str] = None
     header_text: Optional[str] = None
-    source_path: Optional[Path] = None
+    source_path: Optional[Path] = None        # a C program's main; user_files: its other C
     inputs: list = field(default_factory=list)
     variables: list = field(default_factory=list)
 
     def user_sources(self) -> list:
         """The C files of the user's that are compiled on their own."""
-        return [self.source_path] if self.source_path is not None else list(self.user_files)
+        return ([self.source_path] if self.source_path is not None else []) + list(self.user_files)
 
 
 def _same_file(a: Path, b: Path) -> bool:

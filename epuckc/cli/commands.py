@@ -155,7 +155,8 @@ def _load(args, report=None):
     try:
         program = load_program(Path(args.file), report, args.max_actions, args.max_events,
                                shown_name=display_name(args.file),
-                               defines=dict(getattr(args, "defines", None) or ()))
+                               defines=dict(getattr(args, "defines", None) or ()),
+                               more_c=getattr(args, "more", None) or ())
     except (InputError, DefineError) as exc:
         _error(str(exc))
         return None, EXIT_USAGE
@@ -230,9 +231,11 @@ def cmd_run(args) -> int:
     wants_world = world_cli.wants_extension(args)
     if args.seed is not None:       # the harness reads it (host/platform_host.c)
         os.environ["EPUCK_SEED"] = str(args.seed)
+    if args.watchdog is not None:   # and this (host/cmain.c)
+        os.environ["EPUCK_WATCHDOG_MS"] = str(args.watchdog)
     # A rule file built before goes straight to its executable (runcache.py).
     path, key, data = Path(args.file), None, None
-    if path.suffix != ".c" and not wants_world and not args.defines:
+    if path.suffix != ".c" and not wants_world and not args.defines and not args.more:
         from ..build import runcache
         try:
             data = path.read_bytes()

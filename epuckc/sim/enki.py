@@ -32,7 +32,8 @@ from ..build.host import compile_objects, host_build_key, runtime_cache_dir, run
 from ..base.resources import RUNTIME_CORE, cache_dir, runtime_dir
 from .world import World, runner_spec
 
-ROBOT_SOURCES = [*RUNTIME_CORE, "host/platform_host.c", "host/epuck_stub.c", "enki/robot_glue.c"]
+ROBOT_SOURCES = [*RUNTIME_CORE, "host/platform_host.c", "host/epuck_stub.c", "host/cmain.c",
+                 "host/epuck_more.c", "enki/robot_glue.c"]
 ROBOT_INCLUDES = [".", "epuck_api", "host", "enki"]
 # robot_glue.c's header comment says why each of these is wrapped
 WRAPPED = ["stub_motors_1ms", "stub_pose", "stub_set_geometry", "getenv", "exit"]
@@ -192,6 +193,8 @@ def simulate(world: World, libs: list, time_limit_ms: int, seed: int = 1,
                         "EPUCK_SEED": str((seed + i) & 0xFFFFFFFF)}
             if pose_ms:
                 settings["EPUCK_POSE_MS"] = str(pose_ms)
+            if os.environ.get("EPUCK_WATCHDOG_MS"):     # `run --watchdog`
+                settings["EPUCK_WATCHDOG_MS"] = os.environ["EPUCK_WATCHDOG_MS"]
             if quiet:
                 settings["EPUCK_QUIET"] = "1"
             entries.append((copy, settings))
