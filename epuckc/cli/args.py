@@ -224,6 +224,10 @@ def _run_parser(sub):
                         "C main) keeps the simulator waiting this long in wall-clock time "
                         "(default 5)")
     p.add_argument("--scenario", metavar="FILE.scn", help="proximity readings over time")
+    p.add_argument("--int16", action="store_true",
+                   help="run on the 16-bit path (avr-gcc and simavr: int is 16 bits, as on the "
+                        "dsPIC) against the scenario, so that the extern C's int overflows wrap "
+                        "as on the robot")
     p.add_argument("--time-limit", type=_duration_ms, default=60000, metavar="DURATION",
                    help="virtual time limit with its unit, e.g. 60s, 500ms or 2min (default 60s)")
     p.add_argument("--trace", metavar="OUT.jsonl",

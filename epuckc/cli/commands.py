@@ -235,7 +235,8 @@ def cmd_run(args) -> int:
         os.environ["EPUCK_WATCHDOG_MS"] = str(args.watchdog)
     # A rule file built before goes straight to its executable (runcache.py).
     path, key, data = Path(args.file), None, None
-    if path.suffix != ".c" and not wants_world and not args.defines and not args.more:
+    if path.suffix != ".c" and not wants_world and not args.defines and not args.more \
+            and not args.int16:
         from ..build import runcache
         try:
             data = path.read_bytes()
@@ -304,6 +305,8 @@ def _load_and_run(args, path: Path, key, data, wants_world: bool) -> int:
         if problem:
             _error(problem)
             return EXIT_USAGE
+    if args.int16:
+        return _run_int16(args, program)
     if wants_world:
         return world_cli.run(args, program, _robot_program_loader(args), run_host)
 
@@ -329,6 +332,21 @@ def _load_and_run(args, path: Path, key, data, wants_world: bool) -> int:
     except OSError as exc:
         _error(f"{exc.strerror or exc}: {exc.filename or ''}".rstrip(": "))
         return EXIT_USAGE
+
+
+def _run_int16(args, program) -> int:
+    """`run --int16`: the 16-bit path (sim/int16.py), alone with a scenario."""
+    from ..build.common import BuildError
+    from ..sim.int16 import run_int16
+    if args.world or args.svg or args.html:
+        _error("--int16 runs against a scenario, not in a world nor with pictures: leave out "
+               "--world, --svg and --html")
+        return EXIT_USAGE
+    try:
+        return run_int16(program, args.scenario, args.time_limit, args.trace)
+    except BuildError as exc:
+        _error(str(exc))
+        return exc.status
 
 
 def _robot_program_loader(args):
