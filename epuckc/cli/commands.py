@@ -351,14 +351,15 @@ def _run_int16(args, program) -> int:
 
 def _robot_program_loader(args):
     """For a world's robots with their own `program`: load it as FILE is."""
-    def load(path: Path):
+    def load(path: Path, more_c=()):
         from ..build.common import BuildError
         from ..diagnostics import Report
         from .driver import load_program
         from ..check.frontend import InputError
         report = Report()
         try:
-            program = load_program(path, report, args.max_actions, args.max_events)
+            program = load_program(path, report, args.max_actions, args.max_events,
+                                   more_c=more_c)
         except InputError as exc:
             raise BuildError(str(exc), status=EXIT_USAGE) from None
         _print_report(report, "human")

@@ -240,15 +240,16 @@ def run_world(world: World, default_program: Program, load_program, time_limit_m
               trace: Optional[Path], pose_ms: Optional[int] = None) -> int:
     """Build and run every robot of the world; print the robots' readable
     traces and a collision summary; write the merged trace to `trace`.
-    `load_program(path)` gives the Program of a robot's own `program`, or
-    raises BuildError. Returns the highest of the robots' exit statuses."""
+    `load_program(path, more_c)` gives the Program of a robot's own
+    `program` (and its other C files), or raises BuildError. Returns the highest of the robots' exit statuses."""
     build_runner()
     text = os.environ.get("EPUCK_SEED", "")
     seed = int(text) if text.isdigit() else 1
     libs = {}
     robots = []
     for placement in world.robots:
-        program = default_program if placement.program is None else load_program(placement.program)
+        program = default_program if placement.program is None else \
+            load_program(placement.program, placement.more_c)
         if id(program) not in libs:
             libs[id(program)] = (program, build_robot(program))
         robots.append(libs[id(program)][1])

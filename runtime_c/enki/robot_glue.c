@@ -48,7 +48,6 @@ int enki_robot_attach(enki_robot_io *robot)
     if (robot == NULL || robot->version != ENKI_BRIDGE_VERSION)
         return 1;
     io = robot;
-    epuck_cmain_external_signals();     /* the runner's timers (world_runner.cpp) */
     for (n = 0; n < 8; n++)
         stub_set_prox(n, io->prox[n]);
     return 0;

@@ -59,7 +59,6 @@ enum { CTX_MAIN, CTX_LOOP, CTX_SIM };
 
 static volatile sig_atomic_t ctx = CTX_MAIN;   /* who runs: main, mainloop, a step */
 static int started;                 /* main's first call (or mainloop) initialised */
-static int own_signals = 1;         /* 0: the Enki runner calls epuck_cmain_signal */
 static unsigned long long main_cycles;     /* main's clock */
 static long main_ms;                /* the simulator's steps taken from main */
 static volatile unsigned long progress;    /* main's blocks and calls, every step */
@@ -68,7 +67,7 @@ static void *volatile last_pc;      /* the last block of the user's C that ran *
 static long watchdog_ms = DEFAULT_WATCHDOG_MS;
 static unsigned long long reset_cycles;    /* resetTime */
 
-static void start_signals(void);
+static void read_budget(void);
 
 static unsigned long long boundary(long ms)
 {
@@ -113,7 +112,7 @@ static void on_init(void)
     ctx = CTX_LOOP;             /* mainloop runs; main's first call puts CTX_MAIN back */
     if (!started) {
         started = 1;
-        start_signals();
+        read_budget();
     }
 }
 
@@ -125,7 +124,7 @@ static void start_main(void)
     started = 1;
     rt_platform_init();
     ctx = CTX_MAIN;
-    start_signals();
+    read_budget();
 }
 
 /* Main spent `count` times `cycles_each` cycles: the simulator takes every
@@ -259,10 +258,14 @@ static void watchdog_fire(void)
     exit(EXIT_WATCHDOG);
 }
 
-/* Main spins: the simulator runs on without it, to the time limit. */
+/* Main spins: the simulator runs on without it, to the time limit (a main
+ * that spun before any block of its own, `int main(void) { for (;;); }`,
+ * starts the harness here). */
 static void take_over(void)
 {
     taken_over = 1;
+    if (!started)
+        start_main();
     for (;;)
         sim_step();
 }
@@ -287,15 +290,10 @@ void epuck_cmain_signal(int wall)
     if (progress != cpu_seen) {
         cpu_seen = progress;
         cpu_quiet_ms = 0;
-    } else if ((cpu_quiet_ms += CPU_TICK_MS) >= SPIN_CPU_MS && ctx == CTX_MAIN && started
+    } else if ((cpu_quiet_ms += CPU_TICK_MS) >= SPIN_CPU_MS && ctx == CTX_MAIN
                && !taken_over) {
         take_over();
     }
-}
-
-void epuck_cmain_external_signals(void)
-{
-    own_signals = 0;
 }
 
 static void on_cpu_tick(int sig)
@@ -310,16 +308,20 @@ static void on_wall_tick(int sig)
     epuck_cmain_signal(1);
 }
 
-static void start_signals(void)
+static void read_budget(void)
 {
     const char *budget = getenv("EPUCK_WATCHDOG_MS");
+    if (budget != NULL && atol(budget) > 0)
+        watchdog_ms = atol(budget);
+}
+
+/* From the start (a main may spin before any block of its own).  In an
+ * Enki world the runner installs its own afterwards, which replace these. */
+static void start_signals(void)
+{
     struct sigaction sa;
     struct itimerval every;
 
-    if (budget != NULL && atol(budget) > 0)
-        watchdog_ms = atol(budget);
-    if (!own_signals)
-        return;
     memset(&sa, 0, sizeof sa);
     sigemptyset(&sa.sa_mask);
     /* the take-over never returns from its handler: the signals stay open */
@@ -341,4 +343,5 @@ __attribute__((constructor)) static void cmain_install(void)
 {
     stub_cost_hook = charge;
     host_init_hook = on_init;
+    start_signals();
 }

@@ -68,10 +68,9 @@ void host_record(const char *kind, const char *name, const char *extra, const ch
 
 /* cmain.c: the body's rate of turn about z over the last simulated ms, in
  * degrees/s, positive = left (the gyroscope; measured from the first call
- * on); and, for the Enki glue, that the world runner calls
- * epuck_cmain_signal (its robots share the process's timers). */
+ * on); and a tick of its timers, which the Enki world runner gives the
+ * robot that runs (its robots share the process's timers). */
 double stub_turn_rate_dps(void);
 void epuck_cmain_signal(int wall);
-void epuck_cmain_external_signals(void);
 
 #endif

@@ -222,3 +222,22 @@ def test_more_files_follow_only_a_c_main(tmp_path):
     main = _write(tmp_path, "main.c", "int main(void) { return 0; }\n")
     result = epuckc("run", main, tmp_path / "s.scn")
     assert result.returncode == 2 and "only C files" in result.stderr
+
+
+def test_a_worlds_robot_runs_a_c_program_of_several_files(tmp_path):
+    require_enki()
+    (tmp_path / "lib").mkdir()
+    _write(tmp_path / "lib", "drive.h", "void drive(int speed);\n")
+    _write(tmp_path / "lib", "drive.c", '#include "drive.h"\n'
+           "#include <motor_led/advance_one_timer/e_motors.h>\n"
+           "void drive(int speed) { e_set_speed_left(speed); e_set_speed_right(speed); }\n")
+    _write(tmp_path, "main.c", '#include "drive.h"\n#include <utility/utility.h>\n'
+           "int main(void) { drive(300); for (;;) wait(1000L); }\n")
+    world = _write(tmp_path, "w.world", "arena 100 cm x 100 cm\n"
+                   "robot a at 20 cm, 20 cm program main.c lib/drive.c\n"
+                   "robot b at 20 cm, 60 cm\n")
+    other = _write(tmp_path, "still.c", "int main(void) { for (;;); }\n")
+    records, _ = _run(tmp_path, [other], "--world", world, "--time-limit", "1s", expect=3)
+    end = {r["robot"]: r for r in records if r["kind"] == "timeout"}
+    assert end["a"]["left_steps"] == end["a"]["right_steps"] == 300
+    assert end["b"]["left_steps"] == 0
