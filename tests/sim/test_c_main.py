@@ -241,3 +241,28 @@ def test_a_worlds_robot_runs_a_c_program_of_several_files(tmp_path):
     end = {r["robot"]: r for r in records if r["kind"] == "timeout"}
     assert end["a"]["left_steps"] == end["a"]["right_steps"] == 300
     assert end["b"]["left_steps"] == 0
+
+
+def _declared_functions() -> tuple:
+    """(every header of runtime_c/epuck_api, every function they declare)."""
+    api = REPO / "runtime_c" / "epuck_api"
+    headers, names = [], set()
+    for header in sorted(api.rglob("*.h")):
+        headers.append(header.relative_to(api).as_posix())
+        text = re.sub(r"/\*.*?\*/", "", header.read_text(), flags=re.S)
+        names.update(m.group(1) for m in re.finditer(
+            r"^[A-Za-z_][\w \*]*?\b(\w+)\s*\([^;{]*\)\s*;", text, re.M))
+    return headers, sorted(names)
+
+
+def test_every_function_of_the_librarys_headers_links(tmp_path):
+    """A program may call anything the headers declare: never a link error."""
+    headers, names = _declared_functions()
+    assert len(names) > 80 and "flow_led" in names and "e_send_uart1_char" in names
+    body = "".join(f"    printf(\"%p\\n\", (void *)(size_t){name});\n" for name in names)
+    main = _write(tmp_path, "all.c", "#include <stdio.h>\n#include <stddef.h>\n"
+                  + "".join(f"#include <{h}>\n" for h in headers)
+                  + f"int main(void)\n{{\n{body}    return 0;\n}}\n")
+    result = epuckc("run", main, "--time-limit", "10ms")
+    assert result.returncode == 0, result.stderr
+    assert "undefined reference" not in result.stderr
