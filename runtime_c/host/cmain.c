@@ -270,17 +270,18 @@ static void take_over(void)
         sim_step();
 }
 
-static unsigned long wall_seen, cpu_seen;
-static long wall_quiet_ms, cpu_quiet_ms;
+static unsigned long cpu_seen;
+static long wall_seen_ms = -1, wall_quiet_ms, cpu_quiet_ms;
 
 /* A tick of the timers: wall 1 (SIGALRM, every WALL_TICK_MS of wall-clock
- * time), 0 (SIGVTALRM, every CPU_TICK_MS of CPU time).  The Enki runner
+ * time: the watchdog, on simulated time), 0 (SIGVTALRM, every CPU_TICK_MS
+ * of CPU time: the spin, on main's progress).  The Enki runner
  * calls it for the robot that runs. */
 void epuck_cmain_signal(int wall)
 {
-    if (wall) {
-        if (progress != wall_seen) {
-            wall_seen = progress;
+    if (wall) {                 /* the watchdog: has simulated time advanced? */
+        if (host_now_ms() != wall_seen_ms) {
+            wall_seen_ms = host_now_ms();
             wall_quiet_ms = 0;
         } else if ((wall_quiet_ms += WALL_TICK_MS) >= watchdog_ms) {
             watchdog_fire();

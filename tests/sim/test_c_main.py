@@ -279,3 +279,25 @@ def test_what_is_not_simulated_is_a_build_error_naming_it(tmp_path, header, what
     assert result.returncode == 1
     assert f"{header}: " in result.stderr and what in result.stderr
     assert "not simulated" in result.stderr and "undefined reference" not in result.stderr
+
+
+BLOCKED = """\
+#define _POSIX_C_SOURCE 200809L
+#include <unistd.h>
+#include <motor_led/advance_one_timer/e_motors.h>
+int main(void)
+{
+    e_set_speed_left(100);
+    for (;;)
+        pause();
+}
+"""
+
+
+def test_the_watchdog_stops_a_main_that_never_reaches_the_simulator(tmp_path):
+    """Blocked in a system call, main's clock barely moves (a block a
+    wake-up): simulated time stands still, the watchdog names main."""
+    main = _write(tmp_path, "block.c", BLOCKED)
+    records, result = _run(tmp_path, [main], "--watchdog", "0.5", expect=EXIT_WATCHDOG)
+    _watchdog_checks(result, records, "main", "block.c")
+    assert records[-1]["t_ms"] == 0
