@@ -46,7 +46,8 @@ HOST_SOURCES = [*RUNTIME_CORE, "host/platform_host.c", "host/epuck_stub.c", "hos
                 "host/epuck_more.c"]
 
 
-HOST_INCLUDES = [".", "epuck_api", "host"]
+# epuck_api_unsimulated: #error headers of what the simulator does not model
+HOST_INCLUDES = [".", "epuck_api", "host", "epuck_api_unsimulated"]
 
 
 ROBOT_SOURCES = [*RUNTIME_CORE, "platform_robot.c"]

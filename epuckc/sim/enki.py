@@ -34,7 +34,7 @@ from .world import World, runner_spec
 
 ROBOT_SOURCES = [*RUNTIME_CORE, "host/platform_host.c", "host/epuck_stub.c", "host/cmain.c",
                  "host/epuck_more.c", "enki/robot_glue.c"]
-ROBOT_INCLUDES = [".", "epuck_api", "host", "enki"]
+ROBOT_INCLUDES = [".", "epuck_api", "host", "enki", "epuck_api_unsimulated"]
 # robot_glue.c's header comment says why each of these is wrapped
 WRAPPED = ["stub_motors_1ms", "stub_pose", "stub_set_geometry", "getenv", "exit"]
 RUNNER_FLAGS = ["-std=c++14", "-O2", "-Wall", "-Wextra"]
