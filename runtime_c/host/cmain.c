@@ -32,8 +32,9 @@
  * EXIT_WATCHDOG.
  *
  * Signals: SIGVTALRM (CPU time) for the spin, SIGALRM (wall clock) for the
- * watchdog.  In an Enki world the runner owns both timers (its robots
- * share one process) and calls epuck_cmain_signal of the robot running.
+ * watchdog, both from the process's start (a constructor).  In an Enki
+ * world the runner installs its own after loading its robots (they share
+ * one process), which calls epuck_cmain_signal of the robot running.
  */
 #define _GNU_SOURCE
 #include <dlfcn.h>
