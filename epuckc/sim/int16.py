@@ -1,4 +1,5 @@
-"""`epuckc run --int16`: a rule program and its extern C on the 16-bit path
+"""`epuckc run --int16`: a program (rules and their extern C, or a C main)
+and its C on the 16-bit path
 (docs/runtime.md, "16 bits: --int16"): built with avr-gcc for an
 ATmega1284P (16-bit int and pointers, like the dsPIC) over the host's
 virtual robot (runtime_c/host/epuck_stub.c), the scenario compiled into it
@@ -115,29 +116,32 @@ def _runner() -> Path:
 
 def build_int16(program: Program, folder: Path, items: list, time_limit_ms: int) -> Path:
     """The program as an AVR executable in `folder`."""
-    if not program.generated:
-        raise BuildError("--int16 runs rule programs (.epk) and their extern C; a C program with "
-                         "its own main runs on the host only, for now")
     rt = runtime_dir()
-    (folder / f"{program.name}.c").write_text(program.c_text, encoding="utf-8")
+    if program.generated:
+        (folder / f"{program.name}.c").write_text(program.c_text, encoding="utf-8")
+        sources = [str(folder / f"{program.name}.c"), *(str(p) for p in program.user_files)]
+        mode, more = [], []
+    else:           # a C main: Timer1 is the simulator's ms (platform_int16.c)
+        sources = [str(p) for p in program.user_sources()]
+        mode, more = ["-DINT16_C_MAIN"], [str(rt / "host" / "epuck_more.c")]
+        mode += [f"-I{os.path.dirname(os.path.abspath(s))}" for s in sources]
     if program.header_name:
         (folder / program.header_name).write_text(program.header_text, encoding="utf-8")
     (folder / "scenario.c").write_text(scenario_c(items), encoding="utf-8")
     seed = os.environ.get("EPUCK_SEED", "1")
     elf = folder / f"{program.name}.elf"
     command = (["avr-gcc", f"-mmcu={MCU}"] + AVR_FLAGS + _capacity_defines(program)
-               + [f"-DINT16_LIMIT_MS={time_limit_ms}L", f"-DINT16_SEED={int(seed)}UL",
-                  f"-I{folder}", f"-I{rt}", f"-I{rt / 'epuck_api'}", f"-I{rt / 'host'}",
-                  str(folder / f"{program.name}.c"),
-                  *(str(p) for p in program.user_files),
-                  *(str(rt / n) for n in RUNTIME_CORE), str(rt / "host" / "epuck_stub.c"),
+               + [f"-DINT16_LIMIT_MS={time_limit_ms}L", f"-DINT16_SEED={int(seed)}UL"] + mode
+               + [f"-I{folder}", f"-I{rt}", f"-I{rt / 'epuck_api'}", f"-I{rt / 'host'}",
+                  f"-I{rt / 'epuck_api_unsimulated'}", *sources,
+                  *(str(rt / n) for n in RUNTIME_CORE), str(rt / "host" / "epuck_stub.c"), *more,
                   str(rt / "int16" / "platform_int16.c"), str(folder / "scenario.c"),
                   "-o", str(elf)])
     _run_compiler(command, f"{program.name} for the 16-bit path (avr-gcc)")
     return elf
 
 
-_TRACE_LINE = re.compile(r"[EASUMXT](?: -?\d+)+\Z|L \d+ \w+ -?\d+\Z")
+_TRACE_LINE = re.compile(r"[EASUMXT](?: -?\d+)+\Z|L \d+ \w+ -?\d+\Z|R \d+ \w+ \w+ ,")
 
 
 def _record(kind: str, t: int, name: str, number: int, left: int, right: int, **more) -> dict:
@@ -155,6 +159,11 @@ def parse_lines(text: str, var_names: list) -> list:
         if not _TRACE_LINE.match(line):
             continue            # simavr's own ("Loaded ... .text")
         kind, *fields = line.split()
+        if kind == "R":         # a record of epuck_more.c's (the UART): R t kind name , extra
+            _, t, rkind, name, extra = line.split(" ", 4)
+            records.append(_record(rkind, int(t), name, -1, left, right,
+                                   **json.loads("{" + extra.lstrip(" ,") + "}")))
+            continue
         if kind == "L":
             t, name, state = int(fields[0]), fields[1], int(fields[2])
             records.append(_record("led", t, name, -1, left, right, state=state))
@@ -185,6 +194,8 @@ def parse_lines(text: str, var_names: list) -> list:
 def _readable(r: dict) -> str:
     if r["kind"] == "set":
         return f"[{r['t_ms']:6d} ms] set       {r['var']} = {r['value']}"
+    if r["kind"] == "uart":
+        return f"[{r['t_ms']:6d} ms] {r['name']:<9} {json.dumps(r['text'])[1:-1]}"
     if r["kind"] == "led":
         return f"[{r['t_ms']:6d} ms] led       {r['name']:<5} {'on' if r['state'] else 'off'}"
     return (f"[{r['t_ms']:6d} ms] {r['kind']:<9} {r['name']} "

@@ -29,7 +29,7 @@
 
 void int16_scenario(long t_ms);     /* the scenario's lines due at t_ms */
 
-static long now_ms;
+static volatile long now_ms;
 
 static void put_char(char c)
 {
@@ -102,6 +102,115 @@ void rt_platform_init(void)
     stub_set_observer(observe);
     int16_scenario(0L);
 }
+
+#ifdef INT16_C_MAIN
+/*
+ * A C program with its own main (INT16_C_MAIN): main runs at the AVR's own
+ * speed and the simulator's millisecond is Timer1's interrupt, every 16000
+ * cycles (1 ms at 16 MHz), as the agendas' timer interrupt on the dsPIC:
+ * the wheels move, the scenario applies, the LED pins are read, the agendas
+ * run, inside the interrupt.  wait(n) and e_calibrate_ir's busy loops
+ * last what they last on the dsPIC (n turns of 6 cycles at 14.7456 MHz).
+ */
+#include <util/atomic.h>
+
+#include "utility/utility.h"
+
+#define AVR_CYCLES_PER_MS 16000UL
+
+/* AVR cycles since start */
+static unsigned long long now_cycles(void)
+{
+    unsigned long long c;
+    ATOMIC_BLOCK(ATOMIC_RESTORESTATE) {
+        unsigned int counter = TCNT1;
+        long ms = now_ms;
+        if (TIFR1 & _BV(OCF1A))         /* a tick is due, not yet counted */
+            ms++, counter = TCNT1;
+        c = (unsigned long long)ms * AVR_CYCLES_PER_MS + counter;
+    }
+    return c;
+}
+
+/* n times `cycles_each` dsPIC cycles, in AVR cycles (16 / 14.7456 = 625 / 576) */
+static void busy(long count, int cycles_each)
+{
+    unsigned long long end;
+    if (count <= 1)
+        return;                 /* one call: the AVR's own time for it */
+    end = now_cycles() + (unsigned long long)count * (unsigned long long)cycles_each * 625ULL
+          / 576ULL;
+    while (now_cycles() < end) {
+    }
+}
+
+ISR(TIMER1_COMPA_vect)
+{
+    if (now_ms >= INT16_LIMIT_MS) {
+        line('T', 2, stub_total_steps_left(), stub_total_steps_right(), 0);
+        stop();
+    }
+    stub_motors_1ms();
+    now_ms++;
+    int16_scenario(now_ms);
+    stub_sync_led_ports();
+    stub_agendas_1ms();
+}
+
+/* before main: the harness starts, then Timer1 (CTC, no prescaler) */
+void int16_start(void) __attribute__((naked, used, section(".init8")));
+void int16_start(void)
+{
+    rt_platform_init();
+    stub_cost_hook = busy;
+    OCR1A = (unsigned int)(AVR_CYCLES_PER_MS - 1UL);
+    TCCR1A = 0;
+    TCCR1B = _BV(WGM12) | _BV(CS10);
+    TIMSK1 = _BV(OCIE1A);
+    sei();
+}
+
+/* what epuck_more.c reports (the UART): R t kind name extra */
+void host_record(const char *kind, const char *name, const char *extra, const char *text)
+{
+    (void)text;
+    put_text("R ");
+    put_long(now_ms);
+    put_char(' ');
+    put_text(kind);
+    put_char(' ');
+    put_text(name);
+    put_char(' ');
+    put_text(extra);
+    put_char('\n');
+}
+
+/* utility.h's timing: the A/D interrupt's ticks (1/16384 s), 0.061 ms each */
+static unsigned long long reset_at;
+
+void resetTime(void)
+{
+    reset_at = now_cycles();
+}
+
+float getDiffTimeMs(void)
+{
+    unsigned long long ticks = (now_cycles() - reset_at) * 16384ULL / 16000000ULL;
+    return (float)ticks * 0.061f;
+}
+
+float getDiffTimeMsAndReset(void)
+{
+    float v = getDiffTimeMs();
+    resetTime();
+    return v;
+}
+
+double stub_turn_rate_dps(void)
+{
+    return 0.0;                 /* no pose on the 16-bit path */
+}
+#endif
 
 void rt_platform_idle(void)
 {

@@ -10,7 +10,7 @@ import re
 
 import pytest
 
-from conftest import REPO, require_checkout, require_enki
+from conftest import REPO, require_checkout, require_enki, require_tool
 from tests.support.programs import epuckc
 
 EPUCKRT_H = (REPO / "runtime_c" / "epuckrt.h").read_text()
@@ -182,3 +182,22 @@ def test_the_square_runs_in_a_world(demos, tmp_path):
     end = [p for p in poses if p["t_ms"] == 34600][0]   # after four sides and corners
     assert math.dist((end["x_mm"], end["y_mm"]), (400.0, 400.0)) < 40
     assert _contacts(records) == 0
+
+
+def test_the_avoiders_overflow_shows_on_the_16_bit_path(demos, tmp_path):
+    """shock_neuron's `matrix_prox[m][s]*e_get_calibrated_prox(s)` is an int
+    product: -16 * 2100 wraps on the dsPIC's 16 bits. On the host the robot
+    turns away from what its front-left sensor sees; with --int16, as on the
+    robot, the wrapped sum drives it straight on."""
+    require_tool("avr-gcc")
+    require_tool("simavr")
+    reading = 2100
+    assert -16 * reading < -32768
+    scenario = tmp_path / "left.scn"
+    scenario.write_text(f"0 ms ir7=0\n2000 ms ir7={reading}\n2300 ms ir7=0\n")
+    host, _ = _run(demos, tmp_path, "shocker", "--scenario", scenario, "--time-limit", "2400ms")
+    avr, _ = _run(demos, tmp_path, "shocker", "--scenario", scenario, "--time-limit", "2400ms",
+                  "--int16")
+    turned = lambda r: r[-1]["left_steps"] - r[-1]["right_steps"]    # noqa: E731
+    assert turned(host) > 300           # full speed apart for most of 0.3 s
+    assert turned(avr) == 0

@@ -89,7 +89,47 @@ def test_int16_runs_against_a_scenario_only(program):
     world.write_text("arena 50 cm x 50 cm\nrobot at 25 cm, 25 cm\n")
     result = epuckc("run", program / "ovf.epk", "--int16", "--world", world)
     assert result.returncode == 2 and "--int16" in result.stderr
+
+
+C_MAIN = """\
+#include <string.h>
+#include <motor_led/advance_one_timer/e_agenda.h>
+#include <motor_led/advance_one_timer/e_led.h>
+#include <motor_led/advance_one_timer/e_motors.h>
+#include <uart/e_uart_char.h>
+#include <utility/utility.h>
+int main(void)
+{
+    const char *hello = "hello\\r\\n";
+    e_send_uart1_char(hello, (int)strlen(hello));
+    wait(100000L);                      /* 40.7 ms on the dsPIC */
+    e_set_speed_left(200);
+    e_set_speed_right(-200);
+    e_activate_agenda(flow_led, 1000);
+    e_start_agendas_processing();
+    while (1);
+}
+"""
+
+
+def test_a_c_main_runs_on_the_16_bit_path_as_on_the_host(program):
     main = program / "main.c"
-    main.write_text("int main(void) { return 0; }\n")
-    result = epuckc("run", main, "--int16")
-    assert result.returncode == 1 and "rule programs" in result.stderr
+    main.write_text(C_MAIN)
+    runs = []
+    for extra in (["--int16"], []):
+        trace = program / f"c{len(runs)}.jsonl"
+        result = epuckc("run", main, "--time-limit", "1s", "--trace", trace, *extra)
+        assert result.returncode == 3, result.stdout + result.stderr
+        runs.append([json.loads(line) for line in trace.read_text().splitlines()])
+    avr, host = runs
+    assert [r["text"] for r in avr if r["kind"] == "uart"] == ["hello\r\n"]
+    # the agenda's LED steps, the wheels' steps at the end: as on the host,
+    # within the AVR's own time for main's code (it runs at its speed, not
+    # the dsPIC's: a ms or two)
+    def leds(records):
+        return [(r["t_ms"], r["name"], r["state"]) for r in records if r["kind"] == "led"]
+    assert [x[1:] for x in leds(avr)] == [x[1:] for x in leds(host)] and len(leds(avr)) >= 9
+    assert all(abs(a[0] - h[0]) <= 2 for a, h in zip(leds(avr), leds(host)))
+    assert avr[-1]["left_steps"] == pytest.approx(host[-1]["left_steps"], abs=1)
+    assert avr[-1]["right_steps"] == pytest.approx(host[-1]["right_steps"], abs=1)
+    assert avr[-1]["kind"] == host[-1]["kind"] == "timeout"
