@@ -32,16 +32,23 @@ GENERATED_CFLAGS = HOST_CFLAGS + ["-Werror"]
 USER_CFLAGS = HOST_CFLAGS
 
 
+# The user's C on the host and in worlds also calls the C main model at
+# every basic block (runtime_c/host/cmain.c: main's clock in dsPIC cycles,
+# the watchdog's last place), with the lines addr2line names.
+HOST_USER_FLAGS = ["-fsanitize-coverage=trace-pc", "-g"]
+
+
 # How gcc runs, not what it makes: no temporary assembly files.
 BUILD_FLAGS = ["-pipe"]
 
 
 # The runtime's files for each target, relative to runtime_c/.
 HOST_SOURCES = [*RUNTIME_CORE, *RUNTIME_DEVICES, "host/platform_host.c", "host/epuck_stub.c",
-                "host/stub_devices.c"]
+                "host/stub_devices.c", "host/cmain.c", "host/epuck_more.c"]
 
 
-HOST_INCLUDES = [".", "epuck_api", "host"]
+# epuck_api_unsimulated: #error headers of what the simulator does not model
+HOST_INCLUDES = [".", "epuck_api", "host", "epuck_api_unsimulated"]
 
 
 ROBOT_SOURCES = [*RUNTIME_CORE, *RUNTIME_DSPIC_DEVICES, "platform_robot.c"]
@@ -96,7 +103,7 @@ class Program:
     generated: bool = True
     header_name: Optional[str] = None
     header_text: Optional[str] = None
-    source_path: Optional[Path] = None
+    source_path: Optional[Path] = None        # a C program's main; user_files: its other C
     inputs: list = field(default_factory=list)
     variables: list = field(default_factory=list)
     # the devices it uses (stdlib DEVICES); None: not known (hand-written C)
@@ -104,7 +111,7 @@ class Program:
 
     def user_sources(self) -> list:
         """The C files of the user's that are compiled on their own."""
-        return [self.source_path] if self.source_path is not None else list(self.user_files)
+        return ([self.source_path] if self.source_path is not None else []) + list(self.user_files)
 
 
 def _same_file(a: Path, b: Path) -> bool:

@@ -14,7 +14,8 @@ from typing import Optional
 
 from ..base.output import TEMP_PREFIX, OutputError, describe_os_error, prepare_directory, write_file
 from ..base.resources import cache_dir, runtime_dir
-from .common import (BUILD_FLAGS, GENERATED_CFLAGS, HOST_INCLUDES, HOST_SOURCES, USER_CFLAGS,
+from .common import (BUILD_FLAGS, GENERATED_CFLAGS, HOST_INCLUDES, HOST_SOURCES, HOST_USER_FLAGS,
+                     USER_CFLAGS,
                      BuildError, Program, _capacity_defines, _run_compiler, _write_generated,
                      c_compiler, check_outputs, stale_externs_header, user_headers)
 from .parallel import CompileStep, cancel_jobs, compiler_pool, report_results, wait_jobs
@@ -61,22 +62,32 @@ def host_build_key(program: Program) -> str:
     for _, header, _ in user_headers(program):
         _add(h, f"user header:{os.path.realpath(header)}", header.read_bytes())
     _add_runtime_sources(h)
-    _add(h, "cc", " ".join(c_compiler() + GENERATED_CFLAGS + USER_CFLAGS
+    _add(h, "cc", " ".join(c_compiler() + GENERATED_CFLAGS + USER_CFLAGS + HOST_USER_FLAGS
                            + _capacity_defines(program)).encode())
     _add(h, "compiler", _compiler_identity().encode())
     return h.hexdigest()[:24]
 
 
 def _includes(program: Program, generated_dir: Path) -> list:
+    """The generated folder and the runtime's; for a C program of several
+    files, also each file's folder (main.c includes the header beside the
+    demo it calls, as one project of the library's)."""
     rt = runtime_dir()
-    return [f"-I{generated_dir}"] + [f"-I{rt / inc}" for inc in HOST_INCLUDES]
+    folders = []
+    if program.source_path is not None and program.user_files:
+        for source in program.user_sources():
+            folder = f"-I{os.path.dirname(os.path.abspath(source))}"
+            if folder not in folders:
+                folders.append(folder)
+    return [f"-I{generated_dir}"] + folders + [f"-I{rt / inc}" for inc in HOST_INCLUDES]
 
 
 def user_compile_command(source: Path, obj: Path, program: Program, generated_dir: Path,
                          extra_flags=()) -> list:
     """The user's own C, compiled where it is (its messages name it; its own
     #includes are found beside it), warnings shown but not fatal."""
-    return (c_compiler() + USER_CFLAGS + list(extra_flags) + _capacity_defines(program)
+    return (c_compiler() + USER_CFLAGS + HOST_USER_FLAGS + list(extra_flags)
+            + _capacity_defines(program)
             + _includes(program, generated_dir)
             + BUILD_FLAGS + ["-x", "c", "-c", str(source), "-o", str(obj)])
 

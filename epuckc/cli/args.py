@@ -201,13 +201,37 @@ def _seed(text: str) -> int:
     return int(text)
 
 
+def _watchdog_ms(text: str) -> int:
+    """--watchdog SECONDS, as whole ms for the harness."""
+    from decimal import Decimal, InvalidOperation
+    try:
+        seconds = Decimal(text)
+    except InvalidOperation:
+        seconds = None
+    if seconds is None or not seconds.is_finite() or not Decimal("0.1") <= seconds <= 3600:
+        raise argparse.ArgumentTypeError(f"{_clip(text)} is not a number of seconds from 0.1 "
+                                         f"to 3600")
+    return int(seconds * 1000)
+
+
 def _run_parser(sub):
     p = sub.add_parser("run", help="build for the host and run on the simulated e-puck",
                        description="Build for the host harness (cached) and run, printing the trace. "
                                    "Exit status: 0 when the program reached exit_main, 3 on a "
                                    "time-out, 1 when it does not build.")
     _add_program_options(p)
+    p.add_argument("more", nargs="*", metavar="MORE.c",
+                   help="the C program's other files, when FILE is a C main written against "
+                        "the e-puck library (docs/runtime.md, C programs)")
+    p.add_argument("--watchdog", type=_watchdog_ms, metavar="SECONDS",
+                   help="stop the run when the program's C (an extern action, an agenda, a "
+                        "C main) keeps the simulator waiting this long in wall-clock time "
+                        "(default 5)")
     p.add_argument("--scenario", metavar="FILE.scn", help="proximity readings over time")
+    p.add_argument("--int16", action="store_true",
+                   help="run on the 16-bit path (avr-gcc and simavr: int is 16 bits, as on the "
+                        "dsPIC) against the scenario, so that the extern C's int overflows wrap "
+                        "as on the robot")
     p.add_argument("--time-limit", type=_duration_ms, default=60000, metavar="DURATION",
                    help="virtual time limit with its unit, e.g. 60s, 500ms or 2min (default 60s)")
     p.add_argument("--trace", metavar="OUT.jsonl",

@@ -156,7 +156,8 @@ def _load(args, report=None):
         program = load_program(Path(args.file), report, args.max_actions, args.max_events,
                                shown_name=display_name(args.file),
                                defines=dict(getattr(args, "defines", None) or ()),
-                               target=getattr(args, "target", "host"))
+                               target=getattr(args, "target", "host"),
+                               more_c=getattr(args, "more", None) or ())
     except (InputError, DefineError) as exc:
         _error(str(exc))
         return None, EXIT_USAGE
@@ -231,9 +232,12 @@ def cmd_run(args) -> int:
     wants_world = world_cli.wants_extension(args)
     if args.seed is not None:       # the harness reads it (host/platform_host.c)
         os.environ["EPUCK_SEED"] = str(args.seed)
+    if args.watchdog is not None:   # and this (host/cmain.c)
+        os.environ["EPUCK_WATCHDOG_MS"] = str(args.watchdog)
     # A rule file built before goes straight to its executable (runcache.py).
     path, key, data = Path(args.file), None, None
-    if path.suffix != ".c" and not wants_world and not args.defines:
+    if path.suffix != ".c" and not wants_world and not args.defines and not args.more \
+            and not args.int16:
         from ..build import runcache
         try:
             data = path.read_bytes()
@@ -302,6 +306,8 @@ def _load_and_run(args, path: Path, key, data, wants_world: bool) -> int:
         if problem:
             _error(problem)
             return EXIT_USAGE
+    if args.int16:
+        return _run_int16(args, program)
     if wants_world:
         return world_cli.run(args, program, _robot_program_loader(args), run_host)
 
@@ -329,16 +335,32 @@ def _load_and_run(args, path: Path, key, data, wants_world: bool) -> int:
         return EXIT_USAGE
 
 
+def _run_int16(args, program) -> int:
+    """`run --int16`: the 16-bit path (sim/int16.py), alone with a scenario."""
+    from ..build.common import BuildError
+    from ..sim.int16 import run_int16
+    if args.world or args.svg or args.html:
+        _error("--int16 runs against a scenario, not in a world nor with pictures: leave out "
+               "--world, --svg and --html")
+        return EXIT_USAGE
+    try:
+        return run_int16(program, args.scenario, args.time_limit, args.trace)
+    except BuildError as exc:
+        _error(str(exc))
+        return exc.status
+
+
 def _robot_program_loader(args):
     """For a world's robots with their own `program`: load it as FILE is."""
-    def load(path: Path):
+    def load(path: Path, more_c=()):
         from ..build.common import BuildError
         from ..diagnostics import Report
         from .driver import load_program
         from ..check.frontend import InputError
         report = Report()
         try:
-            program = load_program(path, report, args.max_actions, args.max_events)
+            program = load_program(path, report, args.max_actions, args.max_events,
+                                   more_c=more_c)
         except InputError as exc:
             raise BuildError(str(exc), status=EXIT_USAGE) from None
         _print_report(report, "human")

@@ -37,21 +37,34 @@ def _program_name(path: Path) -> str:
 def load_program(path: Path, report: Report, max_actions: Optional[int] = None,
                  max_events: Optional[int] = None,
                  shown_name: Optional[str] = None,
-                 defines: Optional[dict] = None, target: str = "host") -> Optional[Program]:
-    """A rule file is checked and compiled; a .c file is taken as it is.
-    `defines` (NAME -> VALUE text, `-D`) override constants before checking
-    (check/defines.py; DefineError for an unknown name). `target`: the
-    robot it is built for, whose devices the checker knows (E070)."""
+                 defines: Optional[dict] = None, target: str = "host",
+                 more_c=()) -> Optional[Program]:
+    """A rule file is checked and compiled; a .c file is taken as it is,
+    with `more_c`, the program's other C files (a C main and the demo it
+    calls). `defines` (NAME -> VALUE text, `-D`) override constants before
+    checking (check/defines.py; DefineError for an unknown name). `target`:
+    the robot it is built for, whose devices the checker knows (E070)."""
     name = _program_name(path)
     shown = shown_name if shown_name is not None else str(path)
+    more_c = [Path(m) for m in more_c]
+    for extra in more_c:
+        if extra.suffix != ".c":
+            raise InputError(f"{extra}: after the program's FILE only C files (.c) may follow, "
+                             f"the rest of a C program")
+        if not extra.is_file():
+            raise InputError(f"cannot read {extra}: the file does not exist")
+    if more_c and path.suffix != ".c":
+        raise InputError(f"{shown} is a rule file: it names its C files itself (`extern action "
+                         f"... from \"{more_c[0].name}\"`); more C files follow only a C "
+                         f"program's main.c")
     if path.suffix == ".c":
         if defines:
             from ..check.defines import DefineError
             raise DefineError(f"-D {next(iter(defines))}: {shown} is C, which has no "
                               f"constants of the language to override")
         text = _read_text(path, shown)
-        return Program(name, text, path.parent, [], max_actions, max_events,
-                       generated=False, source_path=path, inputs=[path])
+        return Program(name, text, path.parent, more_c, max_actions, max_events,
+                       generated=False, source_path=path, inputs=[path] + more_c)
     text = None
     if defines:
         from ..check.defines import apply_defines

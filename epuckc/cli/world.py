@@ -69,11 +69,11 @@ def run(args, program, load_program_file, run_host) -> int:
             return EXIT_USAGE
     loaded = {}
 
-    def load(path):
+    def load(path, more_c=()):
         """A robot's own program, loaded once (its variables are the replay's)."""
-        if path not in loaded:
-            loaded[path] = load_program_file(path)
-        return loaded[path]
+        if (path, tuple(more_c)) not in loaded:
+            loaded[path, tuple(more_c)] = load_program_file(path, more_c)
+        return loaded[path, tuple(more_c)]
 
     if world is None:
         variables = {"": program.variables}
@@ -84,7 +84,8 @@ def run(args, program, load_program_file, run_host) -> int:
                 from ..sim.enki import run_world
                 status = run_world(world, program, load, args.time_limit,
                                    trace.resolve() if trace else None, pose_ms)
-                variables = {r.name: (program if r.program is None else load(r.program)).variables
+                variables = {r.name: (program if r.program is None
+                                      else load(r.program, r.more_c)).variables
                              for r in world.robots}
             else:
                 status = run_host(program, scenario=args.scenario, time_limit_ms=args.time_limit,

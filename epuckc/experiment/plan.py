@@ -113,6 +113,11 @@ def plan(exp: Experiment, load) -> list:
         missing = next(r for r in world.robots if r.program is None)
         raise _error(exp, "world", f"robot {missing.name} of the world has no program, and "
                      "the experiment names none", 'add a line: program = "prog.epk"')
+    several = next((r for r in world.robots if r.more_c), None)
+    if several is not None:
+        raise _error(exp, "world", f"robot {several.name} of the world runs a C program of "
+                     f"several files, which experiments do not build yet",
+                     "run it with `epuckc run --world`")
     used = {p for p in exp.programs} | {r.program for r in world.robots if r.program}
     defined = {}
     for path in used:

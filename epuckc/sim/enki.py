@@ -33,8 +33,8 @@ from ..base.resources import RUNTIME_CORE, RUNTIME_DEVICES, cache_dir, runtime_d
 from .world import World, runner_spec
 
 ROBOT_SOURCES = [*RUNTIME_CORE, *RUNTIME_DEVICES, "host/platform_host.c", "host/epuck_stub.c",
-                 "host/stub_devices.c", "enki/robot_glue.c"]
-ROBOT_INCLUDES = [".", "epuck_api", "host", "enki"]
+                 "host/stub_devices.c", "host/cmain.c", "host/epuck_more.c", "enki/robot_glue.c"]
+ROBOT_INCLUDES = [".", "epuck_api", "host", "enki", "epuck_api_unsimulated"]
 # robot_glue.c's header comment says why each of these is wrapped
 WRAPPED = ["stub_motors_1ms", "stub_pose", "stub_set_geometry", "getenv", "exit"]
 RUNNER_FLAGS = ["-std=c++14", "-O2", "-Wall", "-Wextra"]
@@ -195,6 +195,8 @@ def simulate(world: World, libs: list, time_limit_ms: int, seed: int = 1,
                         "EPUCK_SEED": str((seed + i) & 0xFFFFFFFF)}
             if pose_ms:
                 settings["EPUCK_POSE_MS"] = str(pose_ms)
+            if os.environ.get("EPUCK_WATCHDOG_MS"):     # `run --watchdog`
+                settings["EPUCK_WATCHDOG_MS"] = os.environ["EPUCK_WATCHDOG_MS"]
             if quiet:
                 settings["EPUCK_QUIET"] = "1"
             entries.append((copy, settings, None if devices is None else devices[i]))
@@ -240,15 +242,16 @@ def run_world(world: World, default_program: Program, load_program, time_limit_m
               trace: Optional[Path], pose_ms: Optional[int] = None) -> int:
     """Build and run every robot of the world; print the robots' readable
     traces and a collision summary; write the merged trace to `trace`.
-    `load_program(path)` gives the Program of a robot's own `program`, or
-    raises BuildError. Returns the highest of the robots' exit statuses."""
+    `load_program(path, more_c)` gives the Program of a robot's own
+    `program` (and its other C files), or raises BuildError. Returns the highest of the robots' exit statuses."""
     build_runner()
     text = os.environ.get("EPUCK_SEED", "")
     seed = int(text) if text.isdigit() else 1
     libs = {}
     robots, devices = [], []
     for placement in world.robots:
-        program = default_program if placement.program is None else load_program(placement.program)
+        program = default_program if placement.program is None else \
+            load_program(placement.program, placement.more_c)
         if id(program) not in libs:
             libs[id(program)] = (program, build_robot(program))
         robots.append(libs[id(program)][1])

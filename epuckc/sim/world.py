@@ -9,6 +9,7 @@ angles `deg`, and a comma may separate the two coordinates of a point:
     cylinder at 90 cm, 50 cm radius 6 cm colour red
     robot at 20 cm, 20 cm heading 45 deg colour blue
     robot bob at 60 cm, 60 cm heading 180 deg program wall_follow.epk
+    robot eve at 20 cm, 60 cm program main.c demo.c     (a C main and its other files)
     seed 7                        # Enki's random generator (default 1)
     noise 5 %                     # wheel speed noise, +- (default 5 %, Enki's e-puck)
     step 10 ms                    # physics step (default 10 ms)
@@ -90,6 +91,7 @@ class RobotPlacement:
     program: Optional[Path] = None      # None: the program given on the command line
     line: int = 0
     colour: str = DEFAULT_COLOUR
+    more_c: tuple = ()                  # a C program's other files, after its main
 
 
 @dataclass
@@ -372,6 +374,18 @@ def _parse_line(world: World, path: Path, shown: str, lineno: int, raw: str, see
                     raise ln.error(f"the program {ptok.text} does not exist", ptok,
                                    "the path is relative to the world file's folder")
                 robot.program = program
+                more = []
+                while program.suffix == ".c" and ln.peek() is not None \
+                        and ln.peek().text.endswith(".c"):
+                    ctok = ln.next("a C file")
+                    extra = Path(ctok.text)
+                    if not extra.is_absolute():
+                        extra = Path(path).parent / extra
+                    if not extra.is_file():
+                        raise ln.error(f"the C file {ctok.text} does not exist", ctok,
+                                       "the path is relative to the world file's folder")
+                    more.append(extra)
+                robot.more_c = tuple(more)
             else:
                 ln.end()
         if len(world.robots) == MAX_ROBOTS:

@@ -42,6 +42,8 @@
  */
 #include <dlfcn.h>
 #include <ucontext.h>
+#include <signal.h>
+#include <sys/time.h>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -156,6 +158,7 @@ struct Robot {
     Body *body = nullptr;
     void *handle = nullptr;
     int (*main)(int, char **) = nullptr;
+    void (*cmain_signal)(int wall) = nullptr;   // host/cmain.c's timers, this robot's
     std::unique_ptr<char[]> stack;          // not zeroed: the kernel commits it as used
 #if FAST_SWITCH
     void *world_sp = nullptr, *robot_sp = nullptr;
@@ -170,6 +173,37 @@ struct Robot {
 std::vector<Robot> robots;
 Enki::World *world;
 Robot *current;
+Robot *volatile running_robot;      // the robot whose code runs now, else null
+
+// The C main model's timers (host/cmain.c) are the process's: CPU time
+// (a main that spins) and wall-clock time (the watchdog), each tick given
+// to the robot that runs.  SA_NODEFER: a robot whose main spins is taken
+// over inside the handler, which then never returns.
+void on_timer(int sig)
+{
+    Robot *r = running_robot;
+    if (r != nullptr && r->cmain_signal != nullptr)
+        r->cmain_signal(sig == SIGALRM);
+}
+
+void start_timers()
+{
+    struct sigaction sa;
+    std::memset(&sa, 0, sizeof sa);
+    sigemptyset(&sa.sa_mask);
+    sa.sa_flags = SA_RESTART | SA_NODEFER;
+    sa.sa_handler = on_timer;
+    sigaction(SIGVTALRM, &sa, nullptr);
+    sigaction(SIGALRM, &sa, nullptr);
+    struct itimerval every;
+    every.it_interval.tv_sec = 0;
+    every.it_interval.tv_usec = 10000;          // cmain.c's CPU_TICK_MS
+    every.it_value = every.it_interval;
+    setitimer(ITIMER_VIRTUAL, &every, nullptr);
+    every.it_interval.tv_usec = 100000;         // cmain.c's WALL_TICK_MS
+    every.it_value = every.it_interval;
+    setitimer(ITIMER_REAL, &every, nullptr);
+}
 
 // robot -> world
 void yield_robot(enki_robot_io *io)
@@ -434,6 +468,7 @@ int main(int argc, char **argv)
             die("cannot load robot " + r.name + ": " + dlerror());
         auto attach = (int (*)(enki_robot_io *))dlsym(r.handle, "enki_robot_attach");
         r.main = (int (*)(int, char **))dlsym(r.handle, "main");
+        r.cmain_signal = (void (*)(int))dlsym(r.handle, "epuck_cmain_signal");
         if (attach == nullptr || r.main == nullptr)
             die("robot " + r.name + ": " + r.lib + " is not a robot for this runner");
         // the default geometry until the program sets its own (epuckrt.h)
@@ -467,6 +502,7 @@ int main(int argc, char **argv)
 
     FILE *real_stdout = stdout;
     long now_ms = 0;
+    start_timers();
     for (;;) {
         bool running = false;
         for (Robot &r : robots) {
@@ -475,7 +511,9 @@ int main(int argc, char **argv)
             current = &r;
             if (r.out != nullptr)
                 stdout = r.out;
+            running_robot = &r;
             resume_robot(r);
+            running_robot = nullptr;
             stdout = real_stdout;
             running = running || !r.io.finished;
         }

@@ -26,6 +26,7 @@
 #include "a_d/advance_ad_scan/e_micro.h"
 #include "a_d/advance_ad_scan/e_acc.h"
 #include "motor_led/e_led.h"
+#include "motor_led/e_epuck_ports.h"
 #include "motor_led/advance_one_timer/e_remote_control.h"
 #include "codec/e_sound.h"
 #include "utility/utility.h"
@@ -40,10 +41,29 @@ void stub_set_geometry(long wheel_circumference_um, long axle_um, long steps_per
     axle_mm = (double)axle_um / 1000.0;
 }
 
+/* ---- the C main model: what main's calls cost (cmain.c on the host) ------- */
+
+void (*stub_cost_hook)(long count, int cycles_each);
+
+#define COST(cycles) do { if (stub_cost_hook != NULL) stub_cost_hook(1L, cycles); } while (0)
+
+/* the library's busy loop, `for (i = 0; i < num; i++);` over a long */
+void wait(long num)
+{
+    if (stub_cost_hook != NULL && num > 0)
+        stub_cost_hook(num, STUB_WAIT_LOOP_CYCLES);
+}
+
 /* ---- ports ---------------------------------------------------------------- */
 
 void e_init_port(void)
 {
+    COST(STUB_CALL_CYCLES);
+}
+
+unsigned char isEpuckVersion1_3(void)
+{
+    return 1;
 }
 
 /* ---- agendas ---------------------------------------------------------------- */
@@ -212,11 +232,13 @@ void e_init_motors(void)
 
 void e_set_speed_left(int motor_speed)
 {
+    COST(STUB_CALL_CYCLES);
     wheel_set_speed(&left_wheel, motor_speed);
 }
 
 void e_set_speed_right(int motor_speed)
 {
+    COST(STUB_CALL_CYCLES);
     wheel_set_speed(&right_wheel, motor_speed);
 }
 
@@ -231,21 +253,25 @@ void e_set_speed(int linear_speed, int angular_speed)
 
 int e_get_steps_left(void)
 {
+    COST(STUB_CALL_CYCLES);
     return counter_value(left_wheel.counter);
 }
 
 int e_get_steps_right(void)
 {
+    COST(STUB_CALL_CYCLES);
     return counter_value(right_wheel.counter);
 }
 
 void e_set_steps_left(int set_steps)
 {
+    COST(STUB_CALL_CYCLES);
     left_wheel.counter = (uint16_t)(unsigned)set_steps;
 }
 
 void e_set_steps_right(int set_steps)
 {
+    COST(STUB_CALL_CYCLES);
     right_wheel.counter = (uint16_t)(unsigned)set_steps;
 }
 
@@ -349,21 +375,43 @@ void e_init_ad_scan(unsigned char only_micro)
     ad_scan_on = only_micro == ALL_ADC;
 }
 
+static int ir_offset[8];     /* e_calibrate_ir's, what e_get_calibrated_prox subtracts */
+
+/* As the library: 100 rounds of the ten channels, each reading followed by
+ * a busy loop of 1000; the offset of a sensor is the mean of its readings
+ * (the robot must see nothing meanwhile). */
 void e_calibrate_ir(void)
 {
+    long sum[8] = {0, 0, 0, 0, 0, 0, 0, 0};
+    int round, n;
+    for (round = 0; round < 100; round++)
+        for (n = 0; n < 10; n++) {
+            if (n < 8)
+                sum[n] += e_get_prox((unsigned int)n);
+            if (stub_cost_hook != NULL)
+                stub_cost_hook(1000L, STUB_WAIT_LOOP_CYCLES);
+        }
+    for (n = 0; n < 8; n++)
+        ir_offset[n] = (int)(sum[n] / 100);
 }
 
 int e_get_prox(unsigned int sensor_number)
 {
+    COST(STUB_CALL_CYCLES);
     if (!ad_scan_on || sensor_number > 7)
         return 0;
     return prox[sensor_number];
 }
 
-/* no ambient light in the scenario: calibrated = raw */
+/* the reading less e_calibrate_ir's offset, never below 0 (0 offsets
+ * before any calibration) */
 int e_get_calibrated_prox(unsigned int sensor_number)
 {
-    return e_get_prox(sensor_number);
+    int v = e_get_prox(sensor_number);
+    if (sensor_number > 7)
+        return 0;
+    v -= ir_offset[sensor_number];
+    return v > 0 ? v : 0;
 }
 
 static int ambient[8];
@@ -404,6 +452,36 @@ void stub_observe(const char *device, const char *name, int value)
 /* ---- LEDs ---------------------------------------------------------------------- */
 
 static int ring[8], body_led, front_led;
+volatile e_epuck_port_bits e_epuck_ports;
+
+/* the pins follow the LEDs' states (a program reads LED0 ...) */
+static void leds_to_ports(void)
+{
+    e_epuck_ports.led0 = ring[0] & 1; e_epuck_ports.led1 = ring[1] & 1;
+    e_epuck_ports.led2 = ring[2] & 1; e_epuck_ports.led3 = ring[3] & 1;
+    e_epuck_ports.led4 = ring[4] & 1; e_epuck_ports.led5 = ring[5] & 1;
+    e_epuck_ports.led6 = ring[6] & 1; e_epuck_ports.led7 = ring[7] & 1;
+    e_epuck_ports.body = body_led & 1; e_epuck_ports.front = front_led & 1;
+}
+
+/* A program wrote the pins (LED3 = 1): the LEDs take them, traced as
+ * e_set_led's.  The harness calls it every simulated ms. */
+void stub_sync_led_ports(void)
+{
+    int pins[8];
+    unsigned int n;
+    pins[0] = e_epuck_ports.led0; pins[1] = e_epuck_ports.led1;
+    pins[2] = e_epuck_ports.led2; pins[3] = e_epuck_ports.led3;
+    pins[4] = e_epuck_ports.led4; pins[5] = e_epuck_ports.led5;
+    pins[6] = e_epuck_ports.led6; pins[7] = e_epuck_ports.led7;
+    for (n = 0; n < 8; n++)
+        if (pins[n] != ring[n])
+            e_set_led(n, (unsigned int)pins[n]);
+    if ((int)e_epuck_ports.body != body_led)
+        e_set_body_led(e_epuck_ports.body);
+    if ((int)e_epuck_ports.front != front_led)
+        e_set_front_led(e_epuck_ports.front);
+}
 
 /* 0 off, 1 on, anything else toggles, as the library */
 static int led_value(int old, unsigned int value)
@@ -423,6 +501,7 @@ void e_set_led(unsigned int led_number, unsigned int value)
     for (n = 0; n < 8; n++)
         if (n == led_number || led_number == 8)
             ring[n] = led_value(ring[n], value);
+    leds_to_ports();
     observe("led", names[led_number], led_number == 8 ? ring[0] : ring[led_number]);
 }
 
@@ -431,18 +510,21 @@ void e_led_clear(void)
     unsigned int n;
     for (n = 0; n < 8; n++)
         ring[n] = 0;
+    leds_to_ports();
     observe("led", "all", 0);
 }
 
 void e_set_body_led(unsigned int value)
 {
     body_led = led_value(body_led, value);
+    leds_to_ports();
     observe("led", "body", body_led);
 }
 
 void e_set_front_led(unsigned int value)
 {
     front_led = led_value(front_led, value);
+    leds_to_ports();
     observe("led", "front", front_led);
 }
 
@@ -513,6 +595,7 @@ int e_get_micro_average(unsigned int micro_id, unsigned int filter_size)
 
 int e_get_micro_volume(unsigned int micro_id)
 {
+    COST(STUB_CALL_CYCLES);
     return micro_id < 3 ? micro_volume[micro_id] : 0;
 }
 
@@ -528,6 +611,7 @@ void stub_set_acc(int axis, int value)
 
 int e_get_acc(unsigned int captor)
 {
+    COST(STUB_CALL_CYCLES);
     return captor < 3 ? acc[captor] : 0;
 }
 
@@ -585,5 +669,6 @@ void stub_set_selector(int position)
 
 int getselector(void)
 {
+    COST(STUB_CALL_CYCLES);
     return selector;
 }

@@ -63,4 +63,35 @@ void stub_set_distance(int mm);
  * leftmost first. */
 void stub_set_camera(const unsigned char *rgb, int pixels);
 
+/* A program wrote the LED pins of motor_led/e_epuck_ports.h: the LEDs take
+ * them (traced); called every simulated ms. */
+void stub_sync_led_ports(void);
+
+/* ---- the C main model (cmain.c, docs/runtime.md) ----------------------------
+ * The dsPIC's time for what main does between the simulator's steps: its
+ * library calls and busy loops call stub_cost_hook(count, cycles_each),
+ * which cmain.c sets (NULL elsewhere, e.g. the AVR trace build: no cost).
+ * STUB_WAIT_LOOP_CYCLES: one turn of the library's busy loop over a long
+ * (`for (i = 0; i < num; i++);`: XC16 -O1 keeps i in two registers:
+ * add, addc, sub, subb and a taken branch, 6 cycles); STUB_CALL_CYCLES: a
+ * library call that reads or sets a variable of the library (call, body,
+ * return). */
+#define STUB_WAIT_LOOP_CYCLES 6
+#define STUB_CALL_CYCLES 20
+extern void (*stub_cost_hook)(long count, int cycles_each);
+
+/* platform_host.c, for cmain.c: called at every rt_platform_init (by
+ * mainloop, or main's first call); virtual time; a record of another
+ * file's (`extra`: more JSON keys; `line`: its readable line, or NULL). */
+extern void (*host_init_hook)(void);
+long host_now_ms(void);
+void host_record(const char *kind, const char *name, const char *extra, const char *line);
+
+/* cmain.c: the body's rate of turn about z over the last simulated ms, in
+ * degrees/s, positive = left (the gyroscope; measured from the first call
+ * on); and a tick of its timers, which the Enki world runner gives the
+ * robot that runs (its robots share the process's timers). */
+double stub_turn_rate_dps(void);
+void epuck_cmain_signal(int wall);
+
 #endif

@@ -36,8 +36,7 @@ static long now_ms;                 /* virtual time */
 static long limit_ms = DEFAULT_TIME_LIMIT_MS;
 static FILE *trace_file;
 static int quiet = -1;              /* -1: EPUCK_QUIET not read yet */
-static long events_fired, actions_run, steps_run;
-static long pose_every_ms;          /* 0: no pose records */
+static long events_fired, actions_run, steps_run, pose_every_ms;  /* pose: 0 none */
 
 /* ---- names ------------------------------------------------------------------ */
 
@@ -109,20 +108,12 @@ static const struct {
     event_func f;
     const char *name;
 } std_event_names[] = {
-    { event_sensor, "event_sensor" },
-    { event_timer, "event_timer" },
-    { event_immediate, "event_immediate" },
-    { event_stop_motor, "event_stop_motor" },
-    { sensor, "sensor" },
-    { timer, "timer" },
-    { immediate, "immediate" },
-    { event_enter_mode, "event_enter_mode" },
-    { event_selector, "event_selector" },
-    { event_clap, "event_clap" },
-    { event_tap, "event_tap" },
-    { event_tilt, "event_tilt" },
-    { event_remote, "event_remote" },
-    { event_ambient, "event_ambient" },
+    { event_sensor, "event_sensor" }, { event_timer, "event_timer" },
+    { event_immediate, "event_immediate" }, { event_stop_motor, "event_stop_motor" },
+    { sensor, "sensor" }, { timer, "timer" }, { immediate, "immediate" },
+    { event_enter_mode, "event_enter_mode" }, { event_selector, "event_selector" },
+    { event_clap, "event_clap" }, { event_tap, "event_tap" }, { event_tilt, "event_tilt" },
+    { event_remote, "event_remote" }, { event_ambient, "event_ambient" },
 };
 
 void rt_new_action(int action_id, action_func f)
@@ -834,6 +825,16 @@ void rt_trace_exit(void)
     summary("exit");
 }
 
+/* the C main model (cmain.c): the clock, and records of its own (uart, watchdog) */
+long host_now_ms(void) { return now_ms; }
+
+void host_record(const char *kind, const char *name, const char *extra, const char *line)
+{
+    record_extra(kind, name, -1, -1, 0, extra);
+    if (line != NULL && !is_quiet())
+        printf("[%6ld ms] %s\n", now_ms, line);
+}
+
 /* ---- platform ------------------------------------------------------------------- */
 
 static long ms_setting(const char *variable, const char *value)
@@ -848,13 +849,19 @@ static long ms_setting(const char *variable, const char *value)
     return v;
 }
 
+void (*host_init_hook)(void);     /* set by cmain.c */
 void rt_platform_init(void)
 {
+    static int done;
     const char *limit = getenv("EPUCK_TIME_LIMIT_MS");
     const char *pose = getenv("EPUCK_POSE_MS");
     const char *scn = getenv("EPUCK_SCENARIO");
     const char *trace = getenv("EPUCK_TRACE");
 
+    if (host_init_hook != NULL)
+        host_init_hook();       /* cmain.c: mainloop runs, or main's first call */
+    if (done++ > 0)
+        return;
     if (limit != NULL && *limit != '\0')
         limit_ms = ms_setting("EPUCK_TIME_LIMIT_MS", limit);
     if (pose != NULL && *pose != '\0')

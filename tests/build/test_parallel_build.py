@@ -13,7 +13,7 @@ from pathlib import Path
 import pytest
 
 from epuckc.build import host as build_module
-from epuckc.build.common import BuildError
+from epuckc.build.common import HOST_SOURCES, BuildError
 from epuckc.build.parallel import CompileStep, run_compile_steps
 from epuckc.base.resources import RUNTIME_CORE
 from tests.conftest import require_tool
@@ -174,12 +174,11 @@ def test_a_second_program_reuses_the_runtime_objects(tmp_path):
     env = {"EPUCKC_CACHE_DIR": str(cache), "CC": str(cc)}
     first, second = _write(tmp_path, "first.epk", PROGRAM), _write(tmp_path, "second.epk", OTHER)
     epuckc("run", first, env=env, check=True)
-    assert _compiled(log) == sorted(["epuck_stub.c", *RUNTIME_CORE, "first.c", "platform_host.c"])
+    assert _compiled(log) == sorted([*(Path(s).name for s in HOST_SOURCES), "first.c"])
     [key] = _entries(cache / "runtime")
     objects = {p: p.stat().st_mtime_ns for p in (cache / "runtime" / key).iterdir()}
     assert sorted(p.name for p in objects) == sorted(
-        [*(Path(name).stem + ".o" for name in RUNTIME_CORE), "host_epuck_stub.o",
-         "host_platform_host.o"])
+        [name.replace("/", "_")[:-len(".c")] + ".o" for name in HOST_SOURCES])
     warm = epuckc("run", second, "--trace", tmp_path / "warm.jsonl", env=env, check=True)
     assert _compiled(log) == ["second.c"]
     assert {p: p.stat().st_mtime_ns for p in objects} == objects
@@ -345,11 +344,11 @@ def test_the_runtime_started_is_the_one_the_build_takes(tmp_path):
     env = {"CC": str(cc)}
     prog = _write(tmp_path, "p.epk", PROGRAM)
     epuckc("run", prog, env={**env, "EPUCKC_CACHE_DIR": str(tmp_path / "a")}, check=True)
-    assert _compiled(log) == sorted(["epuck_stub.c", *RUNTIME_CORE, "p.c", "platform_host.c"])
+    assert _compiled(log) == sorted([*(Path(s).name for s in HOST_SOURCES), "p.c"])
     fig2 = tmp_path / "fig2.c"
     fig2.write_text((REPO / "tests" / "runtime" / "paper_fig2.c").read_text())
     epuckc("run", fig2, env={**env, "EPUCKC_CACHE_DIR": str(tmp_path / "b")}, check=True)
-    assert _compiled(log) == sorted(["epuck_stub.c", *RUNTIME_CORE, "fig2.c", "platform_host.c"])
+    assert _compiled(log) == sorted([*(Path(s).name for s in HOST_SOURCES), "fig2.c"])
 
 
 def test_a_build_found_in_the_cache_stops_the_runtime_started(tmp_path):
@@ -399,7 +398,7 @@ def test_build_for_the_host_starts_the_runtime_early_too(tmp_path):
     env = {"CC": str(cc), "EPUCKC_CACHE_DIR": str(cache)}
     prog = _write(tmp_path, "p.epk", PROGRAM)
     epuckc("build", prog, "-o", tmp_path / "out", env=env, check=True)
-    assert _compiled(log) == sorted(["epuck_stub.c", *RUNTIME_CORE, "p.c", "platform_host.c"])
+    assert _compiled(log) == sorted([*(Path(s).name for s in HOST_SOURCES), "p.c"])
     assert os.access(tmp_path / "out" / "p", os.X_OK)
     shutil.rmtree(cache / "runtime")
     (tmp_path / "a-file").write_text("")

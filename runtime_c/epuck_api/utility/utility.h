@@ -1,11 +1,18 @@
-/* e-puck library API, utility, declarations only (see ../README.md).
- * Not the paper's umbrella header ../../utility.h: this one is the
- * library's library/utility/utility.h.  The host stub defines only
- * getselector (wait would clash with the C library's). */
+/* e-puck library API, utility (library/utility/utility.h), declarations
+ * only (see ../README.md).  Not the paper's umbrella header ../../utility.h.
+ * wait(num) is the library's busy loop: on the simulated robot it takes
+ * the time that loop takes on the dsPIC (docs/runtime.md, the C program
+ * model); resetTime and getDiffTimeMs* count the A/D interrupt's ticks
+ * (1/16384 s) in simulated time. */
 #ifndef EPUCK_API_UTILITY_UTILITY_H
 #define EPUCK_API_UTILITY_UTILITY_H
 
 void wait(long num);
 int getselector(void);
+unsigned int getBatteryValueRaw(void);
+unsigned int getBatteryValuePercentage(void);
+void resetTime(void);
+float getDiffTimeMs(void);
+float getDiffTimeMsAndReset(void);
 
 #endif
