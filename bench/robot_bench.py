@@ -60,7 +60,8 @@ HOST_CFLAGS = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", "-O2"]
 # as epuckc's robot builds: no name labels
 AVR_CFLAGS = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", "-Os", "-DEPUCKRT_NO_NAMES"]
 CORE = [RT / name for name in RUNTIME_CORE]     # the runtime, one file per concern
-HOST_SOURCES = [*CORE, RT / "host" / "platform_host.c", RT / "host" / "epuck_stub.c"]
+HOST_SOURCES = [*CORE, RT / "host" / "platform_host.c", RT / "host" / "scenario.c",
+                RT / "host" / "epuck_stub.c"]
 BUDGET_CYCLES = 16000           # 1 ms at 16 MIPS
 SIM_MCU = "atmega1284p"
 # epuckc before static registration counted every rule against the runtime's

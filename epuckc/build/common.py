@@ -43,8 +43,8 @@ BUILD_FLAGS = ["-pipe"]
 
 
 # The runtime's files for each target, relative to runtime_c/.
-HOST_SOURCES = [*RUNTIME_CORE, *RUNTIME_DEVICES, "host/platform_host.c", "host/epuck_stub.c",
-                "host/stub_devices.c", "host/cmain.c", "host/epuck_more.c"]
+HOST_SOURCES = [*RUNTIME_CORE, *RUNTIME_DEVICES, "host/platform_host.c", "host/scenario.c",
+                "host/epuck_stub.c", "host/stub_devices.c", "host/cmain.c", "host/epuck_more.c"]
 
 
 # epuck_api_unsimulated: #error headers of what the simulator does not model

@@ -30,7 +30,7 @@ def _add_capacity_options(p: argparse.ArgumentParser):
 
 # Bounds of the numbers given on the command line: the runtime's ids are
 # 16-bit ints on the robot, and the harness counts at most MAX_TIME_LIMIT_MS
-# of virtual time (MAX_SCENARIO_MS in runtime_c/host/platform_host.c).
+# of virtual time (MAX_SCENARIO_MS in runtime_c/host/host_harness.h).
 MAX_CAPACITY = 32767
 
 

@@ -32,8 +32,8 @@ from ..build.host import compile_objects, host_build_key, runtime_cache_dir, run
 from ..base.resources import RUNTIME_CORE, RUNTIME_DEVICES, cache_dir, runtime_dir
 from .world import World, runner_spec
 
-ROBOT_SOURCES = [*RUNTIME_CORE, *RUNTIME_DEVICES, "host/platform_host.c", "host/epuck_stub.c",
-                 "host/stub_devices.c", "host/cmain.c", "host/epuck_more.c", "enki/robot_glue.c"]
+ROBOT_SOURCES = [*RUNTIME_CORE, *RUNTIME_DEVICES, "host/platform_host.c", "host/scenario.c",
+                 "host/epuck_stub.c", "host/stub_devices.c", "host/cmain.c", "host/epuck_more.c", "enki/robot_glue.c"]
 ROBOT_INCLUDES = [".", "epuck_api", "host", "enki", "epuck_api_unsimulated"]
 # robot_glue.c's header comment says why each of these is wrapped
 WRAPPED = ["stub_motors_1ms", "stub_pose", "stub_set_geometry", "getenv", "exit"]

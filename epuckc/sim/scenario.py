@@ -1,6 +1,6 @@
 """Scenario files (`--scenario x.scn`), checked before anything is built.
 
-The host harness reads them (runtime_c/host/platform_host.c, load_scenario)
+The host harness reads them (runtime_c/host/scenario.c, host_load_scenario)
 and stops at the first problem; this module applies the same rules to the
 whole file first and reports every problem with its line, column and a
 caret, so a run never starts with a broken scenario. The two are held to
@@ -16,7 +16,7 @@ import re
 from pathlib import Path
 from typing import Optional
 
-MAX_SCENARIO_MS = 1_000_000_000         # MAX_SCENARIO_MS in platform_host.c
+MAX_SCENARIO_MS = 1_000_000_000         # MAX_SCENARIO_MS in host/host_harness.h
 MAX_ITEMS = 64                          # tokens on a line
 EXAMPLE = '"1200 ms ir0=850"'
 

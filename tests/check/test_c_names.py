@@ -45,7 +45,8 @@ def test_runtime_symbols_are_all_known_to_the_checker(tmp_path):
     can clash at link time."""
     cc, nm = require_tool("cc"), require_tool("nm")
     names = visible_names()
-    for src in (*RUNTIME_CORE, "host/platform_host.c", "host/epuck_stub.c", "platform_robot.c"):
+    for src in (*RUNTIME_CORE, "host/platform_host.c", "host/scenario.c", "host/epuck_stub.c",
+                "platform_robot.c"):
         obj = tmp_path / "x.o"
         subprocess.run([cc, *STRICT, f"-I{RUNTIME}", f"-I{RUNTIME / 'epuck_api'}",
                         f"-I{RUNTIME / 'host'}", "-c", str(RUNTIME / src), "-o", str(obj)],

@@ -123,7 +123,8 @@ def build_and_run(text: str, scn: str, tmp_path: Path) -> list:
     subprocess.run([require_tool("cc"), *STRICT, "-O1", "-DMAX_ACTIONS=1", "-DMAX_EVENTS=1",
                     f"-I{RT}", f"-I{RT / 'epuck_api'}", f"-I{RT / 'host'}", str(c_file),
                     *(str(RT / name) for name in RUNTIME_CORE), str(RT / "host" / "platform_host.c"),
-                    str(RT / "host" / "epuck_stub.c"), "-o", str(exe)], check=True)
+                    str(RT / "host" / "scenario.c"), str(RT / "host" / "epuck_stub.c"), "-o",
+                    str(exe)], check=True)
     (tmp_path / "rules.scn").write_text(scn)
     env = {k: v for k, v in os.environ.items() if not k.startswith("EPUCK_")}
     env.update(EPUCK_SCENARIO=str(tmp_path / "rules.scn"), EPUCK_TRACE=str(tmp_path / "t.jsonl"),

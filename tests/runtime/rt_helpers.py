@@ -14,7 +14,8 @@ from epuckc.base.resources import RUNTIME_CORE, RUNTIME_DEVICES
 RUNTIME = REPO / "runtime_c"
 PROGRAMS = Path(__file__).resolve().parent / "programs"
 SOURCES = [*(RUNTIME / name for name in (*RUNTIME_CORE, *RUNTIME_DEVICES)),
-           RUNTIME / "host" / "platform_host.c", RUNTIME / "host" / "epuck_stub.c",
+           RUNTIME / "host" / "platform_host.c", RUNTIME / "host" / "scenario.c",
+           RUNTIME / "host" / "epuck_stub.c",
            RUNTIME / "host" / "stub_devices.c"]
 INCLUDES = [f"-I{RUNTIME}", f"-I{RUNTIME / 'epuck_api'}", f"-I{RUNTIME / 'host'}"]
 STRICT = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic"]

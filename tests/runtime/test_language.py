@@ -17,7 +17,7 @@ from tests.support.programs import epuckc, run_program
 
 RUNTIME = REPO / "runtime_c"
 HOST = [*(RUNTIME / n for n in RUNTIME_CORE), RUNTIME / "host" / "platform_host.c",
-        RUNTIME / "host" / "epuck_stub.c"]
+        RUNTIME / "host" / "scenario.c", RUNTIME / "host" / "epuck_stub.c"]
 INCLUDES = [f"-I{RUNTIME}", f"-I{RUNTIME / 'epuck_api'}", f"-I{RUNTIME / 'host'}"]
 STRICT = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic"]
 UBSAN = ["-g", "-fsanitize=address,undefined", "-fno-sanitize-recover=all"]

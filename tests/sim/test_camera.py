@@ -41,7 +41,7 @@ int main(void) {{
     cc = require_tool("cc")
     sources = [RUNTIME / n for n in ("epuckrt.c", "rt_motion.c", "rt_sensors.c", "rt_modes.c",
                                      "rt_lang.c", "rt_camera.c")]
-    sources += [RUNTIME / "host" / n for n in ("platform_host.c", "epuck_stub.c",
+    sources += [RUNTIME / "host" / n for n in ("platform_host.c", "scenario.c", "epuck_stub.c",
                                                "stub_devices.c")]
     exe = tmp_path / "t"
     subprocess.run([cc, "-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic",
