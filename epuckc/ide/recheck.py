@@ -75,7 +75,8 @@ class _Capture:
 
 _MISSING = object()
 _ALL = object()
-_TABLES = ("consts", "actions", "externs", "broken_externs", "rule_names", "modes", "vars")
+_TABLES = ("consts", "const_arrays", "actions", "externs", "broken_externs", "rule_names", "modes",
+           "vars")
 
 
 class _Watched:
@@ -185,7 +186,8 @@ class IncrementalChecker(Checker):
         """Everything a rule or a named action can depend on besides itself:
         the geometry and every declaration (AST nodes compare by identity
         first, so this is cheap when nothing changed)."""
-        return (self.geo, tuple(self.consts.items()), tuple(self.actions.items()),
+        return (self.geo, tuple(self.consts.items()), tuple(self.const_arrays.items()),
+                tuple(self.actions.items()),
                 tuple((n, e.kind, e.params, e.node) for n, e in self.externs.items()),
                 tuple(self.broken_externs.items()), tuple(self.rule_names),
                 tuple(self.modes.items()), tuple(self.vars.items()))
