@@ -82,10 +82,7 @@ class Checker(Names, Externs, RobotSettings, Values, Exprs, Variables, Ranges, C
                             for name, (_, values) in self.const_arrays.items()}
         self._resolve_actions(out)
         out.modes, out.initial_mode = list(self.modes), self.initial_mode
-        for rule in self.program.of_type(ast.Rule):
-            resolved = self._rule(rule)
-            if resolved is not None:
-                out.rules.append(resolved)
+        self._rules(out)
         # Warnings that conclude from an absence ("no action runs set_timer",
         # "never used") are drawn only from a complete program: a statement
         # or call dropped by an error may be the very one that was missing,
@@ -99,6 +96,14 @@ class Checker(Names, Externs, RobotSettings, Values, Exprs, Variables, Ranges, C
         races.check_program(self, out)
         self._no_warnings_beside_errors()
         return out
+
+    def _rules(self, out: CheckedProgram):
+        """Resolve every rule, in the file's order (the language server
+        replays unchanged ones, ide/recheck.py)."""
+        for rule in self.program.of_type(ast.Rule):
+            resolved = self._rule(rule)
+            if resolved is not None:
+                out.rules.append(resolved)
 
     def _no_warnings_beside_errors(self):
         """One root mistake gives one error: a warning about a statement

@@ -200,6 +200,7 @@ class Analyzer:
         self._prev: Optional[tuple] = None
         self._next_id = 1
         self._memo = _Memo()
+        self._placed: dict = {}     # what ModePlacer made of each statement, last time
         self._line_starts = None    # of the last text split (_chunks)
         self._real: dict = {}   # id(Diagnostic) -> (it, statements, their lines, in real lines)
 
@@ -225,7 +226,7 @@ class Analyzer:
         program = ast.Program(self.name)
         diags = Collector(_Named(self.name))
         items = diags.items
-        placer = ModePlacer(program, diags)     # mode blocks span statements
+        placer = ModePlacer(program, diags, self._placed)   # mode blocks span statements
         said = set()
         for entry in entries:
             for statement in entry.statements:
@@ -240,6 +241,7 @@ class Analyzer:
             elif entry.diags:
                 items.extend(entry.diags)
         placer.finish()
+        self._placed = placer.placed
         checker = IncrementalChecker(program, diags, self._memo, **self.options)
         checked = checker.check()
         memo = self._memo.rules

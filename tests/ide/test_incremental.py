@@ -338,3 +338,54 @@ def test_components_an_edit_does_not_reach_are_not_solved_again(monkeypatch):
     analysis = analyzer.analyse(edited)
     assert len(solved) == 1
     assert analysis.diagnostics == full_check(edited)
+
+
+def test_blocks_of_unchanged_rules_are_replayed_whole_and_equal_a_full_check(monkeypatch):
+    """The rules are replayed a block at a time (recheck._Block): a one-rule
+    edit checks again at most the rules of the blocks it touches, and the
+    result (every diagnostic, the resolved rules in order, the facts the
+    whole-program checks read) is a full check's, edit after edit, for
+    edits that put errors in, change intervals, and add or remove rules."""
+    import sys
+    from epuckc.check.checker import Checker
+    from epuckc.ide import recheck
+    sys.path.insert(0, str(REPO / "bench"))
+    import lsp_bench as lb
+    text = _expression_program(300)
+    analyzer = Analyzer("prog.epk")
+    analyzer.analyse(text)
+    assert len(analyzer._memo.blocks) >= 300 // recheck.BLOCK
+    replayed = _counting(monkeypatch, recheck.IncrementalChecker, "_rule")
+    rng = random.Random(31)
+    edits = (lb.error_edits(text, rng, 6) + lb.interval_edits(text, rng, 4)
+             + lb.edits(text, rng, 4))     # (each undone by the next)
+    line = text.index("\n", len(text) // 2) + 1
+    edits.append((line, line, "on timer(3 s) do led_toggle(led1)\n"))   # a rule more
+    same_declarations = 0
+    for start, end, new in edits:
+        replayed.clear()
+        env = analyzer._memo.env
+        text = text[:start] + new + text[end:]
+        analysis = analyzer.analyse(text)
+        assert analysis.diagnostics == full_check(text)
+        whole = Checker(analysis.program, Collector(analysis.source))
+        full = whole.check()
+        assert [r.node for r in analysis.checked.rules] == [r.node for r in full.rules]
+        for fact in recheck._Capture.FACTS:
+            assert getattr(analysis.checker, fact) == getattr(whole, fact), fact
+        if analyzer._memo.env is env:      # (else each rule looks its names up again)
+            same_declarations += 1
+            assert len(replayed) <= 3 * recheck.BLOCK
+    assert same_declarations >= 5
+
+
+def test_a_rule_that_reads_a_constant_array_is_checked_again_when_the_array_goes():
+    """A rule looks constant arrays up too (check/arrays.py): when the
+    array's declaration is broken, the rule's `dot` is checked again
+    (hypothesis found the rule replayed with the old array)."""
+    text = ("# dot of arrays of different sizes\nconst W = [8, 4, 2, 0]\nvar turn = 0\n"
+            "every 10 ms do turn = dot(W, ir) / 16\n")
+    analyzer = Analyzer("prog.epk")
+    assert "E063" in {d.code for d in analyzer.analyse(text).diagnostics}
+    for edited in (text[36:], text, text.replace("[8, 4, 2, 0]", "[8, 4, 2, 0, 1, 1, 1, 1]")):
+        assert analyzer.analyse(edited).diagnostics == full_check(edited)
