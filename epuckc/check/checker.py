@@ -8,6 +8,7 @@ starts from that and never re-derives a value.
 from __future__ import annotations
 
 import bisect
+import operator
 from pathlib import Path
 from typing import Optional
 
@@ -27,6 +28,8 @@ from .program import CheckedProgram
 from .robot import RobotSettings
 from .rules import Rules
 from .values import Values
+
+_START = operator.itemgetter(0, 1)     # a Span's (line, column)
 
 
 class Checker(Names, Externs, RobotSettings, Values, Exprs, Variables, Ranges, Calls, Rules,
@@ -116,8 +119,8 @@ class Checker(Names, Externs, RobotSettings, Values, Exprs, Variables, Ranges, C
             return
         # (sorted: the language server numbers statements' lines by their ids)
         statements = sorted((s.span for s in self.program.statements
-                             if getattr(s, "span", None)), key=lambda s: (s.line, s.column))
-        starts = [(s.line, s.column) for s in statements]
+                             if getattr(s, "span", None)), key=_START)
+        starts = list(map(_START, statements))
 
         def holder(span):
             i = bisect.bisect_right(starts, (span.line, span.column)) - 1

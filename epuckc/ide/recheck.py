@@ -16,6 +16,7 @@ from ..check import conditions as cond
 from ..check.checker import Checker
 from ..check.program import CheckedProgram
 from ..check.races import RaceMemo
+from ..check.rules import may_never_fire
 from ..check.ranges import RangeMemo
 from ..diagnostics import Collector, Diagnostic
 from ..syntax import ast
@@ -47,7 +48,7 @@ class _Block:
     diagnostics in order, and the union of their facts. Only rules whose
     diagnostics are all their own (no diagnostic said once for the file)
     make a block, so replaying it is what replaying each would do."""
-    __slots__ = ("rules", "ids", "env", "geo", "deps", "resolved", "own", "facts")
+    __slots__ = ("rules", "ids", "env", "geo", "deps", "resolved", "maybe", "own", "facts")
 
     def __init__(self, rules, env, geo, hits):
         self.rules, self.ids, self.env, self.geo = rules, tuple(map(id, rules)), env, geo
@@ -56,6 +57,7 @@ class _Block:
         self.deps = list({(attr, name, id(found)): (attr, name, found)
                           for h in hits for attr, name, found in h[2]}.values())
         self.resolved = [h[3] for h in hits if h[3] is not None]
+        self.maybe = [r for r in self.resolved if may_never_fire(r)]   # (see _never_fire)
         self.own = [d for h in hits for d in h[7]]
         facts: dict = {}
         for h in hits:
@@ -213,6 +215,7 @@ class IncrementalChecker(Checker):
         self.race_memo = memo.races
         self._known: Optional[set] = None
         self._env_now = None
+        self._maybe: list = []      # the rules _never_fire looks at (_rules)
         self._compared: dict = {}   # (table, name, id(found)) -> (found, still the same)
 
     def _env(self):
@@ -303,6 +306,7 @@ class IncrementalChecker(Checker):
         env = self._env_now
         rules = self.program.of_type(ast.Rule)
         items, resolved = self.diags.items, out.rules
+        maybe = self._maybe = []
         start, n = 0, len(rules)
         while start < n:
             end = start
@@ -321,16 +325,22 @@ class IncrementalChecker(Checker):
                     r = self._rule(rule)
                     if r is not None:
                         resolved.append(r)
+                        if may_never_fire(r):
+                            maybe.append(r)
                 block = self._block(run, env)
             else:
                 items.extend(block.own)
                 resolved.extend(block.resolved)
+                maybe.extend(block.maybe)
                 for f, values in block.facts:
                     getattr(self, f).update(values)
             if block is not None:
                 blocks[id(run[0])] = block
             start = end
         memo.blocks = blocks
+
+    def _may_never_fire(self, out: CheckedProgram):
+        return self._maybe
 
     def _block(self, run, env) -> Optional[_Block]:
         """The rules of `run`, just checked or replayed, as a block, if each
