@@ -45,6 +45,7 @@ from __future__ import annotations
 
 import bisect
 import gc
+import itertools
 import operator
 import re
 from dataclasses import dataclass, replace
@@ -64,6 +65,7 @@ from .statements import (_CR_ENDS_LINES, _MARGIN, _ONCE, VLINE, Entry, _boundari
 
 # words that name lines in a diagnostic's text, and those of them that are virtual
 _ID = operator.attrgetter("id")
+_STATEMENTS, _DIAGS = operator.attrgetter("statements"), operator.attrgetter("diags")
 _FIRST, _SECOND = operator.itemgetter(0), operator.itemgetter(1)
 _LINE_WORDS = re.compile(r"\b(lines?) (\d+(?:, \d+)*)")
 _VIRTUAL_LINE = re.compile(r"\blines? (?:\d+, )*?\d{7,}")
@@ -223,25 +225,8 @@ class Analyzer:
         if split is None:
             return self._whole(text)
         starts, lines, entries = split
-        program = ast.Program(self.name)
-        diags = Collector(_Named(self.name))
+        program, diags = self._place(entries)
         items = diags.items
-        placer = ModePlacer(program, diags, self._placed)   # mode blocks span statements
-        said = set()
-        for entry in entries:
-            for statement in entry.statements:
-                placer.add(statement)
-            if entry.once:
-                for d in entry.diags:
-                    if d.code in _ONCE:
-                        if (d.code, d.message) in said:
-                            continue
-                        said.add((d.code, d.message))
-                    items.append(d)
-            elif entry.diags:
-                items.extend(entry.diags)
-        placer.finish()
-        self._placed = placer.placed
         checker = IncrementalChecker(program, diags, self._memo, **self.options)
         checked = checker.check()
         memo = self._memo.rules
@@ -251,6 +236,39 @@ class Analyzer:
         analysis = self._finish(text, starts, lines, entries, program, checker, checked, items)
         analysis._line_starts = self._line_starts     # (the split's: the same text's)
         return analysis
+
+    def _place(self, entries) -> tuple:
+        """The program of the entries' statements (ModePlacer: mode blocks
+        span statements) and a Collector of their diagnostics, in the order
+        a whole file's parse gives them. The statements are placed all at
+        once; only if placing them says something (a mode's error, an
+        expression too deep) are they placed again entry by entry, so that
+        what it says comes between the entries' own diagnostics."""
+        for interleaved in (False, True):
+            program = ast.Program(self.name)
+            diags = Collector(_Named(self.name))
+            items = diags.items
+            placer = ModePlacer(program, diags, self._placed)
+            if not interleaved:
+                placer.extend(list(itertools.chain.from_iterable(map(_STATEMENTS, entries))))
+                if items:
+                    continue
+            said = set()
+            for entry in entries if interleaved else filter(_DIAGS, entries):
+                if interleaved and entry.statements:
+                    placer.extend(entry.statements)
+                if entry.once:
+                    for d in entry.diags:
+                        if d.code in _ONCE:
+                            if (d.code, d.message) in said:
+                                continue
+                            said.add((d.code, d.message))
+                        items.append(d)
+                elif entry.diags:
+                    items.extend(entry.diags)
+            placer.finish()
+            self._placed = placer.placed
+            return program, diags
 
     def _chunks(self, text: str) -> Optional[tuple]:
         """The statements of `text`: (starts, lines, entries). Only the

@@ -48,10 +48,12 @@ class _Block:
     diagnostics in order, and the union of their facts. Only rules whose
     diagnostics are all their own (no diagnostic said once for the file)
     make a block, so replaying it is what replaying each would do."""
-    __slots__ = ("rules", "ids", "env", "geo", "deps", "resolved", "maybe", "own", "facts")
+    __slots__ = ("rules", "ids", "closed", "env", "geo", "deps", "resolved", "maybe", "own",
+                 "facts")
 
     def __init__(self, rules, env, geo, hits):
         self.rules, self.ids, self.env, self.geo = rules, tuple(map(id, rules)), env, geo
+        self.closed = not (rules[-1].span.line // VLINE) % BLOCK   # (else it ended the file)
         # every name its rules looked up, once (what makes it valid again
         # when a declaration changed, see _Watched)
         self.deps = list({(attr, name, id(found)): (attr, name, found)
@@ -309,18 +311,22 @@ class IncrementalChecker(Checker):
         maybe = self._maybe = []
         start, n = 0, len(rules)
         while start < n:
-            end = start
-            while end < n - 1 and (rules[end].span.line // VLINE) % BLOCK:
+            block = old.get(id(rules[start]))
+            end = start + len(block.ids) if block is not None else n + 1
+            if end <= n and (block.closed or end == n) \
+                    and block.ids == tuple(map(id, rules[start:end])):
+                same = True             # (a block's end is where it was: no scan)
+            else:
+                same, end = False, start
+                while end < n - 1 and (rules[end].span.line // VLINE) % BLOCK:
+                    end += 1
                 end += 1
-            end += 1
             run = rules[start:end]
-            block = old.get(id(run[0]))
-            if block is not None and block.env is not env and block.ids == tuple(map(id, run)) \
-                    and self._still_valid(block.geo, block.deps):
+            if same and block.env is not env and self._still_valid(block.geo, block.deps):
                 block.env = env             # (each of its rules too: see _rule)
                 for rule in run:
                     self.memo.rules[id(rule)][6] = env
-            if block is None or block.env is not env or block.ids != tuple(map(id, run)):
+            if not same or block.env is not env:
                 for rule in run:
                     r = self._rule(rule)
                     if r is not None:

@@ -425,6 +425,24 @@ class ModePlacer:
         self._last = placed
         self.placed = None if placed is None else {}
 
+    def extend(self, statements) -> None:
+        """add() each of `statements`; one kept from last time (`placed`),
+        outside any mode and not too deep, is appended as it is."""
+        last, placed = self._last, self.placed
+        if last is None or self.modes:
+            for statement in statements:
+                self.add(statement)
+            return
+        append = self.program.statements.append
+        for statement in statements:
+            hit = last.get(id(statement))
+            if hit is not None and hit[0] is statement and hit[1] is None and hit[2] is None \
+                    and not self.modes:
+                placed[id(statement)] = hit
+                append(statement)
+            else:
+                self.add(statement)
+
     def add(self, statement) -> None:
         program, diags = self.program, self.diags
         mode = self.modes[-1] if self.modes else None

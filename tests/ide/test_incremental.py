@@ -389,3 +389,26 @@ def test_a_rule_that_reads_a_constant_array_is_checked_again_when_the_array_goes
     assert "E063" in {d.code for d in analyzer.analyse(text).diagnostics}
     for edited in (text[36:], text, text.replace("[8, 4, 2, 0]", "[8, 4, 2, 0, 1, 1, 1, 1]")):
         assert analyzer.analyse(edited).diagnostics == full_check(edited)
+
+
+def test_rules_in_modes_are_replayed_and_placing_errors_keep_their_order(monkeypatch):
+    """A rule inside a mode is the same object from one analysis to the
+    next (ModePlacer keeps what it made of each statement), so an edit
+    elsewhere does not check it again; what placing statements reports
+    (a definition inside a mode, a mode not closed) comes in the order of
+    a whole file's parse, between the statements' own errors."""
+    import epuckc.ide.incremental as inc
+    rules = "\n".join(f"  on timer({i + 1} s) do set_timer, start_straight(300, {i + 1} cm)"
+                      for i in range(40))
+    text = f"on immediate do set_timer\nmode roam {{\n{rules}\n}}\non stop_motor do stop\n"
+    analyzer = Analyzer("prog.epk")
+    analyzer.analyse(text)
+    checked = _counting(monkeypatch, inc.Checker, "_rule")
+    edited = text.replace("do stop\n", "do stop, set_timer\n")
+    analysis = analyzer.analyse(edited)
+    assert len(checked) == 1            # (before the full check, which checks them all)
+    assert analysis.diagnostics == full_check(edited)
+    for edited in (edited.replace("  on timer(3 s)", "  const k = 3\n  on timer(3 s)"),
+                   edited.replace("on timer(5 s) do", "on timer(5 s) do do"),
+                   edited.replace("}\n", ""), edited):
+        assert analyzer.analyse(edited).diagnostics == full_check(edited)
