@@ -29,7 +29,8 @@ a 1,000-rule file only the edited statement is lexed, parsed and checked:
    Resolving each rule, the expensive part, is replayed (its diagnostics
    and the facts the whole-program checks need) when the rule is the same
    object and every name it looked up (`_Watched`) still means the same
-   (a guard's narrowing looks up only the variables it names); named
+   (a guard's narrowing looks up only the variables it names), by blocks
+   of about 32 rules whose ends an edit does not move (`_Block`); named
    actions are replayed as a whole when no declaration changed. The
    variables' intervals are solved again only for the components of their
    dependency graph that an edit reaches (check/ranges.py), and W009 keeps
