@@ -62,7 +62,8 @@ from ..syntax.lexer import MAX_LEXICAL_ERRORS
 from ..syntax.parser import ModePlacer, parse
 from .recheck import IncrementalChecker, _Memo
 from .statements import (_CR_ENDS_LINES, _MARGIN, _ONCE, VLINE, Entry, _boundaries, _common_prefix,
-                         _common_suffix, _parse_chunk, line_starts)
+                         _common_suffix, _parse_chunk, line_starts,
+                         patched_line_starts)
 
 # words that name lines in a diagnostic's text, and those of them that are virtual
 _ID = operator.attrgetter("id")
@@ -293,7 +294,8 @@ class Analyzer:
         middle = [o_starts[k]] if k > 0 else [0]
         middle_kws = [o_kws[k]] if k > 0 else [None]
         j = len(o_entries)      # the first old statement kept after the edit
-        starts_of_lines = line_starts(text)
+        starts_of_lines = line_starts(text) if prev is None or self._line_starts is None \
+            else patched_line_starts(self._line_starts, len(old), text, p, s)
         for at, kw in _boundaries(text, o_starts[k], starts_of_lines):
             line_start = starts_of_lines[bisect.bisect_right(starts_of_lines, at) - 1]
             if at >= suffix_from and o_entries and line_start > suffix_from:

@@ -412,3 +412,18 @@ def test_rules_in_modes_are_replayed_and_placing_errors_keep_their_order(monkeyp
                    edited.replace("on timer(5 s) do", "on timer(5 s) do do"),
                    edited.replace("}\n", ""), edited):
         assert analyzer.analyse(edited).diagnostics == full_check(edited)
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.text(alphabet="ab\r\n", max_size=30), st.integers(0, 30), st.integers(0, 4),
+       st.text(alphabet="ab\r\n", max_size=5))
+def test_line_starts_patched_after_an_edit_equal_those_found_again(old, at, cut, new):
+    """The split keeps the previous text's line starts where the edit
+    cannot move them (statements.patched_line_starts): the same as
+    line_starts of the new text, \\r and \\r\\n around the edit too."""
+    from epuckc.ide.statements import _common_prefix, _common_suffix, patched_line_starts
+    at = min(at, len(old))
+    text = old[:at] + new + old[at + cut:]
+    p = _common_prefix(old, text)
+    s = _common_suffix(old, text, min(len(old), len(text)) - p)
+    assert patched_line_starts(line_starts(old), len(old), text, p, s) == line_starts(text)
