@@ -427,3 +427,16 @@ def test_line_starts_patched_after_an_edit_equal_those_found_again(old, at, cut,
     p = _common_prefix(old, text)
     s = _common_suffix(old, text, min(len(old), len(text)) - p)
     assert patched_line_starts(line_starts(old), len(old), text, p, s) == line_starts(text)
+
+
+def test_an_unknown_name_behind_a_constant_read_by_an_assignment_is_reported():
+    """The intervals evaluate an assignment before the rules are checked,
+    and drop what they say: `epuckc check` then forgot to report the
+    unknown name behind the constant at the rule (hypothesis found the
+    language server saying it and the full check not)."""
+    text = ("var v = 0\nconst K = deg\n"
+            "every 10 ms do v = K + 1\non immediate do set_timer\n")
+    full = full_check(text)
+    assert [(d.code, d.span.line) for d in full if d.code == "E013"] == [("E013", 2)]
+    analyzer = Analyzer("prog.epk")
+    assert analyzer.analyse(text).diagnostics == full
