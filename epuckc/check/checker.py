@@ -8,6 +8,7 @@ starts from that and never re-derives a value.
 from __future__ import annotations
 
 import bisect
+import operator
 from pathlib import Path
 from typing import Optional
 
@@ -27,6 +28,8 @@ from .program import CheckedProgram
 from .robot import RobotSettings
 from .rules import Rules
 from .values import Values
+
+_START = operator.itemgetter(0, 1)     # a Span's (line, column)
 
 
 class Checker(Names, Externs, RobotSettings, Values, Exprs, Variables, Ranges, Calls, Rules,
@@ -82,10 +85,7 @@ class Checker(Names, Externs, RobotSettings, Values, Exprs, Variables, Ranges, C
                             for name, (_, values) in self.const_arrays.items()}
         self._resolve_actions(out)
         out.modes, out.initial_mode = list(self.modes), self.initial_mode
-        for rule in self.program.of_type(ast.Rule):
-            resolved = self._rule(rule)
-            if resolved is not None:
-                out.rules.append(resolved)
+        self._rules(out)
         # Warnings that conclude from an absence ("no action runs set_timer",
         # "never used") are drawn only from a complete program: a statement
         # or call dropped by an error may be the very one that was missing,
@@ -100,6 +100,14 @@ class Checker(Names, Externs, RobotSettings, Values, Exprs, Variables, Ranges, C
         self._no_warnings_beside_errors()
         return out
 
+    def _rules(self, out: CheckedProgram):
+        """Resolve every rule, in the file's order (the language server
+        replays unchanged ones, ide/recheck.py)."""
+        for rule in self.program.of_type(ast.Rule):
+            resolved = self._rule(rule)
+            if resolved is not None:
+                out.rules.append(resolved)
+
     def _no_warnings_beside_errors(self):
         """One root mistake gives one error: a warning about a statement
         that has an error (its own place or a note's is in it) is dropped,
@@ -111,8 +119,8 @@ class Checker(Names, Externs, RobotSettings, Values, Exprs, Variables, Ranges, C
             return
         # (sorted: the language server numbers statements' lines by their ids)
         statements = sorted((s.span for s in self.program.statements
-                             if getattr(s, "span", None)), key=lambda s: (s.line, s.column))
-        starts = [(s.line, s.column) for s in statements]
+                             if getattr(s, "span", None)), key=_START)
+        starts = list(map(_START, statements))
 
         def holder(span):
             i = bisect.bisect_right(starts, (span.line, span.column)) - 1

@@ -61,6 +61,7 @@ class RangeMemo:
 
 
 _ANY = object()     # (a statement whose assignments do not depend on its mode)
+_SAID_ONCE = ("_const_reported", "_const_diagnostics", "device_reported")
 
 
 def _runs_once(stmt) -> bool:
@@ -310,8 +311,14 @@ class Ranges:
         single = [c for c in calls if id(c) in once]
         if len(single) > ONCE_MAX:
             repeated, single = calls, []
+        # (what is said here is dropped: the rules say it; so the memories
+        # of what was said once must not keep it either, or a rule would
+        # not say it: an unknown constant behind a constant was lost so)
         saved = self.diags
+        said = {f: getattr(self, f) for f in _SAID_ONCE if hasattr(self, f)}
         self.diags = Collector(saved.source)
+        for f, value in said.items():
+            setattr(self, f, set(value))
         try:
             self._join_assigned(repeated)
             for _ in single:
@@ -321,6 +328,8 @@ class Ranges:
             self._narrow_ranges(repeated + single)
         finally:
             self.diags = saved
+            for f, value in said.items():
+                setattr(self, f, value)
         return {name: (self.vars[name].lo, self.vars[name].hi)
                 for name in dict.fromkeys(c.target.name for c in calls)}
 

@@ -171,6 +171,11 @@ class Rules:
             return None
         return ResolvedEvent("standard", event, {}, tuple(sorted(conditions)), node=call)
 
+    def _may_never_fire(self, out: CheckedProgram):
+        """The rules _never_fire looks at (at least those that may_never_fire;
+        the language server keeps them by blocks of rules)."""
+        return out.rules
+
     def _never_fire(self, out: CheckedProgram, complete: bool):
         needs = {"timer": ("set_timer", "W001", "no action runs `set_timer`",
                            "add `set_timer` to an action, e.g. `on immediate do set_timer`"),
@@ -178,7 +183,7 @@ class Rules:
                             "add `start_sensor` to an action, e.g. `on immediate do start_sensor`")}
         no_motion = complete and not (self.called & MOTION_ACTIONS) \
             and not any(e.kind == "action" for e in self.externs.values())
-        for rule in out.rules:
+        for rule in self._may_never_fire(out):
             event, node = rule.event, rule.node
             if event.kind != "standard":
                 continue
@@ -197,3 +202,11 @@ class Rules:
                 self.diags.warning("W004", node.span,
                                    "`immediate repeat` runs its action at every poll, about 1000 times a second",
                                    help="remove `repeat` to run it once at start, or use `timer(...) repeat`")
+
+
+def may_never_fire(rule) -> bool:
+    """Whether _never_fire can say something of a resolved rule."""
+    event = rule.event
+    return event.kind == "standard" and (
+        event.name in ("timer", "sensor", "stop_motor")
+        or (event.name == "immediate" and bool(rule.repeat)))

@@ -29,7 +29,8 @@ a 1,000-rule file only the edited statement is lexed, parsed and checked:
    Resolving each rule, the expensive part, is replayed (its diagnostics
    and the facts the whole-program checks need) when the rule is the same
    object and every name it looked up (`_Watched`) still means the same
-   (a guard's narrowing looks up only the variables it names); named
+   (a guard's narrowing looks up only the variables it names), by blocks
+   of about 32 rules whose ends an edit does not move (`_Block`); named
    actions are replayed as a whole when no declaration changed. The
    variables' intervals are solved again only for the components of their
    dependency graph that an edit reaches (check/ranges.py), and W009 keeps
@@ -45,6 +46,7 @@ from __future__ import annotations
 
 import bisect
 import gc
+import itertools
 import operator
 import re
 from dataclasses import dataclass, replace
@@ -60,10 +62,12 @@ from ..syntax.lexer import MAX_LEXICAL_ERRORS
 from ..syntax.parser import ModePlacer, parse
 from .recheck import IncrementalChecker, _Memo
 from .statements import (_CR_ENDS_LINES, _MARGIN, _ONCE, VLINE, Entry, _boundaries, _common_prefix,
-                         _common_suffix, _parse_chunk, line_starts)
+                         _common_suffix, _parse_chunk, line_starts,
+                         patched_line_starts)
 
 # words that name lines in a diagnostic's text, and those of them that are virtual
 _ID = operator.attrgetter("id")
+_STATEMENTS, _DIAGS = operator.attrgetter("statements"), operator.attrgetter("diags")
 _FIRST, _SECOND = operator.itemgetter(0), operator.itemgetter(1)
 _LINE_WORDS = re.compile(r"\b(lines?) (\d+(?:, \d+)*)")
 _VIRTUAL_LINE = re.compile(r"\blines? (?:\d+, )*?\d{7,}")
@@ -200,6 +204,7 @@ class Analyzer:
         self._prev: Optional[tuple] = None
         self._next_id = 1
         self._memo = _Memo()
+        self._placed: dict = {}     # what ModePlacer made of each statement, last time
         self._line_starts = None    # of the last text split (_chunks)
         self._real: dict = {}   # id(Diagnostic) -> (it, statements, their lines, in real lines)
 
@@ -222,24 +227,8 @@ class Analyzer:
         if split is None:
             return self._whole(text)
         starts, lines, entries = split
-        program = ast.Program(self.name)
-        diags = Collector(_Named(self.name))
+        program, diags = self._place(entries)
         items = diags.items
-        placer = ModePlacer(program, diags)     # mode blocks span statements
-        said = set()
-        for entry in entries:
-            for statement in entry.statements:
-                placer.add(statement)
-            if entry.once:
-                for d in entry.diags:
-                    if d.code in _ONCE:
-                        if (d.code, d.message) in said:
-                            continue
-                        said.add((d.code, d.message))
-                    items.append(d)
-            elif entry.diags:
-                items.extend(entry.diags)
-        placer.finish()
         checker = IncrementalChecker(program, diags, self._memo, **self.options)
         checked = checker.check()
         memo = self._memo.rules
@@ -249,6 +238,39 @@ class Analyzer:
         analysis = self._finish(text, starts, lines, entries, program, checker, checked, items)
         analysis._line_starts = self._line_starts     # (the split's: the same text's)
         return analysis
+
+    def _place(self, entries) -> tuple:
+        """The program of the entries' statements (ModePlacer: mode blocks
+        span statements) and a Collector of their diagnostics, in the order
+        a whole file's parse gives them. The statements are placed all at
+        once; only if placing them says something (a mode's error, an
+        expression too deep) are they placed again entry by entry, so that
+        what it says comes between the entries' own diagnostics."""
+        for interleaved in (False, True):
+            program = ast.Program(self.name)
+            diags = Collector(_Named(self.name))
+            items = diags.items
+            placer = ModePlacer(program, diags, self._placed)
+            if not interleaved:
+                placer.extend(list(itertools.chain.from_iterable(map(_STATEMENTS, entries))))
+                if items:
+                    continue
+            said = set()
+            for entry in entries if interleaved else filter(_DIAGS, entries):
+                if interleaved and entry.statements:
+                    placer.extend(entry.statements)
+                if entry.once:
+                    for d in entry.diags:
+                        if d.code in _ONCE:
+                            if (d.code, d.message) in said:
+                                continue
+                            said.add((d.code, d.message))
+                        items.append(d)
+                elif entry.diags:
+                    items.extend(entry.diags)
+            placer.finish()
+            self._placed = placer.placed
+            return program, diags
 
     def _chunks(self, text: str) -> Optional[tuple]:
         """The statements of `text`: (starts, lines, entries). Only the
@@ -272,7 +294,8 @@ class Analyzer:
         middle = [o_starts[k]] if k > 0 else [0]
         middle_kws = [o_kws[k]] if k > 0 else [None]
         j = len(o_entries)      # the first old statement kept after the edit
-        starts_of_lines = line_starts(text)
+        starts_of_lines = line_starts(text) if prev is None or self._line_starts is None \
+            else patched_line_starts(self._line_starts, len(old), text, p, s)
         for at, kw in _boundaries(text, o_starts[k], starts_of_lines):
             line_start = starts_of_lines[bisect.bisect_right(starts_of_lines, at) - 1]
             if at >= suffix_from and o_entries and line_start > suffix_from:

@@ -16,6 +16,7 @@ from ..check import conditions as cond
 from ..check.checker import Checker
 from ..check.program import CheckedProgram
 from ..check.races import RaceMemo
+from ..check.rules import may_never_fire
 from ..check.ranges import RangeMemo
 from ..diagnostics import Collector, Diagnostic
 from ..syntax import ast
@@ -31,6 +32,40 @@ class _Memo:
         self.rules: dict = {}   # id(rule node) -> what the rule came to (see _rule)
         self.ranges = RangeMemo()   # the variables' intervals by component (check/ranges.py)
         self.races = RaceMemo()     # W009's facts of each rule and its last pairs (check/races.py)
+        self.blocks: dict = {}  # id(first rule of a block) -> _Block (IncrementalChecker._rules)
+
+
+# A block of rules ends after a rule whose statement id is a multiple of
+# this: ids are given in the order statements are parsed, so the ends of
+# the blocks an edit does not touch stay where they were.
+BLOCK = 32
+
+
+class _Block:
+    """A run of consecutive rules replayed at once: the rules (kept alive,
+    so that their ids stay theirs), the declarations (env) they were valid
+    with, and what they came to together: their results in order, their own
+    diagnostics in order, and the union of their facts. Only rules whose
+    diagnostics are all their own (no diagnostic said once for the file)
+    make a block, so replaying it is what replaying each would do."""
+    __slots__ = ("rules", "ids", "closed", "env", "geo", "deps", "resolved", "maybe", "own",
+                 "facts")
+
+    def __init__(self, rules, env, geo, hits):
+        self.rules, self.ids, self.env, self.geo = rules, tuple(map(id, rules)), env, geo
+        self.closed = not (rules[-1].span.line // VLINE) % BLOCK   # (else it ended the file)
+        # every name its rules looked up, once (what makes it valid again
+        # when a declaration changed, see _Watched)
+        self.deps = list({(attr, name, id(found)): (attr, name, found)
+                          for h in hits for attr, name, found in h[2]}.values())
+        self.resolved = [h[3] for h in hits if h[3] is not None]
+        self.maybe = [r for r in self.resolved if may_never_fire(r)]   # (see _never_fire)
+        self.own = [d for h in hits for d in h[7]]
+        facts: dict = {}
+        for h in hits:
+            for f, values in h[5]:
+                facts.setdefault(f, set()).update(values)
+        self.facts = tuple(facts.items())
 
 
 class _Capture:
@@ -43,7 +78,8 @@ class _Capture:
     says all its own diagnostics; what is said twice is dropped when the
     steps are put together (IncrementalChecker._replay), as the whole
     file's check says it once."""
-    FACTS = ("called", "used_actions", "const_used", "vars_used", "vars_assigned")
+    FACTS = ("called", "used_actions", "const_used", "vars_used", "vars_assigned",
+             "devices_used")
     FRESH = ("_const_memo", "_const_reported", "_const_diagnostics")
 
     def __init__(self, checker: Checker):
@@ -75,7 +111,8 @@ class _Capture:
 
 _MISSING = object()
 _ALL = object()
-_TABLES = ("consts", "actions", "externs", "broken_externs", "rule_names", "modes", "vars")
+_TABLES = ("consts", "const_arrays", "actions", "externs", "broken_externs", "rule_names",
+           "modes", "vars")
 
 
 class _Watched:
@@ -180,12 +217,15 @@ class IncrementalChecker(Checker):
         self.race_memo = memo.races
         self._known: Optional[set] = None
         self._env_now = None
+        self._maybe: list = []      # the rules _never_fire looks at (_rules)
+        self._compared: dict = {}   # (table, name, id(found)) -> (found, still the same)
 
     def _env(self):
         """Everything a rule or a named action can depend on besides itself:
         the geometry and every declaration (AST nodes compare by identity
         first, so this is cheap when nothing changed)."""
-        return (self.geo, tuple(self.consts.items()), tuple(self.actions.items()),
+        return (self.geo, tuple(self.consts.items()), tuple(self.const_arrays.items()),
+                tuple(self.actions.items()),
                 tuple((n, e.kind, e.params, e.node) for n, e in self.externs.items()),
                 tuple(self.broken_externs.items()), tuple(self.rule_names),
                 tuple(self.modes.items()), tuple(self.vars.items()))
@@ -229,14 +269,22 @@ class IncrementalChecker(Checker):
         """Does everything a rule looked up still say the same?"""
         if geo is not self.geo and geo != self.geo:
             return False
+        compared = self._compared
         for attr, name, found in deps:
             table = getattr(self, attr)
             if name is _ALL:
                 if tuple(table.items()) != found:
                     return False
             else:
-                now = table.get(name, _MISSING)
-                if now is not found and now != found:
+                # (rules read the same names: each name against each object
+                # it was found as is compared once a check; the object is
+                # kept with the answer, so its id cannot be another's)
+                key = (attr, name, id(found))
+                known = compared.get(key)
+                if known is None or known[0] is not found:
+                    now = table.get(name, _MISSING)
+                    known = compared[key] = (found, now is found or now == found)
+                if not known[1]:
                     return False
         return True
 
@@ -249,6 +297,70 @@ class IncrementalChecker(Checker):
             return super()._guarded_body(body, guard)
         finally:
             self.vars = table
+
+    def _rules(self, out: CheckedProgram):
+        """Every rule, a block of them at a time (_Block): a block whose
+        rules are the same objects, all valid with the same declarations,
+        is replayed with one extend and a few set unions; any other is
+        checked rule by rule (_rule) and, if it can, kept as a block."""
+        memo = self.memo
+        old, blocks = memo.blocks, {}
+        env = self._env_now
+        rules = self.program.of_type(ast.Rule)
+        items, resolved = self.diags.items, out.rules
+        maybe = self._maybe = []
+        start, n = 0, len(rules)
+        while start < n:
+            block = old.get(id(rules[start]))
+            end = start + len(block.ids) if block is not None else n + 1
+            if end <= n and (block.closed or end == n) \
+                    and block.ids == tuple(map(id, rules[start:end])):
+                same = True             # (a block's end is where it was: no scan)
+            else:
+                same, end = False, start
+                while end < n - 1 and (rules[end].span.line // VLINE) % BLOCK:
+                    end += 1
+                end += 1
+            run = rules[start:end]
+            if same and block.env is not env and self._still_valid(block.geo, block.deps):
+                block.env = env             # (each of its rules too: see _rule)
+                for rule in run:
+                    self.memo.rules[id(rule)][6] = env
+            if not same or block.env is not env:
+                for rule in run:
+                    r = self._rule(rule)
+                    if r is not None:
+                        resolved.append(r)
+                        if may_never_fire(r):
+                            maybe.append(r)
+                block = self._block(run, env)
+            else:
+                items.extend(block.own)
+                resolved.extend(block.resolved)
+                maybe.extend(block.maybe)
+                for f, values in block.facts:
+                    getattr(self, f).update(values)
+            if block is not None:
+                blocks[id(run[0])] = block
+            start = end
+        memo.blocks = blocks
+
+    def _may_never_fire(self, out: CheckedProgram):
+        return self._maybe
+
+    def _block(self, run, env) -> Optional[_Block]:
+        """The rules of `run`, just checked or replayed, as a block, if each
+        can be replayed with the rest (see _Block)."""
+        hits = [self.memo.rules.get(id(rule)) for rule in run]
+        geo, same_geo = self.geo, set()
+        for rule, hit in zip(run, hits):
+            if hit is None or hit[0] is not rule or hit[6] is not env or hit[4]:
+                return None
+            if hit[1] is not geo and id(hit[1]) not in same_geo:
+                if hit[1] != geo:       # (each check has its own Geometry object)
+                    return None
+                same_geo.add(id(hit[1]))
+        return _Block(run, env, geo, hits)
 
     def _rule(self, rule: ast.Rule):
         # hit: [node, geometry, lookups, result, diagnostics said once,

@@ -31,6 +31,25 @@ def line_starts(text: str) -> list:
     return [0] + [m.end() for m in _BREAK_RE.finditer(text)]
 
 
+def patched_line_starts(old_starts: list, old_length: int, text: str, prefix: int,
+                        suffix: int) -> list:
+    """line_starts(text), from those of the previous text (`old_starts`, of
+    `old_length` characters) that shares `text`'s first `prefix` and last
+    `suffix` characters (not overlapping): a line break is one or two
+    characters, so the starts before the prefix's end and those more than
+    one character into the suffix stay (shifted), and only the rest is
+    searched again."""
+    new_end = len(text) - suffix                    # where the suffix starts in text
+    keep = bisect.bisect_left(old_starts, prefix)
+    head = old_starts[:keep] if keep else [0]
+    middle = [m.end() for m in _BREAK_RE.finditer(text, max(0, prefix - 1),
+                                                   min(len(text), new_end + 3))
+              if prefix <= m.end() < new_end + 2]
+    delta = len(text) - old_length
+    tail = old_starts[bisect.bisect_left(old_starts, old_length - suffix + 2):]
+    return head + middle + ([x + delta for x in tail] if delta else tail)
+
+
 def split_statements(text: str) -> tuple:
     """The offsets where statements start, as `lexer.iter_statements` cuts
     them, and the keyword at each; the first is always 0 (the text before

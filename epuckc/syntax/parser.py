@@ -7,6 +7,7 @@ and the rest of the file is still checked.
 from __future__ import annotations
 
 from functools import lru_cache
+from typing import Optional
 
 from . import accel
 
@@ -412,10 +413,35 @@ class ModePlacer:
     server's incremental analysis (incremental.py), which parses statements
     on its own."""
 
-    def __init__(self, program: ast.Program, diags: Collector):
+    def __init__(self, program: ast.Program, diags: Collector, placed: Optional[dict] = None):
         self.program = program
         self.diags = diags
         self.modes: list = []       # the ModeOpens of the blocks open, innermost last
+        # With `placed` (the last program's, the language server's), what
+        # each statement came to is kept by it: id(statement) -> (it, the
+        # Ident of its mode, its too-deep node, the statement placed), so
+        # that a statement placed again is not walked again and a rule in
+        # a mode is the same object as last time (its checks are replayed).
+        self._last = placed
+        self.placed = None if placed is None else {}
+
+    def extend(self, statements) -> None:
+        """add() each of `statements`; one kept from last time (`placed`),
+        outside any mode and not too deep, is appended as it is."""
+        last, placed = self._last, self.placed
+        if last is None or self.modes:
+            for statement in statements:
+                self.add(statement)
+            return
+        append = self.program.statements.append
+        for statement in statements:
+            hit = last.get(id(statement))
+            if hit is not None and hit[0] is statement and hit[1] is None and hit[2] is None \
+                    and not self.modes:
+                placed[id(statement)] = hit
+                append(statement)
+            else:
+                self.add(statement)
 
     def add(self, statement) -> None:
         program, diags = self.program, self.diags
@@ -438,7 +464,18 @@ class ModePlacer:
                 self.modes.pop()
                 program.statements.append(ast.ModeEnd(statement.span))
             return
-        deep = too_deep(statement)
+        mode_name = mode.name if mode is not None else None
+        last = self._last
+        hit = None if last is None else last.get(id(statement))
+        if hit is None or hit[0] is not statement or hit[1] is not mode_name:
+            deep = too_deep(statement)
+            placed = statement
+            if deep is None and mode is not None and isinstance(statement, ast.Rule):
+                placed = statement.in_mode(mode.name)
+            hit = (statement, mode_name, deep, placed)
+        if self.placed is not None:
+            self.placed[id(statement)] = hit
+        deep = hit[2]
         if deep is not None:
             if isinstance(deep, ast.IfAction):
                 diags.error("E056", deep.span,
@@ -468,7 +505,7 @@ class ModePlacer:
                         f"`{mode.name.name}`", help=help,
                         notes=[Note(f"mode `{mode.name.name}` starts here", mode.span)])
         elif mode is not None:
-            statement = statement.in_mode(mode.name)
+            statement = hit[3]
         # a definition misplaced in a mode still defines its name: no follow-up errors
         program.statements.append(statement)
 

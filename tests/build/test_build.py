@@ -3,6 +3,7 @@ output, determinism, caching, the wheel."""
 import os
 import shutil
 import stat
+import re
 import subprocess
 import sys
 import zipfile
@@ -10,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from epuckc.base.resources import RUNTIME_CORE
+from epuckc.base.resources import RUNTIME_CORE, RUNTIME_DSPIC_DEVICES
 from tests.conftest import require_tool
 
 from tests.support.programs import EXAMPLES, REPO, epuckc
@@ -79,15 +80,18 @@ echo "xc16-bin2hex $*" >> {log}
         tool.chmod(tool.stat().st_mode | stat.S_IXUSR)
 
 
+def _library_sources() -> list:
+    """The paths of GCtronic's library that the generated Makefile compiles
+    (templates/dspic.mk.j2's `$(LIB)/...`)."""
+    template = (REPO / "templates" / "dspic.mk.j2").read_text()
+    return sorted(set(re.findall(r"\$\(LIB\)/([\w/.]+\.[cs])\b", template)))
+
+
 def _fake_library(root: Path) -> Path:
+    """A stand-in of GCtronic's library: an empty file at each of its paths
+    that the generated Makefile names."""
     lib = root / "e-puck-library"
-    for rel in ("motor_led/e_init_port.c", "motor_led/advance_one_timer/e_motors.c",
-                "motor_led/advance_one_timer/e_agenda.c", "motor_led/advance_one_timer/e_led.c",
-                "a_d/advance_ad_scan/e_ad_conv.c", "a_d/advance_ad_scan/e_prox.c",
-                "a_d/advance_ad_scan/e_acc.c", "a_d/advance_ad_scan/e_micro.c",
-                "motor_led/advance_one_timer/e_remote_control.c", "codec/e_sound.c",
-                "utility/utility.c", "codec/e_const_sound.s", "codec/e_init_codec_slave.s",
-                "codec/e_init_dci_master.s", "codec/e_isr_dci.s", "codec/e_sub_dci_kickoff.s"):
+    for rel in _library_sources():
         (lib / "library" / rel).parent.mkdir(parents=True, exist_ok=True)
         (lib / "library" / rel).write_text("/* stand-in */\n")
     return lib
@@ -128,8 +132,10 @@ def test_dspic_build_runs_make_with_xc16_from_xc16_dir(tmp_path):
     assert (out / "extern_spin.hex").is_file()
     calls = log.read_text().splitlines()
     compiles = [c for c in calls if " -c " in c]
-    # program, the runtime's files, robot layer, spin.c + the library's 11 C and 5 assembly files
-    assert len(compiles) == 1 + len(RUNTIME_CORE) + 1 + 1 + 11 + 5
+    # program, the runtime's files (its core and the e-puck's devices), robot
+    # layer, spin.c + the library's C and assembly files
+    assert len(compiles) == 1 + len(RUNTIME_CORE) + len(RUNTIME_DSPIC_DEVICES) + 1 + 1 \
+        + len(_library_sources())
     # generated C is -Werror, the user's not
     [program] = [c for c in compiles if c.endswith("-c extern_spin.c -o extern_spin.o")]
     [user] = [c for c in compiles if "user/1_spin.c" in c]

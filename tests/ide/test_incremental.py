@@ -338,3 +338,105 @@ def test_components_an_edit_does_not_reach_are_not_solved_again(monkeypatch):
     analysis = analyzer.analyse(edited)
     assert len(solved) == 1
     assert analysis.diagnostics == full_check(edited)
+
+
+def test_blocks_of_unchanged_rules_are_replayed_whole_and_equal_a_full_check(monkeypatch):
+    """The rules are replayed a block at a time (recheck._Block): a one-rule
+    edit checks again at most the rules of the blocks it touches, and the
+    result (every diagnostic, the resolved rules in order, the facts the
+    whole-program checks read) is a full check's, edit after edit, for
+    edits that put errors in, change intervals, and add or remove rules."""
+    import sys
+    from epuckc.check.checker import Checker
+    from epuckc.ide import recheck
+    sys.path.insert(0, str(REPO / "bench"))
+    import lsp_bench as lb
+    text = _expression_program(300)
+    analyzer = Analyzer("prog.epk")
+    analyzer.analyse(text)
+    assert len(analyzer._memo.blocks) >= 300 // recheck.BLOCK
+    replayed = _counting(monkeypatch, recheck.IncrementalChecker, "_rule")
+    rng = random.Random(31)
+    edits = (lb.error_edits(text, rng, 6) + lb.interval_edits(text, rng, 4)
+             + lb.edits(text, rng, 4))     # (each undone by the next)
+    line = text.index("\n", len(text) // 2) + 1
+    edits.append((line, line, "on timer(3 s) do led_toggle(led1)\n"))   # a rule more
+    same_declarations = 0
+    for start, end, new in edits:
+        replayed.clear()
+        env = analyzer._memo.env
+        text = text[:start] + new + text[end:]
+        analysis = analyzer.analyse(text)
+        assert analysis.diagnostics == full_check(text)
+        whole = Checker(analysis.program, Collector(analysis.source))
+        full = whole.check()
+        assert [r.node for r in analysis.checked.rules] == [r.node for r in full.rules]
+        for fact in recheck._Capture.FACTS:
+            assert getattr(analysis.checker, fact) == getattr(whole, fact), fact
+        if analyzer._memo.env is env:      # (else each rule looks its names up again)
+            same_declarations += 1
+            assert len(replayed) <= 3 * recheck.BLOCK
+    assert same_declarations >= 5
+
+
+def test_a_rule_that_reads_a_constant_array_is_checked_again_when_the_array_goes():
+    """A rule looks constant arrays up too (check/arrays.py): when the
+    array's declaration is broken, the rule's `dot` is checked again
+    (hypothesis found the rule replayed with the old array)."""
+    text = ("# dot of arrays of different sizes\nconst W = [8, 4, 2, 0]\nvar turn = 0\n"
+            "every 10 ms do turn = dot(W, ir) / 16\n")
+    analyzer = Analyzer("prog.epk")
+    assert "E063" in {d.code for d in analyzer.analyse(text).diagnostics}
+    for edited in (text[36:], text, text.replace("[8, 4, 2, 0]", "[8, 4, 2, 0, 1, 1, 1, 1]")):
+        assert analyzer.analyse(edited).diagnostics == full_check(edited)
+
+
+def test_rules_in_modes_are_replayed_and_placing_errors_keep_their_order(monkeypatch):
+    """A rule inside a mode is the same object from one analysis to the
+    next (ModePlacer keeps what it made of each statement), so an edit
+    elsewhere does not check it again; what placing statements reports
+    (a definition inside a mode, a mode not closed) comes in the order of
+    a whole file's parse, between the statements' own errors."""
+    import epuckc.ide.incremental as inc
+    rules = "\n".join(f"  on timer({i + 1} s) do set_timer, start_straight(300, {i + 1} cm)"
+                      for i in range(40))
+    text = f"on immediate do set_timer\nmode roam {{\n{rules}\n}}\non stop_motor do stop\n"
+    analyzer = Analyzer("prog.epk")
+    analyzer.analyse(text)
+    checked = _counting(monkeypatch, inc.Checker, "_rule")
+    edited = text.replace("do stop\n", "do stop, set_timer\n")
+    analysis = analyzer.analyse(edited)
+    assert len(checked) == 1            # (before the full check, which checks them all)
+    assert analysis.diagnostics == full_check(edited)
+    for edited in (edited.replace("  on timer(3 s)", "  const k = 3\n  on timer(3 s)"),
+                   edited.replace("on timer(5 s) do", "on timer(5 s) do do"),
+                   edited.replace("}\n", ""), edited):
+        assert analyzer.analyse(edited).diagnostics == full_check(edited)
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.text(alphabet="ab\r\n", max_size=30), st.integers(0, 30), st.integers(0, 4),
+       st.text(alphabet="ab\r\n", max_size=5))
+def test_line_starts_patched_after_an_edit_equal_those_found_again(old, at, cut, new):
+    """The split keeps the previous text's line starts where the edit
+    cannot move them (statements.patched_line_starts): the same as
+    line_starts of the new text, \\r and \\r\\n around the edit too."""
+    from epuckc.ide.statements import _common_prefix, _common_suffix, patched_line_starts
+    at = min(at, len(old))
+    text = old[:at] + new + old[at + cut:]
+    p = _common_prefix(old, text)
+    s = _common_suffix(old, text, min(len(old), len(text)) - p)
+    assert patched_line_starts(line_starts(old), len(old), text, p, s) == line_starts(text)
+
+
+def test_an_unknown_name_behind_a_constant_read_by_an_assignment_is_reported():
+    """The intervals evaluate an assignment before the rules are checked,
+    and drop what they say: `epuckc check` then forgot to report the
+    unknown name behind the constant at the rule (hypothesis found the
+    language server saying it and the full check not)."""
+    text = ("var v = 0\nconst K = deg\n"
+            "every 10 ms do v = K + 1\non immediate do set_timer\n")
+    full = full_check(text)
+    assert [(d.code, d.span.line) for d in full if d.code == "E013"] == [("E013", 2)]
+    analyzer = Analyzer("prog.epk")
+    assert analyzer.analyse(text).diagnostics == full

@@ -189,9 +189,10 @@ async def _complete(client, tmp_path, tail):
 
 
 async def test_completion(client, tmp_path):
-    assert await _complete(client, tmp_path, "on ") == [
-        "enter", "immediate", "stop_motor", "timer", "sensor", "selector", "clap", "tap", "tilt",
-        "remote", "ambient"]
+    # `enter` first, then the standard events of the table in its order
+    from epuckc.stdlib.table import EVENTS
+    assert await _complete(client, tmp_path, "on ") == ["enter"] + [
+        e.name for e in EVENTS if not e.head and e.name != "enter"]
     labels = await _complete(client, tmp_path, "on immediate do ")
     assert {"cancel", "start_straight", "exit_main", "go"} <= set(labels)
     assert await _complete(client, tmp_path, "on immediate do cancel ") == ["patrol"]

@@ -21,7 +21,22 @@ RUNTIME = REPO / "runtime_c"
 AVR = REPO / "bench" / "avr"
 MCU = "atmega1284p"
 LIMIT_MS = 5000
-EXAMPLES = sorted((REPO / "examples").glob("*.epk"))
+def _without_devices(paths) -> list:
+    """The examples that use no device beyond the e-puck's own (messages,
+    the camera, ToF, RGB LEDs: check/devices.py): the AVR proxy has the
+    runtime's core and the stub robot, not the device layer; those examples
+    are tested in their worlds (tests/sim)."""
+    from epuckc.check.frontend import check_file
+    from epuckc.diagnostics import Report
+    kept = []
+    for path in paths:
+        result = check_file(path, Report())
+        if result.checked is None or not result.checked.devices:
+            kept.append(path)
+    return kept
+
+
+EXAMPLES = _without_devices(sorted((REPO / "examples").glob("*.epk")))
 EXTRA = {
     "every_feature": EVERY_FEATURE,
     "arithmetic": """\

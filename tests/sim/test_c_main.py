@@ -270,7 +270,7 @@ def test_every_function_of_the_librarys_headers_links(tmp_path):
     assert "undefined reference" not in result.stderr
 
 
-@pytest.mark.parametrize("header,what", [("camera/fast_2_timer/e_poxxxx.h", "camera"),
+@pytest.mark.parametrize("header,what", [("camera/fast_2_timer/e_po8030d.h", "camera"),
                                          ("bluetooth/e_bluetooth.h", "Bluetooth"),
                                          ("a_d/e_prox.h", "a_d/advance_ad_scan/e_prox.h")])
 def test_what_is_not_simulated_is_a_build_error_naming_it(tmp_path, header, what):

@@ -62,7 +62,7 @@ def test_on_open_ground_enki_ends_where_the_stub_does(tmp_path, example):
 # Their wheel speeds follow every proximity reading, and Enki's IR sensors
 # read a little noise on open ground where the stub reads 0: the runs differ
 # by design (the other examples' sensor rules have thresholds above it).
-CONTINUOUS = {"braitenberg"}
+CONTINUOUS = {"braitenberg", "weights"}
 
 
 @pytest.mark.parametrize("example", [e for e in ALL_EXAMPLES if e not in CONTINUOUS])

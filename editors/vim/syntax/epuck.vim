@@ -16,9 +16,9 @@ syntax keyword epuckBuiltin action_start_straight action_start_curve action_stop
 syntax keyword epuckBuiltin action_set_timer action_reset_timer action_start_sensor
 syntax keyword epuckBuiltin action_stop_sensor action_exit_main
 syntax keyword epuckBuiltin event_immediate event_stop_motor event_timer event_sensor
-syntax keyword epuckBuiltin led_on led_off led_toggle play_sound led_ring led_bits
+syntax keyword epuckBuiltin led_on led_off led_toggle play_sound led_ring led_bits led_rgb
 syntax keyword epuckBuiltin action_led_on action_led_off action_led_toggle action_play_sound
-syntax keyword epuckBuiltin action_led_ring action_led_bits
+syntax keyword epuckBuiltin action_led_ring action_led_bits action_led_rgb
 syntax keyword epuckBuiltin selector clap tap tilt remote ambient
 syntax keyword epuckBuiltin event_selector event_clap event_tap event_tilt event_remote
 syntax keyword epuckBuiltin event_ambient

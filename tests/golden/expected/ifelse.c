@@ -62,8 +62,8 @@ static void epk_step1_r3(void *epk_param)
 {
     (void)epk_param;
     if (epk_v_near > 500) {
-        rt_assign(&epk_v_turns, 1, rt_clamp(rt_add(epk_v_turns, 1), 0, 100));
-        if (rt_mod(epk_v_turns, 2) == 0) {
+        rt_assign(&epk_v_turns, 1, rt_clamp(epk_v_turns + 1, 0, 100));
+        if (epk_v_turns % 2 == 0) {
             curve_steps((void *)&epk_p1_a_dodge);
         } else {
             curve_steps((void *)&epk_p2_a_dodge);
