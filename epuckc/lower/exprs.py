@@ -139,8 +139,9 @@ class _Printer:
             b = ranges[1]
             if b[0] <= 0 <= b[1]:
                 return False
-            if op == "%":       # C's `%` of the smallest value by -1 is undefined
-                return not (b[0] <= -1 <= b[1]) or ranges[0][0] > arith.INT32_MIN
+            if op == "%":       # C's `%` of its type's smallest value by -1 is undefined:
+                # -32768 % -1 where int is 16 bits (its operands may be ints)
+                return not (b[0] <= -1 <= b[1]) or ranges[0][0] > arith.INT16_MIN
         exact = arith.exact(op, *ranges)
         return exact is not None and arith.fits32(*exact)
 

@@ -179,3 +179,19 @@ def test_the_ring_and_the_rgb_leds_show_numbers(tmp_path):
     result = epuckc("check", "--target", "dspic", program)
     assert result.returncode == 1 and "error[E070]" in result.stderr
     assert "`led_rgb`" in result.stderr and "the e-puck (dspic) does not have" in result.stderr
+
+
+def test_c_never_divides_the_smallest_int_by_minus_one(tmp_path):
+    """`%` and `/` of a value that can be -32768 by one that can be -1 are
+    undefined in C where int is 16 bits: the C widens the division (`/`:
+    32768 needs a long) or calls the runtime (`%`), and divides with C's
+    own operator only where the intervals rule the pair out."""
+    program = tmp_path / "div.epk"
+    program.write_text("var a = 1\nvar b = 1\nvar m = 5\nvar q = 5\nvar s = 5\n"
+                       "every 3 ms do a = -32768, b = -1, m = a % b, q = a / b\n"
+                       "every 5 ms do s = a % 7 + (a + 1) % b\n")
+    c_text = _build_both(tmp_path, program)
+    assert "rt_mod(epk_v_a, epk_v_b)" in c_text
+    assert "epk_v_a % epk_v_b" not in c_text and "epk_v_a / epk_v_b" not in c_text
+    assert "(long)epk_v_a / epk_v_b" in c_text or "rt_div(epk_v_a, epk_v_b)" in c_text
+    assert "epk_v_a % 7" in c_text              # the pair is ruled out: C's own `%`

@@ -47,6 +47,17 @@ every 7 ms do a += 1234, b = b * -3 + a % 97 - a / 13, c = clamp(abs(b) - 16000,
 every 11 ms do a = max(min(a, 32000) - random(0, 20000), -32768) * 2 / 3
 after 1 s do exit_main
 """,
+    # the smallest int by -1 where int is 16 bits: `%` and `/` in C would be
+    # undefined there, the language's are 0 and 32767 (saturated where stored)
+    "smallest_by_minus_one": """\
+var a = 1
+var b = 1
+var m = 5
+var q = 5
+every 3 ms do a = -32768, b = -1, m = a % b, q = a / b
+every 5 ms do a = a + 1, b = b - 1
+after 40 ms do exit_main
+""",
     "timers_and_modes": """\
 var n = 0
 var m = 0
