@@ -187,11 +187,14 @@ def test_c_never_divides_the_smallest_int_by_minus_one(tmp_path):
     32768 needs a long) or calls the runtime (`%`), and divides with C's
     own operator only where the intervals rule the pair out."""
     program = tmp_path / "div.epk"
-    program.write_text("var a = 1\nvar b = 1\nvar m = 5\nvar q = 5\nvar s = 5\n"
-                       "every 3 ms do a = -32768, b = -1, m = a % b, q = a / b\n"
-                       "every 5 ms do s = a % 7 + (a + 1) % b\n")
+    # b is -5..-1: never 0, so only the -32768 by -1 pair stands in the way
+    program.write_text("var a = 1\nvar b = -1\nvar m = 5\nvar q = 5\nvar s = 5\n"
+                       "every 3 ms do a = -32768, b = clamp(b - 1, -5, -1), m = a % b, q = a / b\n"
+                       "every 5 ms do s = a % 7 + clamp(a, -32767, 0) % b\n")
     c_text = _build_both(tmp_path, program)
     assert "rt_mod(epk_v_a, epk_v_b)" in c_text
-    assert "epk_v_a % epk_v_b" not in c_text and "epk_v_a / epk_v_b" not in c_text
+    assert " epk_v_a % epk_v_b" not in c_text
+    assert " epk_v_a / epk_v_b" not in c_text    # an int's division: widened, or a call
     assert "(long)epk_v_a / epk_v_b" in c_text or "rt_div(epk_v_a, epk_v_b)" in c_text
     assert "epk_v_a % 7" in c_text              # the pair is ruled out: C's own `%`
+    assert "rt_clamp(epk_v_a, -32767, 0) % epk_v_b" in c_text
