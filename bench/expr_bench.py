@@ -28,15 +28,13 @@ from __future__ import annotations
 
 import argparse
 import re
-import subprocess
 import sys
 import tempfile
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from robot_bench import (AVR_CFLAGS, BENCH, CORE, HOST_CFLAGS, HOST_SOURCES, RT,  # noqa: E402
-                         SIM_MCU, callgrind_ir, compile_epk, machine, missing, run,
-                         simavr_misdecodes)
+from robot_bench import (AVR_CFLAGS, BENCH, CORE, RT, SIM_MCU, compile_epk,  # noqa: E402
+                         host_per_poll, machine, missing, run, simavr_misdecodes)
 
 WEIGHTS = [8, 4, 2, 0, 0, -4, -8, -16]
 
@@ -76,20 +74,6 @@ def _programs(d: Path, name: str, lang: str, c_body: str) -> dict:
         c, defines = compile_epk(text, sub, f"{name}_{variant}")
         out[variant] = (c, extra, defines)
     return out
-
-
-def host_per_poll(c: Path, extra: list, defines: list, d: Path, p1=1000, p2=2000) -> float:
-    import os
-    exe = d / (c.stem + ".host")
-    run(["cc", *HOST_CFLAGS, *defines, f"-I{RT}", f"-I{RT / 'epuck_api'}", f"-I{RT / 'host'}",
-         f"-I{c.parent}", c, *extra, *HOST_SOURCES, "-o", exe, "-lm"])
-    per = []
-    for polls in (p1, p2):
-        env = {k: v for k, v in os.environ.items() if not k.startswith("EPUCK_")}
-        env.update(EPUCK_QUIET="1", EPUCK_TIME_LIMIT_MS=str(polls))
-        total, idle = callgrind_ir(exe, d, env=env, function="rt_platform_idle")
-        per.append(total - idle)
-    return (per[1] - per[0]) / (p2 - p1)
 
 
 def avr_per_poll(c: Path, extra: list, defines: list, d: Path, harness: Path) -> int:

@@ -199,9 +199,15 @@ def per_poll(text: str, d: Path, name: str, p1=1000, p2=2000) -> float:
     """x86 instructions per poll of a rule file's program (the harness's
     own per-poll work subtracted)."""
     c, defines = compile_epk(text, d, name)
-    exe = d / name
+    return host_per_poll(c, (), defines, d, p1, p2)
+
+
+def host_per_poll(c: Path, extra, defines: list, d: Path, p1=1000, p2=2000) -> float:
+    """x86 instructions per poll of a compiled program (with `extra` C
+    files: its externs), the harness's own per-poll work subtracted."""
+    exe = d / (c.stem + ".host")
     run(["cc", *HOST_CFLAGS, *defines, f"-I{RT}", f"-I{RT / 'epuck_api'}", f"-I{RT / 'host'}",
-         c, *HOST_SOURCES, "-o", exe, "-lm"])
+         f"-I{c.parent}", c, *extra, *HOST_SOURCES, "-o", exe, "-lm"])
     per = []
     for polls in (p1, p2):
         env = {k: v for k, v in os.environ.items() if not k.startswith("EPUCK_")}

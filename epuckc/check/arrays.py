@@ -80,16 +80,7 @@ def _literals(ck, lit: ast.ArrayLit, name: str, allow_vars: bool = True) -> Opti
     values = [ck._literal(item, allow_vars=allow_vars) for item in lit.items]
     if any(v is None for v in values):
         return None
-    kinds = {v.kind for v in values if not v.bare}
-    if len(kinds) > 1:
-        first = next(v for v in values if not v.bare)
-        other = next(v for v in values if not v.bare and v.kind != first.kind)
-        ck._kind_clash(lit, first.kind, other.kind,
-                       f"the elements of {_code(name)} are of one kind:", left=first,
-                       right=other)
-        return None
-    kind = kinds.pop() if kinds else INT
-    return [ck._adapt(v, kind) for v in values]
+    return ck._one_kind(values, lit, f"the elements of {_code(name)} are of one kind:")
 
 
 def _ref(ck, ident: ast.Ident) -> Optional[ArrayRef]:

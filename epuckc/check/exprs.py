@@ -257,6 +257,19 @@ class Exprs:
             return None
         return a, b
 
+    def _one_kind(self, values: list, node, what: str) -> Optional[list]:
+        """Values that must be of one kind (a function's arguments, an
+        array's elements): adapted to it (bare numbers take it; none but
+        bare ones: plain numbers), or None after E048 naming two that differ."""
+        kinds = {v.kind for v in values if not v.bare}
+        if len(kinds) > 1:
+            first = next(v for v in values if not v.bare)
+            other = next(v for v in values if not v.bare and v.kind != first.kind)
+            self._kind_clash(node, first.kind, other.kind, what, left=first, right=other)
+            return None
+        kind = kinds.pop() if kinds else INT
+        return [self._adapt(v, kind) for v in values]
+
     def _kind_clash(self, node, want: str, got: str, what: str, left=None, right=None,
                     notes=None):
         if left is not None:

@@ -50,16 +50,9 @@ def call(self, node: ast.FuncCall) -> Optional[Expr]:
     if not all(self._is_number(v, _code(name)) for v in values):
         return None
     if len(values) > 1:
-        kinds = {v.kind for v in values if not v.bare}
-        if len(kinds) > 1:
-            first = next(v for v in values if not v.bare)
-            other = next(v for v in values if not v.bare and v.kind != first.kind)
-            self._kind_clash(node, first.kind, other.kind,
-                             f"the arguments of {_code(name)} differ:", left=first,
-                             right=other)
+        values = self._one_kind(values, node, f"the arguments of {_code(name)} differ:")
+        if values is None:
             return None
-        kind = kinds.pop() if kinds else INT
-        values = [self._adapt(v, kind) for v in values]
     kind = values[0].kind
     bare = all(v.bare for v in values)
     if name == "random":
