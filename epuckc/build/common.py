@@ -91,8 +91,10 @@ class Program:
     names them, joined to its folder: gcc's messages then name the user's
     own file). Hand-written: `source_path` is compiled where it is.
     `inputs` are every file the command reads: nothing is written over them.
-    `variables`: a rule file's declared variables, (name, initial value as
-    the runtime holds it) in declared order, for the replay of a run.
+    `variables`: the values a rule file's trace follows (`VarInfo.traced`:
+    each variable, each element of an array), (name, initial value as the
+    runtime holds it) in the order of their numbers in the trace, for the
+    replay of a run and the names of the 16-bit path's trace.
     """
     name: str
     c_text: str

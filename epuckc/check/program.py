@@ -97,6 +97,14 @@ class VarInfo:
     size: int = 0           # an array's number of elements (0: not an array)
     inits: tuple = ()       # an array's initial values
 
+    def traced(self) -> list:
+        """(name, initial value) of each value the trace follows: the
+        variable, or each element of an array (`counts[2]`), in the order
+        of their numbers in the trace."""
+        if self.size:
+            return [(f"{self.name}[{k}]", v) for k, v in enumerate(self.inits)]
+        return [(self.name, self.init)]
+
 
 @record
 class ResolvedEvent:

@@ -85,7 +85,8 @@ def load_program(path: Path, report: Report, max_actions: Optional[int] = None,
     return Program(name, generated.c_text, path.parent, user_files, max_actions, max_events,
                    header_name=generated.header_name, header_text=generated.header_text,
                    inputs=[path] + user_files,
-                   variables=[(v.name, v.init) for v in result.checked.variables.values()],
+                   variables=[slot for v in result.checked.variables.values()
+                              for slot in v.traced()],
                    devices=result.checked.devices)
 
 

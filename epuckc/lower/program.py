@@ -479,9 +479,8 @@ class _Lowerer:
                 variable = CVariable(f"{var_name(info.name)}[{info.size}]",
                                      "{" + ", ".join(map(c_int, info.inits)) + "}", comment,
                                      c_string(f"{info.name}[0]"))
-                self.out.variables += [CVariable(variable.name, "", "",
-                                                 c_string(f"{info.name}[{k}]"))
-                                       for k in range(info.size)]
+                self.out.variables += [CVariable(variable.name, "", "", c_string(label))
+                                       for label, _ in info.traced()]
             else:
                 variable = CVariable(var_name(info.name), c_int(info.init), comment,
                                      c_string(info.name))

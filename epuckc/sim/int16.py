@@ -174,6 +174,7 @@ def parse_lines(text: str, var_names: list) -> list:
             left, right = numbers[2], numbers[3]
             records.append(_record("event", t, f"event#{numbers[1]}", numbers[1], left, right))
         elif kind == "A":
+            left, right = numbers[4], numbers[5]
             extra = {} if numbers[2] < 0 else {"step": numbers[2] + 1, "steps": numbers[3]}
             records.append(_record("action", t, f"action#{numbers[1]}", numbers[1], left, right,
                                    **extra))
@@ -181,8 +182,10 @@ def parse_lines(text: str, var_names: list) -> list:
             name = var_names[numbers[1]] if numbers[1] < len(var_names) else f"var#{numbers[1]}"
             records.append({"t_ms": t, "kind": "set", "var": name, "value": numbers[2]})
         elif kind == "U":
+            left, right = numbers[2], numbers[3]
             records.append(_record("suppressed", t, f"event#{numbers[1]}", numbers[1], left, right))
         elif kind == "M":
+            left, right = numbers[2], numbers[3]
             records.append(_record("mode", t, f"mode#{numbers[1]}", numbers[1], left, right))
         elif kind in "XT":
             left, right = numbers[1], numbers[2]

@@ -7,10 +7,11 @@
  * epuckc/sim/int16.py from the scenario file), the agendas run.  The trace
  * goes out byte by byte through GPIOR0, one line a record:
  *     E t id left right        an event fired (steps of each wheel since start)
- *     A t id step steps        an action ran (step -1: not a sequence's)
+ *     A t id step steps left right
+ *                              an action ran (step -1: not a sequence's)
  *     S t var value            a variable changed
- *     U t id                   a motor command of event id suppressed
- *     M t mode                 the current mode changed
+ *     U t id left right        a motor command of event id suppressed
+ *     M t mode left right      the current mode changed
  *     L t name state           an LED command (name: led0..led7, all, body, front)
  *     X t left right           exit_main
  *     T t left right           the time limit (INT16_LIMIT_MS) was reached
@@ -58,14 +59,10 @@ static void put_long(long v)
         put_char(digits[--n]);
 }
 
-/* kind, the time, then `count` numbers */
-static void line(char kind, int count, long a, long b, long c)
+/* kind, the time, then the `count` numbers of v */
+static void numbers(char kind, int count, const long *v)
 {
-    long v[3];
     int i;
-    v[0] = a;
-    v[1] = b;
-    v[2] = c;
     put_char(kind);
     put_char(' ');
     put_long(now_ms);
@@ -74,6 +71,23 @@ static void line(char kind, int count, long a, long b, long c)
         put_long(v[i]);
     }
     put_char('\n');
+}
+
+/* kind, the time, then `count` of a, b, c */
+static void line(char kind, int count, long a, long b, long c)
+{
+    long v[3];
+    v[0] = a;
+    v[1] = b;
+    v[2] = c;
+    numbers(kind, count, v);
+}
+
+/* kind, the time, a, then the steps of each wheel since the start (the
+   host's trace gives them with every record) */
+static void with_steps(char kind, long a)
+{
+    line(kind, 3, a, stub_total_steps_left(), stub_total_steps_right());
 }
 
 static void stop(void)
@@ -231,7 +245,13 @@ void rt_trace_event(int event_id)
 
 void rt_trace_action(int action_id, int step, int steps)
 {
-    line('A', 3, action_id, step, steps);
+    long v[5];
+    v[0] = action_id;
+    v[1] = step;
+    v[2] = steps;
+    v[3] = stub_total_steps_left();
+    v[4] = stub_total_steps_right();
+    numbers('A', 5, v);
 }
 
 void rt_trace_exit(void)
@@ -247,12 +267,12 @@ void rt_trace_suppressed(int event_id, int priority, int owner_event_id,
     (void)owner_event_id;
     (void)owner_priority;
     (void)command;
-    line('U', 1, event_id, 0, 0);
+    with_steps('U', event_id);
 }
 
 void rt_trace_mode(int mode)
 {
-    line('M', 1, mode, 0, 0);
+    with_steps('M', mode);
 }
 
 void rt_trace_set(int id, int value)
