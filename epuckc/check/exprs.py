@@ -42,33 +42,89 @@ def _interval(e: Expr) -> str:
 _COMMUTATIVE = {"+", "*", "min", "max", "==", "!=", "and", "or", "hypot"}
 
 
-def _same_value(a: Expr, b: Expr) -> bool:
-    """Whether two expressions always have the same value: the same tree
-    of operations over the same variables, readings and numbers, up to the
-    order of the operands of `+`, `*`, `min`, ... (as C compilers see it:
-    `v + -v > -v + v` compares a value with itself), with no `random` (each
-    call draws anew)."""
-    return _canonical(a) == _canonical(b) is not None
+def _difference(a: Expr, b: Expr) -> Optional[int]:
+    """`a - b` when it is the same whatever the variables and readings are
+    (`v + 5 - 200` and `v`: -195), else None: both as sums of numbers
+    times parts that are not sums (a variable, a reading, `v / 2`), where
+    equal parts are the same tree up to the order of the operands of `+`,
+    `*`, `min`, ... , with no `random` (each call draws anew). A C compiler
+    folds such a comparison itself (`X - c <= X`) and warns, on the
+    dsPIC's and the AVR's gcc, that it assumes no overflow: the checker
+    decides it first, so the C never holds one."""
+    fa, fb = _linear(a), _linear(b)
+    if fa is None or fb is None:
+        return None
+    terms = dict(fa[1])
+    for key, k in fb[1].items():
+        terms[key] = terms.get(key, 0) - k
+    return fa[0] - fb[0] if not any(terms.values()) else None
 
 
-def _canonical(e: Expr):
-    """A key of `e`'s tree, the operands of commutative operations sorted;
-    None with a `random` in it. A loop, not recursion (limits.py)."""
-    keys: dict = {}
+def _decided_by_intervals(op: str, a: Expr, b: Expr) -> Optional[int]:
+    """The value (1 or 0) of `a op b` where the intervals of its sides
+    decide it, else None."""
+    if a.hi < b.lo or a.lo > b.hi or (a.lo == a.hi == b.lo == b.hi):
+        corners = {arith.COMPARE[op](x, y) for x in (a.lo, a.hi) for y in (b.lo, b.hi)}
+        if len(corners) == 1:
+            return int(corners.pop())
+    return None
+
+
+_LINEAR = ("+", "-", "neg", "*")
+
+
+def _linear(e: Expr):
+    """`e` as (number, {part: factor}): the sum of its parts times their
+    factors plus the number, computed as the runtime does (exactly) where
+    no sum or product in it can leave 32 bits, and a part where one can
+    (it saturates); None with a `random` in it. A loop, not recursion
+    (limits.py)."""
+    keys: dict = {}     # id -> the tree's key, None with a random
+    forms: dict = {}    # id -> (number, parts), None with a random
     stack = [(e, False)]
     while stack:
         x, done = stack.pop()
         if not done:
-            if x.op == "random":
-                return None
             stack.append((x, True))
             stack.extend((arg, False) for arg in x.args)
             continue
         parts = [keys[id(arg)] for arg in x.args]
+        if x.op == "random" or None in parts:
+            keys[id(x)] = forms[id(x)] = None
+            continue
         if x.op in _COMMUTATIVE:
             parts.sort()
-        keys[id(x)] = repr((x.op, x.value, x.name, tuple(parts)))
-    return keys[id(e)]
+        keys[id(x)] = key = repr((x.op, x.value, x.name, tuple(parts)))
+        args = [forms[id(arg)] for arg in x.args]
+        exact = arith.exact(x.op, *[(arg.lo, arg.hi) for arg in x.args]) \
+            if x.op in _LINEAR else None
+        if x.op == "num":
+            forms[id(x)] = (x.value, {})
+        elif exact is None or not arith.fits32(*exact):
+            forms[id(x)] = (0, {key: 1})            # a part (or it may saturate)
+        elif x.op == "neg":
+            forms[id(x)] = _scaled(args[0], -1)
+        elif x.op == "*":
+            (n, p), (m, q) = args
+            if p and q:
+                forms[id(x)] = (0, {key: 1})        # a product of two variables
+            else:
+                forms[id(x)] = _scaled(args[1], n) if not p else _scaled(args[0], m)
+        else:
+            forms[id(x)] = _summed(args[0], args[1], 1 if x.op == "+" else -1)
+    return forms[id(e)]
+
+
+def _scaled(form, k: int):
+    n, parts = form
+    return n * k, {key: v * k for key, v in parts.items()}
+
+
+def _summed(a, b, sign: int):
+    parts = dict(a[1])
+    for key, v in b[1].items():
+        parts[key] = parts.get(key, 0) + sign * v
+    return a[0] + sign * b[0], parts
 
 
 class Exprs:
@@ -301,7 +357,7 @@ class Exprs:
                 return None
             decided = self._fold(Expr(op, BOOL, 0, 1, pair, node=node))
             if decided.constant:
-                self._decided_comparison(decided, *pair)
+                self._decided_comparison(decided, op, *pair)
             return decided
         if op in ("+", "-"):
             pair = self._same_kind(a, b, node, "cannot add" if op == "+" else "cannot subtract")
@@ -328,14 +384,19 @@ class Exprs:
         lo, hi = arith.interval(op, (a.lo, a.hi), (b.lo, b.hi))
         return self._fold(Expr(op, kind, lo, hi, (a, b), node=node, bare=a.bare and b.bare))
 
-    def _decided_comparison(self, e: Expr, a: Expr, b: Expr):
+    def _decided_comparison(self, e: Expr, op: str, a: Expr, b: Expr):
         """W016: a comparison that is always true or always false, folded
         (the C never compares a value with itself)."""
         text, truth = self._text(e.node), "true" if e.value else "false"
         if a.constant and b.constant:
             return      # two fixed values: written so on purpose (`when 1 == 1`)
-        if _same_value(a, b):
+        difference = None if _decided_by_intervals(op, a, b) is not None else _difference(a, b)
+        if difference == 0:
             why = "it compares a value with itself"
+        elif difference is not None:
+            unit = EXAMPLE_UNIT.get(a.kind if a.kind != INT else b.kind, "")
+            why = (f"`{self._text(a.node)}` is always {abs(difference)}{' ' + unit if unit else ''} "
+                   f"{'more' if difference > 0 else 'less'} than `{self._text(b.node)}`")
         else:
             why = " and ".join(f"`{self._text(side.node)}` is {_interval(side)}"
                                for side in (a, b) if not side.constant)
@@ -369,19 +430,18 @@ class Exprs:
     @staticmethod
     def _fold(e: Expr) -> Expr:
         """An operation on constants is a constant (random excepted); so is
-        a comparison whose sides' intervals decide it."""
+        a comparison whose sides' intervals decide it, or whose sides always
+        differ by the same number (`_difference`)."""
         args = e.args
         if e.op in COMPARISONS:
             a, b = args
-            if _same_value(a, b):           # `v >= v`: decided whatever v is
-                v = int(arith.COMPARE[e.op](0, 0))
-                return Expr("num", BOOL, v, v, value=v, node=e.node)
-            if a.hi < b.lo or a.lo > b.hi or (a.lo == a.hi == b.lo == b.hi):
-                corners = {arith.COMPARE[e.op](x, y) for x in (a.lo, a.hi) for y in (b.lo, b.hi)}
-                if len(corners) == 1:
-                    v = int(corners.pop())
-                    return Expr("num", BOOL, v, v, value=v, node=e.node)
-            return e
+            decided = _decided_by_intervals(e.op, a, b)
+            if decided is None:
+                difference = _difference(a, b)      # `v >= v`, `v - 200 <= v`
+                if difference is None:
+                    return e
+                decided = int(arith.COMPARE[e.op](difference, 0))
+            return Expr("num", BOOL, decided, decided, value=decided, node=e.node)
         if e.op in ("and", "or", "not"):
             values = [a.value for a in args if a.op == "num"]
             if e.op == "not" and values:
