@@ -29,14 +29,16 @@ from typing import Optional
 from ..build.common import BuildError, Program, _run_compiler, c_compiler
 
 from ..build.host import compile_objects, host_build_key, runtime_cache_dir, runtime_flags
-from ..base.resources import RUNTIME_CORE, RUNTIME_DEVICES, cache_dir, runtime_dir
+from ..base.resources import (RUNTIME_CORE, RUNTIME_DEVICES, RUNTIME_SIMULATED, cache_dir,
+                              runtime_dir)
 from .world import World, runner_spec
 
-ROBOT_SOURCES = [*RUNTIME_CORE, *RUNTIME_DEVICES, "host/platform_host.c", "host/scenario.c",
+ROBOT_SOURCES = [*RUNTIME_CORE, *RUNTIME_SIMULATED, *RUNTIME_DEVICES, "host/platform_host.c", "host/scenario.c",
                  "host/epuck_stub.c", "host/stub_devices.c", "host/cmain.c", "host/epuck_more.c", "enki/robot_glue.c"]
 ROBOT_INCLUDES = [".", "epuck_api", "host", "enki", "epuck_api_unsimulated"]
 # robot_glue.c's header comment says why each of these is wrapped
-WRAPPED = ["stub_motors_1ms", "stub_pose", "stub_set_geometry", "getenv", "exit"]
+WRAPPED = ["stub_motors_1ms", "stub_motors_ms", "stub_pose", "stub_set_geometry", "getenv",
+           "exit"]
 RUNNER_FLAGS = ["-std=c++14", "-O2", "-Wall", "-Wextra"]
 # In a world the pose is Enki's (the glue wraps stub_pose): the stub's own
 # dead reckoning, sines and cosines at every ms of every robot, was a fifth
@@ -197,6 +199,9 @@ def simulate(world: World, libs: list, time_limit_ms: int, seed: int = 1,
                 settings["EPUCK_POSE_MS"] = str(pose_ms)
             if os.environ.get("EPUCK_WATCHDOG_MS"):     # `run --watchdog`
                 settings["EPUCK_WATCHDOG_MS"] = os.environ["EPUCK_WATCHDOG_MS"]
+            for name in ("EPUCK_POLL_EVERY_MS", "EPUCK_POLL_STATS"):    # tests, benches
+                if os.environ.get(name):
+                    settings[name] = os.environ[name]
             if quiet:
                 settings["EPUCK_QUIET"] = "1"
             entries.append((copy, settings, None if devices is None else devices[i]))

@@ -6,14 +6,16 @@
  * e-puck library (host/epuck_stub.c: stepper motors with 16-bit counters,
  * agendas, proximity registers) and this file, linked with
  *
- *   -Wl,--wrap=stub_motors_1ms,--wrap=stub_pose,--wrap=stub_set_geometry
+ *   -Wl,--wrap=stub_motors_1ms,--wrap=stub_motors_ms,--wrap=stub_pose,
+ *   -Wl,--wrap=stub_set_geometry
  *   -Wl,--wrap=getenv,--wrap=exit -Wl,-Bsymbolic
  *
  * so that, without a change to any of those sources:
  *   - the wheels still step exactly as on the stub harness (the same
  *     e_set_speed_left/e_get_steps_left code), but every `step_ms` ms the
  *     steps made are handed to the world runner, which drives the robot's
- *     Enki body with them and steps the physics;
+ *     Enki body with them and steps the physics (stub_motors_ms, the
+ *     idle ms in bulk, stops there too);
  *   - e_get_prox() reads what Enki's eight IR sensors measured (the runner
  *     writes them into the stub's proximity registers with stub_set_prox);
  *   - libIrcom's sends (host/stub_devices.c) go to the world's channel
@@ -86,6 +88,22 @@ void __wrap_stub_motors_1ms(void)
     io->window_right += stub_total_steps_right() - r;
     if (++io->ms_in_window >= io->step_ms)
         yield_to_world();
+}
+
+/* Several ms at once (rt_idle.c): never past the end of the world's step,
+ * where the world steps and the readings change. */
+long __real_stub_motors_ms(long n, long left, long right);
+long __wrap_stub_motors_ms(long n, long left, long right)
+{
+    long l = stub_total_steps_left(), r = stub_total_steps_right(), done;
+    long room = (long)(io->step_ms - io->ms_in_window);
+    done = __real_stub_motors_ms(n < room ? n : room, left, right);
+    io->window_left += stub_total_steps_left() - l;
+    io->window_right += stub_total_steps_right() - r;
+    io->ms_in_window += (int)done;
+    if (io->ms_in_window >= io->step_ms)
+        yield_to_world();
+    return done;
 }
 
 void __wrap_stub_set_geometry(long wheel_circumference_um, long axle_um, long steps_per_rev)

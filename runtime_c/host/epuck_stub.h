@@ -12,6 +12,23 @@ void stub_motors_1ms(void);
 /* Run the active agendas for 1 ms (10 agenda ticks of 0.1 ms) when agenda
  * processing has been started. */
 void stub_agendas_1ms(void);
+/* Several ms at once, for a host that skips idle polls (rt_idle.c):
+ * stub_motors_ms advances the wheels as n calls of stub_motors_1ms would,
+ * but stops after the ms in which the left wheel made its `left`-th step
+ * or the right one its `right`-th (0: no such stop); returns the ms
+ * advanced (1..n).  stub_agendas_active counts the agendas that agenda
+ * processing would call (at most 2; *only: the one, when it is one), and
+ * stub_agendas_ms runs them as n calls of stub_agendas_1ms would, which is
+ * exact when there is at most one or its function leaves the agendas as
+ * they are (the runtime's clock). */
+long stub_motors_ms(long n, long left, long right);
+/* A count of the calls of the inputs' setters (stub_set_prox ... and the
+ * devices' of stub_devices.c, which call stub_input_set): what a reading
+ * gives may have changed since it last was what it is now. */
+unsigned long stub_inputs_epoch(void);
+void stub_input_set(void);
+int stub_agendas_active(void (**only)(void));
+void stub_agendas_ms(long n);
 /* Set the reading of proximity sensor n (0..7). */
 void stub_set_prox(int n, int value);
 /* Total signed steps of each wheel since start (not wrapped). */
