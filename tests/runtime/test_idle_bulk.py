@@ -136,3 +136,16 @@ def test_generated_programs_trace_the_same(tmp_path, index):
     `when` on readings, variables, odometry and random numbers, modes,
     priorities, sequences with waits) under random scenarios."""
     same_both_ways(lambda env: run_generated(tmp_path, index, env))
+
+
+def test_generated_programs_skip_polls(tmp_path):
+    """The comparisons above are of runs that skip: most of the generated
+    programs skip most of their polls (EPUCK_POLL_STATS)."""
+    stats = tmp_path / "stats"
+    for index in range(GENERATED):
+        run_generated(tmp_path, index, {"EPUCK_POLL_STATS": str(stats)})
+    lines = [line.split() for line in stats.read_text().splitlines()]
+    assert len(lines) == GENERATED
+    skipping = [int(w[3]) / int(w[1]) for w in lines if int(w[1]) > 0 and int(w[3]) > 0]
+    assert len(skipping) >= GENERATED // 2, lines
+    assert max(skipping) > 0.5, lines
