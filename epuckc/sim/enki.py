@@ -77,7 +77,8 @@ def build_runner() -> Path:
         raise BuildError(ENKI_MISSING)
     rt = runtime_dir()
     h = hashlib.sha256()
-    for rel in ("enki/world_runner.cpp", "enki/enki_bridge.h", "enki/world_channel.h"):
+    for rel in ("enki/world_runner.cpp", "enki/enki_bridge.h", "enki/world_channel.h",
+                "enki/robot_loader.h"):
         h.update((rt / rel).read_bytes())
     h.update(ENKI_HEADER.read_bytes())
     h.update(" ".join(cxx_compiler() + RUNNER_FLAGS).encode())
@@ -188,9 +189,8 @@ def simulate(world: World, libs: list, time_limit_ms: int, seed: int = 1,
         tmpdir = Path(tmp)
         entries = []
         for i, lib in enumerate(libs):
-            # each robot loads its own copy: its own globals (docs/world.md)
-            copy = tmpdir / f"robot{i}.so"
-            shutil.copyfile(lib, copy)
+            # the runner loads a copy for each robot, beside the spec: its own
+            # globals (docs/world.md)
             settings = {"EPUCK_TIME_LIMIT_MS": str(time_limit_ms),
                         "EPUCK_TRACE": str(tmpdir / f"robot{i}.jsonl"),
                         # each robot its own `random` (`run --seed N`: N + i)
@@ -204,7 +204,7 @@ def simulate(world: World, libs: list, time_limit_ms: int, seed: int = 1,
                     settings[name] = os.environ[name]
             if quiet:
                 settings["EPUCK_QUIET"] = "1"
-            entries.append((copy, settings, None if devices is None else devices[i]))
+            entries.append((lib, settings, None if devices is None else devices[i]))
         spec = tmpdir / "world.spec"
         spec.write_text(runner_spec(world, entries), encoding="utf-8")
         results_file = tmpdir / "results"

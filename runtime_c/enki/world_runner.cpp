@@ -20,13 +20,16 @@
  *   cylinder X Y R HEIGHT [R G B]        a static cylinder
  *   robot NAME X Y ANGLE                 an e-puck; the lines below belong to it
  *   lib PATH                             its program + runtime, a shared object
+ *                                        (robots may name the same one)
  *   setting NAME VALUE                   what its getenv(NAME) returns
  *   colour R G B                         its body's colour (what cameras see)
  *   camera                               it has Enki's camera (its program reads it)
  *   tof                                  its ToF ray is cast (its program reads it)
  *
  * Each robot's shared object is loaded from its own file (so its globals
- * are its own) and its main() runs as a coroutine: it runs step_ms poll
+ * are its own: robots of one program load copies of its `lib`, written
+ * beside the SPEC, whose code they share; robot_loader.h) and its main()
+ * runs as a coroutine: it runs step_ms poll
  * cycles, then yields (robot_glue.c), and the world steps once.  Robots are
  * resumed in the order of the SPEC; nothing depends on wall-clock time, so
  * a run is reproducible byte for byte.
@@ -58,6 +61,7 @@
 #include <enki/robots/e-puck/EPuck.h>
 
 #include "enki_bridge.h"
+#include "robot_loader.h"
 #include "world_channel.h"
 
 namespace {
@@ -451,6 +455,9 @@ int main(int argc, char **argv)
         world->addObject(p);
     }
 
+    // the robots' copies go beside the SPEC (robot_loader.h)
+    std::string folder(argv[1]);
+    folder = folder.find('/') == std::string::npos ? "./" : folder.substr(0, folder.rfind('/') + 1);
     const bool several = robots.size() > 1;
     for (Robot &r : robots) {
         std::memset(&r.io, 0, sizeof r.io);
@@ -463,9 +470,22 @@ int main(int argc, char **argv)
             die("too many settings for robot " + r.name);
         for (size_t i = 0; i < r.settings.size(); i++)
             r.io.settings[i] = r.settings[i].c_str();
-        r.handle = dlopen(r.lib.c_str(), RTLD_NOW | RTLD_LOCAL);
+        // its own copy of its program's file (its own globals), the code
+        // shared with the first robot of that program (robot_loader.h)
+        void *first = nullptr;
+        for (Robot &o : robots) {
+            if (&o == &r)
+                break;
+            if (o.lib == r.lib) {
+                first = o.handle;
+                break;
+            }
+        }
+        std::string error;
+        r.handle = loader::load(r.lib, first, folder + "robot" + std::to_string(&r - &robots[0])
+                                + ".so", &error);
         if (r.handle == nullptr)
-            die("cannot load robot " + r.name + ": " + dlerror());
+            die("cannot load robot " + r.name + ": " + error);
         auto attach = (int (*)(enki_robot_io *))dlsym(r.handle, "enki_robot_attach");
         r.main = (int (*)(int, char **))dlsym(r.handle, "main");
         r.cmain_signal = (void (*)(int))dlsym(r.handle, "epuck_cmain_signal");
