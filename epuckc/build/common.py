@@ -7,11 +7,11 @@ import re
 import shlex
 import subprocess
 import sys
-from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Optional
 
 from ..base.output import write_atomic
+from ..base.records import field, record
 from ..base.resources import (RUNTIME_CORE, RUNTIME_CORE_HEADERS, RUNTIME_DEVICES,
                               RUNTIME_DSPIC_DEVICES, RUNTIME_SIMULATED)
 
@@ -81,7 +81,7 @@ class BuildError(Exception):
         self.status = status
 
 
-@dataclass
+@record
 class Program:
     """A C program ready to build.
 

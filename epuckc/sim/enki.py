@@ -22,13 +22,11 @@ import shutil
 import subprocess
 import sys
 import tempfile
-from dataclasses import dataclass
 from pathlib import Path
 from typing import Optional
 
+from ..base.records import record
 from ..build.common import BuildError, Program, _run_compiler, c_compiler
-
-from ..build.host import compile_objects, host_build_key, runtime_cache_dir, runtime_flags
 from ..base.resources import (RUNTIME_CORE, RUNTIME_DEVICES, RUNTIME_SIMULATED, cache_dir,
                               runtime_dir)
 from .world import World, runner_spec
@@ -91,8 +89,23 @@ def build_runner() -> Path:
     return _atomic_copy_into(exe, produce)
 
 
+@record
+class BuiltRobot:
+    """A program built before as a robot (build/runcache.py found it): its
+    shared object and what a world run reads of its Program."""
+    lib: Path
+    devices: Optional[frozenset]
+    variables: list
+
+
+def robot_library(program) -> Path:
+    """The shared object of a Program, or of a BuiltRobot."""
+    return program.lib if isinstance(program, BuiltRobot) else build_robot(program)
+
+
 def build_robot(program: Program) -> Path:
     """The program as a robot of a world: a shared object, cached."""
+    from ..build.host import compile_objects, host_build_key, runtime_cache_dir, runtime_flags
     key = hashlib.sha256(("enki-robot\0" + " ".join(ROBOT_RUNTIME_FLAGS) + "\0"
                           + host_build_key(program)).encode()).hexdigest()[:24]
     lib = cache_dir() / "enki" / key / f"{program.name}.so"
@@ -112,7 +125,7 @@ def build_robot(program: Program) -> Path:
     return _atomic_copy_into(lib, produce)
 
 
-@dataclass
+@record
 class RobotResult:
     name: str
     status: int
@@ -159,7 +172,7 @@ def _contact_line(r: RobotResult) -> str:
             f"the first at {r.first_contact_ms} ms")
 
 
-@dataclass
+@record
 class WorldRun:
     """What one run of a world gave: each robot's result (status and
     contacts, in the world's order), each robot's own trace (JSON lines),
@@ -175,7 +188,8 @@ class WorldTimeout(Exception):
 
 def simulate(world: World, libs: list, time_limit_ms: int, seed: int = 1,
              pose_ms: Optional[int] = None, quiet: bool = False, capture: bool = False,
-             timeout_s: Optional[float] = None, devices: Optional[list] = None) -> WorldRun:
+             timeout_s: Optional[float] = None, devices: Optional[list] = None,
+             with_traces: bool = True) -> WorldRun:
     """Run the world once: `libs` are the robots' built shared objects, in
     the world's order; Enki's generator is seeded by the world's `seed`,
     robot k's `random` by `seed + k`. `quiet`: the robots print nothing;
@@ -183,7 +197,9 @@ def simulate(world: World, libs: list, time_limit_ms: int, seed: int = 1,
     line of stderr then says why it failed). After `timeout_s` seconds of wall clock it is
     killed (WorldTimeout). `devices`: each robot's devices its program reads
     (stdlib DEVICES; None: all), so that only those robots get Enki's
-    camera and the ToF ray. BuildError when the runner fails."""
+    camera and the ToF ray. `with_traces`: the robots write their traces (without
+    them the run's traces are empty and its end_ms 0). BuildError when the
+    runner fails."""
     runner = build_runner()
     with tempfile.TemporaryDirectory(prefix="epuckc-world-") as tmp:
         tmpdir = Path(tmp)
@@ -192,9 +208,10 @@ def simulate(world: World, libs: list, time_limit_ms: int, seed: int = 1,
             # the runner loads a copy for each robot, beside the spec: its own
             # globals (docs/world.md)
             settings = {"EPUCK_TIME_LIMIT_MS": str(time_limit_ms),
-                        "EPUCK_TRACE": str(tmpdir / f"robot{i}.jsonl"),
                         # each robot its own `random` (`run --seed N`: N + i)
                         "EPUCK_SEED": str((seed + i) & 0xFFFFFFFF)}
+            if with_traces:
+                settings["EPUCK_TRACE"] = str(tmpdir / f"robot{i}.jsonl")
             if pose_ms:
                 settings["EPUCK_POSE_MS"] = str(pose_ms)
             if os.environ.get("EPUCK_WATCHDOG_MS"):     # `run --watchdog`
@@ -243,10 +260,11 @@ def simulate(world: World, libs: list, time_limit_ms: int, seed: int = 1,
     return WorldRun(results, traces, end_ms)
 
 
-def run_world(world: World, default_program: Program, load_program, time_limit_ms: int,
+def run_world(world: World, default_program, load_program, time_limit_ms: int,
               trace: Optional[Path], pose_ms: Optional[int] = None) -> int:
-    """Build and run every robot of the world; print the robots' readable
-    traces and a collision summary; write the merged trace to `trace`.
+    """Build and run every robot of the world (a program: a Program, or a
+    BuiltRobot found in the run cache); print the robots' readable traces
+    and a collision summary; write the merged trace to `trace`.
     `load_program(path, more_c)` gives the Program of a robot's own
     `program` (and its other C files), or raises BuildError. Returns the highest of the robots' exit statuses."""
     build_runner()
@@ -258,12 +276,13 @@ def run_world(world: World, default_program: Program, load_program, time_limit_m
         program = default_program if placement.program is None else \
             load_program(placement.program, placement.more_c)
         if id(program) not in libs:
-            libs[id(program)] = (program, build_robot(program))
+            libs[id(program)] = (program, robot_library(program))
         robots.append(libs[id(program)][1])
         devices.append(program.devices)
     quiet = os.environ.get("EPUCK_QUIET", "")
     quiet = bool(quiet and quiet != "0")
-    run = simulate(world, robots, time_limit_ms, seed, pose_ms, quiet=quiet, devices=devices)
+    run = simulate(world, robots, time_limit_ms, seed, pose_ms, quiet=quiet, devices=devices,
+                   with_traces=trace is not None)
     if not quiet:
         for r in run.results:
             print(_contact_line(r))
