@@ -71,7 +71,8 @@ static void yield_to_world(void)
     for (n = 0; n < 8; n++)
         stub_set_prox(n, io->prox[n]);
     stub_set_distance(io->distance_mm);
-    stub_set_camera(io->camera, ENKI_CAMERA_PIXELS);
+    if (io->camera_on)          /* else the pixels stay as they were: black */
+        stub_set_camera(io->camera, ENKI_CAMERA_PIXELS);
     for (n = 0; n < io->n_inbox; n++) {
         const enki_message *m = &io->inbox[n];
         stub_ircom_receive(m->value, m->distance_cm, m->direction_rad, m->sensor, m->from,

@@ -27,8 +27,8 @@
  *   tof                                  its ToF ray is cast (its program reads it)
  *
  * Each robot's shared object is loaded from its own file (so its globals
- * are its own: robots of one program load copies of its `lib`, written
- * beside the SPEC, whose code they share; robot_loader.h) and its main()
+ * are its own: robots of one program load copies of its `lib`, in memory
+ * or beside the SPEC, whose code they share; robot_loader.h) and its main()
  * runs as a coroutine: it runs step_ms poll
  * cycles, then yields (robot_glue.c), and the world steps once.  Robots are
  * resumed in the order of the SPEC; nothing depends on wall-clock time, so
@@ -56,6 +56,9 @@
 #include <string>
 #include <utility>
 #include <vector>
+#ifdef __GLIBC__
+#include <stdio_ext.h>         // __fpending
+#endif
 
 #include <enki/PhysicalEngine.h>
 #include <enki/robots/e-puck/EPuck.h>
@@ -347,6 +350,10 @@ void flush_output(Robot &r, bool all)
 {
     if (r.out == nullptr)
         return;
+#ifdef __GLIBC__
+    if (!all && __fpending(r.out) == 0 && r.out_size == r.out_done)
+        return;                 // nothing written since the last step (most)
+#endif
     std::fflush(r.out);
     size_t end = r.out_size;
     if (!all)
@@ -455,7 +462,8 @@ int main(int argc, char **argv)
         world->addObject(p);
     }
 
-    // the robots' copies go beside the SPEC (robot_loader.h)
+    // the robots' copies go beside the SPEC where memory files are missing
+    // (robot_loader.h)
     std::string folder(argv[1]);
     folder = folder.find('/') == std::string::npos ? "./" : folder.substr(0, folder.rfind('/') + 1);
     const bool several = robots.size() > 1;
@@ -466,6 +474,7 @@ int main(int argc, char **argv)
         r.io.runner = &r;
         r.io.step_ms = step_ms;
         r.io.message_frame_ms = messages.interval_ms;
+        r.io.camera_on = r.camera;
         if (r.settings.size() / 2 > ENKI_MAX_SETTINGS)
             die("too many settings for robot " + r.name);
         for (size_t i = 0; i < r.settings.size(); i++)
@@ -506,6 +515,7 @@ int main(int argc, char **argv)
                 die("out of memory");
         }
     }
+    loader::loaded();
     // readings for the first poll: the world as placed, nothing moving
     const double dt = step_ms / 1000.0;
     channel::Random random(seed);
