@@ -69,18 +69,35 @@ def _atomic_copy_into(cached: Path, produce) -> Path:
     return cached
 
 
+RUNNER_SOURCES = ("enki/world_runner.cpp", "enki/enki_bridge.h", "enki/world_channel.h",
+                  "enki/robot_loader.h")
+_runners: dict = {}     # what the sources' sizes and times gave in this process
+
+
 def build_runner() -> Path:
-    """The world runner executable, cached by its sources and the compiler."""
+    """The world runner executable, cached by its sources and the compiler
+    (found again from their sizes and times in the same process: an
+    experiment's worker asks at every run)."""
+    rt = runtime_dir()
+    try:
+        stamp = (str(cache_dir()), " ".join(cxx_compiler()),
+                 *((st.st_size, st.st_mtime_ns) for st in
+                   map(os.stat, [*(rt / rel for rel in RUNNER_SOURCES), ENKI_HEADER])))
+    except OSError:
+        stamp = None
+    exe = _runners.get(stamp)
+    if exe is not None and exe.is_file():
+        return exe
     if not enki_available():
         raise BuildError(ENKI_MISSING)
-    rt = runtime_dir()
     h = hashlib.sha256()
-    for rel in ("enki/world_runner.cpp", "enki/enki_bridge.h", "enki/world_channel.h",
-                "enki/robot_loader.h"):
+    for rel in RUNNER_SOURCES:
         h.update((rt / rel).read_bytes())
     h.update(ENKI_HEADER.read_bytes())
     h.update(" ".join(cxx_compiler() + RUNNER_FLAGS).encode())
     exe = cache_dir() / "enki" / f"runner-{h.hexdigest()[:24]}" / "epuck-world"
+    if stamp is not None:
+        _runners[stamp] = exe
 
     def produce(out: Path):
         _run_compiler(cxx_compiler() + RUNNER_FLAGS + [f"-I{rt / 'enki'}",
