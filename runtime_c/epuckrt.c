@@ -799,6 +799,7 @@ static int poll_ranked(void)
  * ran. */
 unsigned long rt_poll_count;
 void (*rt_device_poll)(void);
+int (*rt_device_idle)(void);
 
 static int poll_events(void)
 {

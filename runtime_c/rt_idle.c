@@ -21,7 +21,7 @@
  * steps, the skipped polls still measure them ms by ms: rt_idle_ms).
  * Anything this file does not know (a user's event function, a condition
  * that reads the odometry or random numbers, the accelerometer's taps, a
- * device that works at every poll) is polled at every ms, as before.
+ * device whose poll has work) is polled at every ms, as before.
  */
 #include "rt_internal.h"
 
@@ -146,10 +146,11 @@ long rt_idle_horizon(long *left, long *right)
     polls_seen = rt_poll_count;
     *left = *right = 0;
     /* the poll before changed something, or the next one has work of its
-     * own (a pending start, a stop_motor sample), or per-poll work this
-     * file does not model (the accelerometer's samples, whose tap compares
-     * two polls; a device's poll) */
-    if (!quiet || rt_accel_wanted || rt_device_poll != NULL
+     * own (a pending start, a stop_motor sample, a value waiting for the
+     * transmitter), or per-poll work this file does not model (the
+     * accelerometer's samples, whose tap compares two polls) */
+    if (!quiet || rt_accel_wanted
+            || (rt_device_poll != NULL && (rt_device_idle == NULL || !rt_device_idle()))
             || rt_sensors_starting || rt_mode_arm_pending || rt_mode_entry_pending
             || rt_seen_moving != rt_motion.active || rt_exit_requested)
         return 1;

@@ -94,6 +94,9 @@ extern unsigned long rt_poll_count;   /* polls so far: readings are read once in
  * receiver) sets this at its first use; the poll calls it first.  NULL:
  * none, and the core links without the device's files. */
 extern void (*rt_device_poll)(void);
+/* Set with it: 1 when the device's poll would change nothing while the
+ * inputs stay as they are (rt_idle.c); NULL: unknown. */
+extern int (*rt_device_idle)(void);
 
 /* rt_motion.c: motion and the sequencer */
 extern struct rt_motion rt_motion;

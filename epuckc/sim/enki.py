@@ -35,8 +35,8 @@ ROBOT_SOURCES = [*RUNTIME_CORE, *RUNTIME_SIMULATED, *RUNTIME_DEVICES, "host/plat
                  "host/epuck_stub.c", "host/stub_devices.c", "host/cmain.c", "host/epuck_more.c", "enki/robot_glue.c"]
 ROBOT_INCLUDES = [".", "epuck_api", "host", "enki", "epuck_api_unsimulated"]
 # robot_glue.c's header comment says why each of these is wrapped
-WRAPPED = ["stub_motors_1ms", "stub_motors_ms", "stub_pose", "stub_set_geometry", "getenv",
-           "exit"]
+WRAPPED = ["stub_motors_1ms", "stub_motors_ms", "stub_motors_ms_end", "stub_pose",
+           "stub_set_geometry", "getenv", "exit"]
 RUNNER_FLAGS = ["-std=c++14", "-O2", "-Wall", "-Wextra"]
 # In a world the pose is Enki's (the glue wraps stub_pose): the stub's own
 # dead reckoning, sines and cosines at every ms of every robot, was a fifth

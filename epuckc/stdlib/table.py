@@ -372,7 +372,7 @@ EVENTS = (
               "for each message received (`ircomPopMessage`), one per poll, in the order they "
               "came; while its action runs, `message`, `message_bearing` and `message_range` "
               "describe it (the runtime queues 8; when full, the oldest is dropped)",
-              "event_message", memory=False, device="messages"),
+              "event_message", memory=False, device="messages", wake="change"),
 )
 
 STANDARD_ACTIONS = {spec.name: spec for spec in ACTIONS}

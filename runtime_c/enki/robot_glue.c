@@ -6,7 +6,8 @@
  * e-puck library (host/epuck_stub.c: stepper motors with 16-bit counters,
  * agendas, proximity registers) and this file, linked with
  *
- *   -Wl,--wrap=stub_motors_1ms,--wrap=stub_motors_ms,--wrap=stub_pose,
+ *   -Wl,--wrap=stub_motors_1ms,--wrap=stub_motors_ms,--wrap=stub_motors_ms_end,
+ *   -Wl,--wrap=stub_pose,
  *   -Wl,--wrap=stub_set_geometry
  *   -Wl,--wrap=getenv,--wrap=exit -Wl,-Bsymbolic
  *
@@ -91,8 +92,9 @@ void __wrap_stub_motors_1ms(void)
         yield_to_world();
 }
 
-/* Several ms at once (rt_idle.c): never past the end of the world's step,
- * where the world steps and the readings change. */
+/* Several ms at once (rt_idle.c): never past the end of the world's step;
+ * when they end it, the world steps at stub_motors_ms_end, once the host's
+ * clock is at the last of them (what it hands over is traced then). */
 long __real_stub_motors_ms(long n, long left, long right);
 long __wrap_stub_motors_ms(long n, long left, long right)
 {
@@ -102,9 +104,13 @@ long __wrap_stub_motors_ms(long n, long left, long right)
     io->window_left += stub_total_steps_left() - l;
     io->window_right += stub_total_steps_right() - r;
     io->ms_in_window += (int)done;
+    return done;
+}
+
+void __wrap_stub_motors_ms_end(void)
+{
     if (io->ms_in_window >= io->step_ms)
         yield_to_world();
-    return done;
 }
 
 void __wrap_stub_set_geometry(long wheel_circumference_um, long axle_um, long steps_per_rev)

@@ -75,6 +75,7 @@ static struct {
     int cycle;      /* 0.1 ms; 0 = inactive */
     long count;     /* 0.1 ms ticks since the last call */
     int paused;
+    int counter;    /* the stub's own, which only counts (stub_activate_counter) */
 } agendas[STUB_MAX_AGENDAS];
 static int agendas_running;
 static int agendas_changed = 1;     /* stub_agendas_active counts them again */
@@ -112,6 +113,7 @@ int e_activate_agenda(void (*func)(void), int cycle)
             agendas[i].cycle = cycle < 0 ? 0 : cycle;
             agendas[i].count = 0;
             agendas[i].paused = 0;
+            agendas[i].counter = 0;
             agendas_changed = 1;
             return 0;
         }
@@ -168,25 +170,32 @@ int e_restart_agenda(void (*func)(void))
     return 0;
 }
 
-/* The agendas processing would call: 0 none, 1 one (*only is it), 2 more;
- * counted again only after the table changed. */
-int stub_agendas_active(void (**only)(void))
+int stub_activate_counter(void (*func)(void), int cycle)
 {
-    static int n;
-    static void (*one)(void);
+    if (e_activate_agenda(func, cycle) != 0)
+        return 1;
+    agendas[agenda_find(func)].counter = 1;
+    return 0;
+}
+
+/* Every agenda that processing would call is `clock` or a counter of the
+ * stub's own (and processing runs); counted again after the table changed. */
+int stub_agendas_count_only(void (*clock)(void))
+{
+    static int only;
+    static void (*seen)(void);
     int i;
-    if (agendas_changed) {
+    if (agendas_changed || clock != seen) {
         agendas_changed = 0;
-        n = 0;
-        for (i = 0; i < STUB_MAX_AGENDAS && agendas_running && n < 2; i++) {
-            if (agendas[i].func != NULL && agendas[i].cycle > 0 && !agendas[i].paused) {
-                one = agendas[i].func;
-                n++;
-            }
+        seen = clock;
+        only = agendas_running;
+        for (i = 0; i < STUB_MAX_AGENDAS && only; i++) {
+            if (agendas[i].func != NULL && agendas[i].cycle > 0 && !agendas[i].paused
+                    && agendas[i].func != clock && !agendas[i].counter)
+                only = 0;
         }
     }
-    *only = one;
-    return n;
+    return only;
 }
 
 void stub_agendas_1ms(void)
@@ -205,21 +214,23 @@ void stub_agendas_1ms(void)
     }
 }
 
-void stub_agendas_ms(long n)
+void stub_agendas_ms(long n, void (*clock)(void))
 {
-    void (*only)(void) = NULL;
     int i;
-    if (stub_agendas_active(&only) != 1) {
+    if (!stub_agendas_count_only(clock)) {
         while (n-- > 0)
             stub_agendas_1ms();
         return;
     }
-    /* one agenda: its calls in a row, as n ms would make them */
-    i = agenda_find(only);
-    agendas[i].count += 10L * n;
-    while (agendas[i].func != NULL && agendas[i].count >= agendas[i].cycle) {
-        agendas[i].count -= agendas[i].cycle;
-        agendas[i].func();
+    /* agendas that only count: each one's calls of the n ms in a row */
+    for (i = 0; i < STUB_MAX_AGENDAS; i++) {
+        if (agendas[i].func == NULL || agendas[i].cycle <= 0 || agendas[i].paused)
+            continue;
+        agendas[i].count += 10L * n;
+        while (agendas[i].func != NULL && agendas[i].count >= agendas[i].cycle) {
+            agendas[i].count -= agendas[i].cycle;
+            agendas[i].func();
+        }
     }
 }
 
@@ -428,6 +439,10 @@ static void wheel_ms(wheel *w, long n)
     }
 }
 #endif
+
+void stub_motors_ms_end(void)
+{
+}
 
 long stub_motors_ms(long n, long left, long right)
 {

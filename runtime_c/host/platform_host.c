@@ -556,19 +556,18 @@ void rt_platform_init(void)
 }
 
 /* How many ms this poll cycle may advance at once (docs/runtime.md, "Idle
- * polls in bulk"): the runtime's horizon (rt_idle.c) while the runtime's
- * clock is the only agenda, within the time limit (its poll runs), before
- * the next pose record and the scenario's next line. */
+ * polls in bulk"): the runtime's horizon (rt_idle.c) while the agendas only
+ * count (the runtime's clock, libIrcom's frame), within the time limit (its
+ * poll runs), before the next pose record and the scenario's next line. */
 static long bulk_ms(long *left, long *right)
 {
-    void (*only)(void) = NULL;
     long n, t;
 
     *left = *right = 0;
     if (!bulk)
         return 1;
     n = rt_idle_horizon(left, right);
-    if (n <= 1 || stub_agendas_active(&only) != 1 || only != rt_clock_tick)
+    if (n <= 1 || !stub_agendas_count_only(rt_clock_tick))
         return 1;
     if (n > limit_ms - now_ms)
         n = limit_ms - now_ms;
@@ -618,9 +617,11 @@ void rt_platform_idle(void)
          * (fewer when a wheel reached the motion's end, or a world's step
          * ended: its poll runs), as one ms after another would make them */
         n = stub_motors_ms(n, left, right);
-        now_ms += n;
+        now_ms += n - 1;
+        stub_motors_ms_end();   /* a world steps at the end of its step, at this ms */
+        now_ms++;
         host_scenario_apply(now_ms);    /* no line before it */
-        stub_agendas_ms(n);
+        stub_agendas_ms(n, rt_clock_tick);
         rt_idle_skipped(n - 1);
         polls_skipped += n - 1;
     } else {

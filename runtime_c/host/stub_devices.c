@@ -43,7 +43,7 @@ static void on_air_1ms(void)
 
 void ircomStart(void)
 {
-    e_activate_agenda(on_air_1ms, 10);
+    stub_activate_counter(on_air_1ms, 10);
 }
 
 void ircomEnableContinuousListening(void)

@@ -67,12 +67,15 @@ def test_generated_programs_in_a_world_trace_the_same(tmp_path, index):
     run_twice(tmp_path, path, "--world", world, "--time-limit", "4s", "--seed", str(index))
 
 
-def test_worlds_skip_polls(tmp_path):
-    """The comparisons above are of runs that skip: wander in the arena
-    polls at most a few times in each world step of 10 ms."""
+@pytest.mark.parametrize("example", ["wander", "aggregation"])
+def test_worlds_skip_polls(tmp_path, example):
+    """The comparisons above are of runs that skip: wander (sensor rules)
+    and aggregation (IR messages sent and received) in their worlds poll
+    at most a few times in each world step of 10 ms."""
     stats = tmp_path / "stats"
-    run_twice(tmp_path, EXAMPLES / "wander.epk", "--world", EXAMPLES / "swarm.world",
-              "--time-limit", "10s", stats=stats)
+    world = EXAMPLES / ("swarm.world" if example == "wander" else f"{example}.world")
+    run_twice(tmp_path, EXAMPLES / f"{example}.epk", "--world", world, "--time-limit", "10s",
+              stats=stats)
     lines = [line.split() for line in stats.read_text().splitlines()]
     assert lines and all(int(w[1]) == 10000 for w in lines), lines
     assert all(int(w[3]) >= 7000 for w in lines), lines
