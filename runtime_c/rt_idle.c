@@ -114,6 +114,27 @@ static long events_due(long now)
     return n;
 }
 
+/* events_due as long as nothing changed (rt_stir): the same clock time.
+ * Only a time after the next ms is kept: what gives an earlier one (an
+ * `every` armed but not polled yet, a memory of 0) may change without a
+ * stir, what gives a later one (a deadline, a timer's start, which events
+ * are armed, the mode) only with one. */
+static long events_due_cached(long now)
+{
+    static int known;
+    static unsigned stir;
+    static long at;             /* clock time, or NEVER */
+    long d;
+
+    if (known && stir == rt_stir)
+        return at == NEVER ? NEVER : at - now;
+    d = events_due(now);
+    known = d > 1;
+    stir = rt_stir;
+    at = d >= NEVER ? NEVER : now + d;
+    return d;
+}
+
 /* The steps each watched wheel may still make before the motion can end:
  * it ends when max(|left|, |right|) (or the watched wheel's) reaches its
  * target, and |a + d| <= |a| + |d|, so no poll before these steps ends it.
@@ -169,7 +190,7 @@ long rt_idle_horizon(long *left, long *right)
     if (rt_motion.active && !rt_motion.endless && !motion_room(left, right))
         return 1;
     if (n > 1) {
-        long d = events_due(now);
+        long d = events_due_cached(now);
         n = d < n ? d : n;
     }
     return n < 1 ? 1 : n;

@@ -78,7 +78,8 @@ static struct {
     int counter;    /* the stub's own, which only counts (stub_activate_counter) */
 } agendas[STUB_MAX_AGENDAS];
 static int agendas_running;
-static int agendas_changed = 1;     /* stub_agendas_active counts them again */
+static int agendas_changed = 1;     /* stub_agendas_count_only looks again */
+static int agendas_used;            /* the slots ever used: the loops stop there */
 
 static int agenda_find(void (*func)(void))
 {
@@ -115,6 +116,8 @@ int e_activate_agenda(void (*func)(void), int cycle)
             agendas[i].paused = 0;
             agendas[i].counter = 0;
             agendas_changed = 1;
+            if (i >= agendas_used)
+                agendas_used = i + 1;
             return 0;
         }
     }
@@ -189,7 +192,7 @@ int stub_agendas_count_only(void (*clock)(void))
         agendas_changed = 0;
         seen = clock;
         only = agendas_running;
-        for (i = 0; i < STUB_MAX_AGENDAS && only; i++) {
+        for (i = 0; i < agendas_used && only; i++) {
             if (agendas[i].func != NULL && agendas[i].cycle > 0 && !agendas[i].paused
                     && agendas[i].func != clock && !agendas[i].counter)
                 only = 0;
@@ -203,7 +206,7 @@ void stub_agendas_1ms(void)
     int i;
     if (!agendas_running)
         return;
-    for (i = 0; i < STUB_MAX_AGENDAS; i++) {
+    for (i = 0; i < agendas_used; i++) {
         if (agendas[i].func == NULL || agendas[i].cycle <= 0 || agendas[i].paused)
             continue;
         agendas[i].count += 10;     /* 1 ms = 10 ticks of 0.1 ms */
@@ -223,7 +226,7 @@ void stub_agendas_ms(long n, void (*clock)(void))
         return;
     }
     /* agendas that only count: each one's calls of the n ms in a row */
-    for (i = 0; i < STUB_MAX_AGENDAS; i++) {
+    for (i = 0; i < agendas_used; i++) {
         if (agendas[i].func == NULL || agendas[i].cycle <= 0 || agendas[i].paused)
             continue;
         agendas[i].count += 10L * n;
