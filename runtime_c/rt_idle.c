@@ -90,7 +90,10 @@ static int mode_ok(int mode)
     return mode == 0 || mode == rt_current_mode;
 }
 
-/* The earliest due() of the events the next poll would poll. */
+/* The earliest due() of the events the next poll would poll, and of those
+ * that hold the motors by their condition (a one-shot rule that fired and
+ * disarmed is still read at each poll, rt_holds_update: when its condition
+ * can change is when its event could occur). */
 static long events_due(long now)
 {
     long n = NEVER, d;
@@ -98,7 +101,7 @@ static long events_due(long now)
 
     for (k = 0; k < rt_s_events && n > 1; k++) {
         const rt_event *e = &rt_prog->events[k];
-        if (!BIT_GET(rt_ev_armed, k) || !mode_ok(e->mode))
+        if (!(BIT_GET(rt_ev_armed, k) && mode_ok(e->mode)) && !BIT_GET(rt_ev_hold, k))
             continue;
         d = due(e->event_function, e->event_param,
                 e->memory != RT_NO_MEMORY ? rt_prog->memory[e->memory] : 0, e->flags, now);
@@ -106,7 +109,8 @@ static long events_due(long now)
     }
     for (k = 0; k < rt_n_events && n > 1; k++) {
         const event *e = &rt_events[k];
-        if (!e->valid_flag || e->event_function == NULL || !mode_ok(rt_event_ext[k].mode))
+        if (e->event_function == NULL
+                || (!(e->valid_flag && mode_ok(rt_event_ext[k].mode)) && !rt_event_ext[k].hold))
             continue;
         d = due(e->event_function, e->event_param, e->status.memory, 0u, now);
         n = d < n ? d : n;
@@ -118,7 +122,7 @@ static long events_due(long now)
  * Only a time after the next ms is kept: what gives an earlier one (an
  * `every` armed but not polled yet, a memory of 0) may change without a
  * stir, what gives a later one (a deadline, a timer's start, which events
- * are armed, the mode) only with one. */
+ * are armed or hold the motors, the mode) only with one. */
 static long events_due_cached(long now)
 {
     static int known;

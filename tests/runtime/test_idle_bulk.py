@@ -100,6 +100,46 @@ def test_idle_polls_are_skipped_and_the_others_run(tmp_path):
     assert 3 <= calls["bulk"] <= 10, calls
 
 
+# Programs for what a poll sees besides its armed events: a one-shot rule
+# that fired still holds the motors while its condition holds (read at each
+# poll, even disarmed), conditions on the odometry and on random numbers,
+# waits in sequences, guarded timers, a stop_motor rule after a motion.
+HELD = {
+    "odometry": """on immediate do set_speed(200 steps/s, 200 steps/s)
+rule h: when x < 50 mm priority 1 do led_on(body), set_speed(300 steps/s, 300 steps/s)
+""",
+    "random": """var n = 0
+on immediate do set_speed(150 steps/s, -150 steps/s)
+rule h: when random(0, 999) > 3 priority 2 do n += 1, set_speed(100 steps/s, 100 steps/s)
+every 37 ms priority 1 do set_speed(-80 steps/s, 80 steps/s)
+""",
+    "guards": """var k = 0
+on immediate do set_timer, start_sensor
+on timer(230 ms) repeat priority 1 if k < 4 do k += 1, start_curve(radius: 0 mm, degrees: 45 deg, speed: 300)
+on sensor(ir0 > 300) repeat priority 2 if k > 1 do start_straight(-200, 1 cm) then wait(150 ms) then set_speed(100, 100)
+rule s: on stop_motor repeat do led_toggle(front)
+after 1700 ms if k >= 2 do exit_main
+""",
+}
+
+
+@pytest.mark.parametrize("name", sorted(HELD))
+def test_held_motors_and_odd_conditions_trace_the_same(tmp_path, name):
+    path = tmp_path / f"{name}.epk"
+    path.write_text(HELD[name], encoding="utf-8")
+    scenario = tmp_path / "s.scn"
+    scenario.write_text("0 ms ir0=0\n400 ms ir0=800\n420 ms ir0=0\n1100 ms ir0=900\n1150 ms ir0=0\n",
+                        encoding="utf-8")
+
+    def once(env):
+        trace = tmp_path / "t.jsonl"
+        r = epuckc("run", path, "--scenario", scenario, "--time-limit", "3s", "--trace", trace,
+                   env=env)
+        assert r.returncode in (0, 3), r.stderr
+        return trace.read_bytes(), r.stdout, r.returncode
+    same_both_ways(once)
+
+
 @pytest.mark.parametrize("example", sorted(p.name for p in EXAMPLES.glob("*.epk")))
 def test_examples_trace_the_same(tmp_path, example):
     path = EXAMPLES / example
