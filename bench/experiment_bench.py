@@ -4,20 +4,27 @@
 1. Runs per second with 1 local worker and with N (default: every core
    this process may use), the same experiment (one robot, examples/
    wander.epk in a walled arena with obstacles, 10 s per run, --runs
-   seeds), each a whole `epuckc experiment` process into a fresh folder.
-   Target: N workers give at least 0.85 x N times the runs per second of
-   one.
+   seeds), each a whole `epuckc experiment` process into a fresh folder,
+   the two alternated --repeat times (best of each). Target: N workers give
+   at least 0.85 x N times the runs per second of one.
+   On a shared machine the wall clock gives N workers only the cores the
+   others leave, so each run's CPU time (the experiment process, its
+   workers and their world runners, all of it) is measured as well: the
+   CPU efficiency of N workers is the CPU per run of one worker over that
+   of N (1.0: the pool adds no work), and N x that efficiency is the
+   speed-up N free cores would give, while the parent's own share (which
+   does not spread) is small.
 2. 1,000 runs of 10 s with one robot on N workers (--thousand; it takes
    the longest). Target: within 2 minutes on 2 cores.
 
-Prints the machine and its load average: on a shared machine the figures
-are those of the cores this process got.
+Prints the machine and its load average before and after.
 
-    python3 bench/experiment_bench.py [--runs 60] [--workers N] [--thousand]
+    python3 bench/experiment_bench.py [--runs 300] [--workers N] [--repeat 3] [--thousand]
 """
 import argparse
 import os
 import platform
+import resource
 import subprocess
 import sys
 import tempfile
@@ -46,55 +53,88 @@ def experiment(folder: Path, seeds: int) -> Path:
     return exp
 
 
-def timed(exp: Path, out: Path, workers: int, env) -> float:
+def cpu_of_children() -> float:
+    r = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return r.ru_utime + r.ru_stime
+
+
+# `epuckc experiment` as `python3 -m epuckc experiment` runs it, which then
+# tells its own CPU time (without its workers'): the share that does not spread
+RUN = ("import resource, sys\n"
+       "from epuckc.cli import main\n"
+       "status = main(sys.argv[1:])\n"
+       "r = resource.getrusage(resource.RUSAGE_SELF)\n"
+       "print(f'parent CPU {r.ru_utime + r.ru_stime}', file=sys.stderr)\n"
+       "sys.exit(status)\n")
+
+
+def timed(exp: Path, out: Path, workers: int, env) -> tuple:
+    """(wall seconds, rows, CPU seconds of the whole process tree, CPU
+    seconds of the experiment's own process)."""
+    cpu = cpu_of_children()
     start = time.perf_counter()
-    proc = subprocess.run([sys.executable, "-m", "epuckc", "experiment", str(exp), "-o", str(out),
+    proc = subprocess.run([sys.executable, "-c", RUN, "experiment", str(exp), "-o", str(out),
                            "--workers", str(workers)], env=env, capture_output=True, text=True)
     wall = time.perf_counter() - start
+    cpu = cpu_of_children() - cpu
     if proc.returncode != 0:
         sys.exit(f"failed ({proc.returncode}):\n{proc.stderr}")
+    parent = float(proc.stderr.rsplit("parent CPU ", 1)[1])
     rows = (out / "runs.csv").read_text().count("\n") - 1
     failed = (out / "runs.csv").read_text().count("the ")
     if failed:
         sys.exit(f"{failed} runs failed:\n{(out / 'runs.csv').read_text()}")
-    return wall, rows
+    return wall, rows, cpu, parent
+
+
+def load() -> str:
+    return " ".join(f"{x:.1f}" for x in os.getloadavg())
 
 
 def main() -> int:
     parser = argparse.ArgumentParser(description="experiment throughput")
     parser.add_argument("--runs", type=int, default=60)
     parser.add_argument("--workers", type=int, default=len(os.sched_getaffinity(0)))
+    parser.add_argument("--repeat", type=int, default=2)
     parser.add_argument("--thousand", action="store_true")
     args = parser.parse_args()
     env = dict(os.environ, PYTHONPATH=str(REPO) + os.pathsep + os.environ.get("PYTHONPATH", ""))
     print(f"machine: {platform.machine()}, {os.cpu_count()} CPUs, {args.workers} usable by this "
           f"process; {platform.system()} {platform.release()}, Python "
-          f"{platform.python_version()}; load average "
-          f"{' '.join(f'{x:.1f}' for x in os.getloadavg())}")
+          f"{platform.python_version()}; load average {load()}")
     ok = True
     with tempfile.TemporaryDirectory() as tmp:
         tmp = Path(tmp)
         exp = experiment(tmp / "exp", args.runs)
         timed(exp, tmp / "warm", 1, env)            # builds the runner and the robot (cached)
-        results = {}
+        rates, cpus, parents = {}, {}, {}
         # alternate, so that a change in the machine's load hits both
-        for rep in range(2):
+        for rep in range(args.repeat):
             for workers in (1, args.workers):
-                wall, rows = timed(exp, tmp / f"o{workers}-{rep}", workers, env)
-                results.setdefault(workers, []).append(rows / wall)
-        one = max(results[1])
-        many = max(results[args.workers])
+                wall, rows, cpu, parent = timed(exp, tmp / f"o{workers}-{rep}", workers, env)
+                rates.setdefault(workers, []).append(rows / wall)
+                cpus.setdefault(workers, []).append(cpu / rows)
+                parents.setdefault(workers, []).append(parent / rows)
+        one, many = max(rates[1]), max(rates[args.workers])
         ratio = many / one
-        print(f"{args.runs} runs of 10 s, one robot, wander.epk: 1 worker {one:.1f} runs/s, "
-              f"{args.workers} workers {many:.1f} runs/s (best of 2 each): "
-              f"{ratio:.2f} x; target {0.85 * args.workers:.2f} x: "
-              f"{'met' if ratio >= 0.85 * args.workers else 'NOT met'}")
+        cpu_one, cpu_many = min(cpus[1]), min(cpus[args.workers])
+        efficiency = cpu_one / cpu_many
+        print(f"{args.runs} runs of 10 s, one robot, wander.epk (best of {args.repeat} each):\n"
+              f"  1 worker {one:.1f} runs/s, {1000 * cpu_one:.1f} ms CPU a run\n"
+              f"  {args.workers} workers {many:.1f} runs/s = {ratio:.2f} x one worker, "
+              f"{1000 * cpu_many:.1f} ms CPU a run, of which the experiment's own process "
+              f"{1000 * min(parents[args.workers]):.1f} ms\n"
+              f"  target {0.85 * args.workers:.2f} x: {'met' if ratio >= 0.85 * args.workers else 'NOT met'}"
+              f" on the wall clock; CPU efficiency {efficiency:.2f}: {args.workers} free cores "
+              f"would give {args.workers * efficiency:.2f} x "
+              f"({'met' if efficiency >= 0.85 else 'NOT met'} by CPU time); load average {load()}")
         ok &= ratio >= 0.85 * args.workers
         if args.thousand:
             exp = experiment(tmp / "thousand", 1000)
-            wall, rows = timed(exp, tmp / "o1000", args.workers, env)
+            wall, rows, cpu, _ = timed(exp, tmp / "o1000", args.workers, env)
             print(f"1000 runs of 10 s, one robot, {args.workers} workers: {wall:.1f} s "
-                  f"({rows} rows); target 120 s: {'met' if wall <= 120 else 'NOT met'}")
+                  f"({rows} rows, {cpu:.1f} s CPU); target 120 s: "
+                  f"{'met' if wall <= 120 else 'NOT met'}; load average {load()}")
             ok &= wall <= 120
     return 0 if ok else 1
 

@@ -54,13 +54,13 @@ sys.path.insert(0, str(BENCH))
 from check_bench import generate as generate_mixed  # noqa: E402
 
 sys.path.insert(0, str(REPO))
-from epuckc.base.resources import RUNTIME_CORE  # noqa: E402
+from epuckc.base.resources import RUNTIME_CORE, RUNTIME_SIMULATED  # noqa: E402
 
 HOST_CFLAGS = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", "-O2"]
 # as epuckc's robot builds: no name labels
 AVR_CFLAGS = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", "-Os", "-DEPUCKRT_NO_NAMES"]
 CORE = [RT / name for name in RUNTIME_CORE]     # the runtime, one file per concern
-HOST_SOURCES = [*CORE, RT / "host" / "platform_host.c", RT / "host" / "scenario.c",
+HOST_SOURCES = [*CORE, *(RT / name for name in RUNTIME_SIMULATED), RT / "host" / "platform_host.c", RT / "host" / "scenario.c",
                 RT / "host" / "epuck_stub.c"]
 BUDGET_CYCLES = 16000           # 1 ms at 16 MIPS
 SIM_MCU = "atmega1284p"
@@ -211,7 +211,8 @@ def host_per_poll(c: Path, extra, defines: list, d: Path, p1=1000, p2=2000) -> f
     per = []
     for polls in (p1, p2):
         env = {k: v for k, v in os.environ.items() if not k.startswith("EPUCK_")}
-        env.update(EPUCK_QUIET="1", EPUCK_TIME_LIMIT_MS=str(polls))
+        env.update(EPUCK_QUIET="1", EPUCK_TIME_LIMIT_MS=str(polls),
+                   EPUCK_POLL_EVERY_MS="1")     # a poll every ms, as the robot
         total, idle = callgrind_ir(exe, d, env=env, function="rt_platform_idle")
         per.append(total - idle)
     return (per[1] - per[0]) / (p2 - p1)
@@ -271,7 +272,8 @@ def bench_callgrind(sizes, work: Path, p1=1000, p2=2000) -> list:
         per = []
         for polls in (p1, p2):
             env = {k: v for k, v in os.environ.items() if not k.startswith("EPUCK_")}
-            env.update(EPUCK_QUIET="1", EPUCK_TIME_LIMIT_MS=str(polls))
+            env.update(EPUCK_QUIET="1", EPUCK_TIME_LIMIT_MS=str(polls),
+                       EPUCK_POLL_EVERY_MS="1")     # a poll every ms, as the robot
             total, idle = callgrind_ir(dyn_exe, d, env=env, function="rt_platform_idle")
             per.append(total - idle)
         dynamic = (per[1] - per[0]) / (p2 - p1)

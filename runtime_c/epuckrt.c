@@ -113,7 +113,7 @@ long rt_millis(void)
 int rt_initialised;
 static int remote_wanted;       /* an event_remote was registered */
 int rt_remote_started;      /* e_init_remote_control() has run */
-static int accel_wanted;        /* an event_tap or event_tilt was registered */
+int rt_accel_wanted;             /* an event_tap or event_tilt was registered */
 
 static void remote_start(void)
 {
@@ -142,6 +142,8 @@ static void rt_init(void)
 /* ---- state of the standard actions and events --------------------------- */
 
 int rt_exit_requested;      /* set by exit_main, checked by mainloop */
+unsigned rt_stir;           /* counts what a poll can change (rt_internal.h) */
+int rt_looping;             /* mainloop is polling */
 int rt_current_action_id = -1;  /* the action being run by mainloop */
 int rt_current_event_id = -1;   /* the event whose action runs (-1: none) */
 int rt_current_rearmed;         /* its action entered its mode again: it stays armed */
@@ -202,7 +204,7 @@ int register_event(event_func f, void *event_param, int action_id)
         remote_start();
     }
     if (f == event_tap || f == event_tilt)
-        accel_wanted = 1;
+        rt_accel_wanted = 1;
     rt_new_event(rt_s_events + id, f);
     return rt_s_events + id;
 }
@@ -373,7 +375,7 @@ int register_program(const rt_program *p)
         if (e->event_function == event_remote)
             remote_wanted = 1;
         if (e->event_function == event_tap || e->event_function == event_tilt)
-            accel_wanted = 1;
+            rt_accel_wanted = 1;
         rt_new_event(k, e->event_function);
     }
     if (p->order != NULL)
@@ -439,6 +441,7 @@ static void run_action(int action_id)
  * one whose action entered it too (rt_current_rearmed, set by enter_mode). */
 static void fire_static(int id)
 {
+    rt_stir++;
     rt_trace_event(id);
     rt_current_event_id = id;
     rt_firing_event = id;
@@ -596,6 +599,7 @@ static void fire_dynamic(int i)
 {
     event *e = &rt_events[i];
 
+    rt_stir++;
     rt_trace_event(rt_s_events + i);
     rt_current_event_id = rt_s_events + i;
     rt_firing_event = rt_current_event_id;
@@ -795,6 +799,7 @@ static int poll_ranked(void)
  * ran. */
 unsigned long rt_poll_count;
 void (*rt_device_poll)(void);
+int (*rt_device_idle)(void);
 
 static int poll_events(void)
 {
@@ -847,6 +852,7 @@ void mainloop(void)
     rt_motors_retrace();            /* a motion that main started */
     rt_last_left = e_get_steps_left();
     rt_last_right = e_get_steps_right();
+    rt_looping = 1;
     for (;;) {
         rt_platform_idle();         /* (1) wait for / advance time by 1 ms */
         rt_motion_update();            /* (2) */
@@ -855,13 +861,14 @@ void mainloop(void)
             break;
         rt_stop_sample = rt_seen_moving && !rt_motion.active;    /* (4) */
         rt_seen_moving = rt_motion.active;
-        if (accel_wanted)
+        if (rt_accel_wanted)
             rt_accel_sample();
         if (poll_events())          /* (5) */
             break;
         rt_motors_changed();        /* holds end in the poll too */
     }
     /* exit_main: stop at once */
+    rt_looping = 0;
     rt_motion.active = 0;
     rt_wheels(0, 0);
     rt_seq = NULL;

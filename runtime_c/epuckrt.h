@@ -132,15 +132,30 @@ typedef struct {
                                    function, event_sensor and event_ambient */
 #define RT_HOLD_GUARD 4u        /* a guarded periodic rule (`every D if G`):
                                    until a period whose guard is false */
+/* rt_event.flags: when the event can occur, if nothing but time passes
+ * (a host that simulates time polls in bulk what cannot: docs/runtime.md,
+ * "Idle polls in bulk"); without any, at any poll.  The runtime knows the
+ * standard event functions by themselves; these say it of a program's own
+ * (a guard's, a `when`'s). */
+#define RT_WAKE_ON_CHANGE 8u    /* only at a poll after the inputs or the
+                                   program's state (its variables, a mode,
+                                   the motion) changed; not occurring, it
+                                   changes nothing but its memory */
+#define RT_WAKE_AT_DEADLINE 16u /* as event_every: not before the clock
+                                   reaches its memory - 1 (memory 0: at its
+                                   next poll) */
+#define RT_WAKE_AS_TIMER 32u    /* as event_timer on its event_param */
 #define RT_NO_MEMORY (-1)       /* rt_event.memory: the function gets 0 */
 #define RT_CONDITIONS_ALWAYS 0x100u   /* rt_program.sensors: see conditions */
+#define RT_CONDITIONS_ON_CHANGE 0x200u    /* rt_program.sensors: see conditions */
 
 typedef struct {
     event_func event_function;  /* NULL: the event is the program's compiled
                                    sensor condition (rt_program.conditions) */
     const void *event_param;
     int action_id;              /* an index in the program's actions */
-    unsigned char flags;        /* RT_REPEAT, RT_HOLD_WHILE, RT_HOLD_GUARD */
+    unsigned char flags;        /* RT_REPEAT, RT_HOLD_WHILE, RT_HOLD_GUARD,
+                                   RT_WAKE_* */
     int memory;                 /* index in rt_program.memory of the status's
                                    memory, kept between polls (0 at the
                                    start), or RT_NO_MEMORY */
@@ -167,7 +182,10 @@ typedef struct {
                                    `when`): conditions is then called at
                                    every poll, with ir NULL while the
                                    sensors are off (the sensor conditions
-                                   are then false) */
+                                   are then false); RT_CONDITIONS_ON_CHANGE
+                                   with it: they read nothing but the
+                                   inputs and the program's variables (no
+                                   odometry, no random numbers) */
     unsigned *state;            /* RAM, RT_STATE_WORDS(n_actions, n_events) */
     long *memory;               /* RAM, one per memory index used, or NULL */
     /* The events' ids (n_events of them) by priority, highest first, in id

@@ -77,6 +77,12 @@ void rt_holds_update(void);   /* before the walk: conditions that became false l
 int rt_event_mode(int id);
 extern int rt_initialised;
 extern int rt_remote_started;   /* e_init_remote_control() has run */
+extern int rt_accel_wanted;   /* an event_tap or event_tilt was registered */
+/* Counts the changes a poll can make to what the next poll sees: an event
+ * fired, a sequence's step ran, a motion ended, a hold began or ended.  A
+ * poll that left it as it was changed nothing but time (rt_idle.c). */
+extern unsigned rt_stir;
+extern int rt_looping;   /* mainloop is polling */
 extern int rt_exit_requested;   /* set by exit_main, checked by mainloop */
 extern int rt_current_action_id;   /* the action being run by mainloop */
 extern int rt_current_event_id;   /* the event whose action runs (-1: none) */
@@ -88,6 +94,9 @@ extern unsigned long rt_poll_count;   /* polls so far: readings are read once in
  * receiver) sets this at its first use; the poll calls it first.  NULL:
  * none, and the core links without the device's files. */
 extern void (*rt_device_poll)(void);
+/* Set with it: 1 when the device's poll would change nothing while the
+ * inputs stay as they are (rt_idle.c); NULL: unknown. */
+extern int (*rt_device_idle)(void);
 
 /* rt_motion.c: motion and the sequencer */
 extern struct rt_motion rt_motion;
@@ -115,14 +124,18 @@ void rt_hold_release(int id);
 void rt_holds_release(int mode);   /* those of the events of `mode`; all: -1 */
 int rt_next_holder(int id);   /* the first event from id on that holds by its condition or guard */
 void rt_motion_update(void);
+int rt_motion_idle(void);   /* an idle poll's phase (2); 0: the motion would end */
 void rt_sequence_advance(void);
 
 /* rt_lang.c: the rule language's expressions, odometry, random numbers */
 void rt_odometry(long dl, long dr);   /* the wheels' steps of this poll */
+extern int rt_odometry_used;   /* the program reads x, y or heading */
 
 /* rt_math.c: integer atan2, hypot, sqrt, sin, cos: declared in epuckrt.h */
 
 /* rt_sensors.c: standard events, sensors and devices */
+extern int rt_timer_running;   /* set_timer ran, reset_timer did not since */
+extern long rt_timer_start;   /* rt_millis() at set_timer */
 extern int rt_sensors_on;
 extern int rt_sensors_starting;   /* start_sensor ran: on from the next poll */
 extern int rt_prox[8];

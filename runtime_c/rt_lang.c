@@ -268,7 +268,7 @@ int rt_selector(void)
  * total steps (no drift from rounding); the position is summed poll by
  * poll along the heading, in micrometres times 2^15. */
 
-static int odometry_used;
+int rt_odometry_used;
 static long total_left, total_right;
 static long long pos_x, pos_y;          /* um * 32768 */
 static unsigned theta;                  /* heading, 1/65536 turn (16 bits) */
@@ -318,7 +318,7 @@ static unsigned heading_of(long diff)
 
 void rt_use_odometry(void)
 {
-    odometry_used = 1;
+    rt_odometry_used = 1;
 }
 
 void rt_odometry(long dl, long dr)
@@ -326,7 +326,7 @@ void rt_odometry(long dl, long dr)
     unsigned before = theta, mid;
     long long ds, scale;
 
-    if (!odometry_used || (dl == 0 && dr == 0))
+    if (!rt_odometry_used || (dl == 0 && dr == 0))
         return;
     ds = (long long)(dl + dr) * rt_geo_circumference_um;    /* um * 2 * steps_per_rev */
     scale = 2LL * rt_geo_steps_per_rev;

@@ -117,6 +117,7 @@ static void hold_put(int id, int on)
     else
         BIT_CLEAR(rt_ev_hold, id);
     rt_holds += on ? 1 : -1;
+    rt_stir++;
 }
 
 void rt_hold_release(int id)
@@ -250,6 +251,19 @@ static void motion_begin(int left, int right, long target, int watch)
 }
 
 /* Phase (2) of a poll: measure the wheels, end the motion at its target. */
+/* The motion's progress after dl, dr more steps: the watched wheel's, or
+ * the larger of the two. */
+static long progress_after(long dl, long dr)
+{
+    long al = abs_l(rt_motion.left + dl), ar = abs_l(rt_motion.right + dr);
+
+    if (rt_motion.watch == WATCH_LEFT)
+        return al;
+    if (rt_motion.watch == WATCH_RIGHT)
+        return ar;
+    return al > ar ? al : ar;
+}
+
 void rt_motion_update(void)
 {
     int l = e_get_steps_left();
@@ -263,21 +277,37 @@ void rt_motion_update(void)
     rt_odometry(dl, dr);
     if (!rt_motion.active || rt_motion.endless)
         return;
+    progress = progress_after(dl, dr);
     rt_motion.left += dl;
     rt_motion.right += dr;
-    if (rt_motion.watch == WATCH_LEFT) {
-        progress = abs_l(rt_motion.left);
-    } else if (rt_motion.watch == WATCH_RIGHT) {
-        progress = abs_l(rt_motion.right);
-    } else {
-        long al = abs_l(rt_motion.left), ar = abs_l(rt_motion.right);
-        progress = al > ar ? al : ar;
-    }
     if (progress >= rt_motion.target) {
+        rt_stir++;
         rt_motion.active = 0;
         rt_wheels(0, 0);
         rt_motors_changed();
     }
+}
+
+/* Phase (2) of a poll that rt_idle.c skips: the same measurement, unless
+ * the motion would end in it; then it does nothing and returns 0 (that
+ * poll must run). */
+int rt_motion_idle(void)
+{
+    int l = e_get_steps_left();
+    int r = e_get_steps_right();
+    long dl = wheel_delta(l, rt_last_left);
+    long dr = wheel_delta(r, rt_last_right);
+
+    if (rt_motion.active && !rt_motion.endless) {
+        if (progress_after(dl, dr) >= rt_motion.target)
+            return 0;
+        rt_motion.left += dl;
+        rt_motion.right += dr;
+    }
+    rt_last_left = l;
+    rt_last_right = r;
+    rt_odometry(dl, dr);
+    return 1;
 }
 
 /* The geometry that converts millimetres and degrees (set_robot_geometry). */
@@ -465,6 +495,7 @@ static void sequence_run_steps(void)
         unsigned starts_before = motion_starts;
         int index = seq_next++;
 
+        rt_stir++;
         rt_trace_action(seq_action_id, index, rt_seq->count);
         if (step->action_function != NULL) {
             int previous = rt_current_action_id, previous_event = rt_current_event_id;

@@ -70,4 +70,22 @@ long rt_millis(void);
  * e-puck2's epuck1x layer: platform_epuck2.c). */
 void rt_clock_tick(void);
 
+/* Provided by the core (rt_idle.c) to a platform that simulates time (the
+ * host's), which may call it at the start of each poll cycle, before it
+ * advances time: the number n >= 1 of ms from now to the first poll that
+ * can do more than count; the polls of the n - 1 ms before it would change
+ * nothing but time, provided the inputs stay as they are and neither wheel
+ * makes *left (*right) steps or more (0: no such bound) — the poll of the
+ * ms where that happens must run.  The platform that advanced k ms at once
+ * says so with rt_idle_skipped(k - 1): the polls it did not run.  In the
+ * host builds only (docs/runtime.md, "Idle polls in bulk"). */
+long rt_idle_horizon(long *left, long *right);
+void rt_idle_skipped(long polls);
+/* 1 when the platform must advance the skipped ms one at a time and hand
+ * each to rt_idle_ms (the program reads the odometry, which sums the steps
+ * of every poll), which measures the wheels as that ms's poll would and
+ * returns 0 when the poll must run after all (the motion ends in it). */
+int rt_idle_each_ms(void);
+int rt_idle_ms(void);
+
 #endif /* RT_PLATFORM_H */

@@ -7,8 +7,8 @@
 #include "rt_internal.h"
 
 /* Timer (set_timer / reset_timer / event_timer). */
-static int timer_running;
-static long timer_start;        /* rt_millis() at set_timer */
+int rt_timer_running;
+long rt_timer_start;            /* rt_millis() at set_timer */
 
 /* Proximity polling (start_sensor / stop_sensor); off at start.  The
  * sensors started by start_sensor are read from the next poll on: no
@@ -39,14 +39,14 @@ void rt_read_prox(unsigned mask)
 void action_set_timer(void *param)
 {
     (void)param;
-    timer_running = 1;
-    timer_start = rt_millis();
+    rt_timer_running = 1;
+    rt_timer_start = rt_millis();
 }
 
 void action_reset_timer(void *param)
 {
     (void)param;
-    timer_running = 0;
+    rt_timer_running = 0;
 }
 
 void action_start_sensor(void *param)
@@ -90,14 +90,14 @@ void event_timer(void *param, void *status)
     long now, elapsed, base = 0;
 
     st->occurred = 0;
-    if (p == NULL || !timer_running)
+    if (p == NULL || !rt_timer_running)
         return;
     now = rt_millis();
-    elapsed = now - timer_start;
-    if (p->time > 0 && st->memory != 0 && st->memory - 1 >= timer_start) {
+    elapsed = now - rt_timer_start;
+    if (p->time > 0 && st->memory != 0 && st->memory - 1 >= rt_timer_start) {
         /* fired before in this run of the timer: the current period
          * starts at the last multiple of time not after that firing */
-        long since = st->memory - 1 - timer_start;
+        long since = st->memory - 1 - rt_timer_start;
         base = since - since % p->time;
     }
     if (elapsed - base >= p->time) {

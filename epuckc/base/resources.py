@@ -25,6 +25,10 @@ RUNTIME_CORE = ("epuckrt.c", "rt_motion.c", "rt_sensors.c", "rt_modes.c", "rt_la
 # them, so it links without them.
 RUNTIME_DEVICES = ("rt_comm.c", "rt_tof.c", "rt_camera.c", "rt_rgb.c")
 RUNTIME_DSPIC_DEVICES = ("rt_camera.c",)
+# What only a platform that simulates time links with the core (the host
+# harness, the robots of Enki worlds): rt_idle.c tells host/platform_host.c
+# which polls it may run in bulk. A robot polls in real time: not in its builds.
+RUNTIME_SIMULATED = ("rt_idle.c",)
 RUNTIME_CORE_HEADERS = ("epuckrt.h", "rt_internal.h", "rt_platform.h", "utility.h")
 
 

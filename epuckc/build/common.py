@@ -7,13 +7,13 @@ import re
 import shlex
 import subprocess
 import sys
-from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Optional
 
 from ..base.output import write_atomic
+from ..base.records import field, record
 from ..base.resources import (RUNTIME_CORE, RUNTIME_CORE_HEADERS, RUNTIME_DEVICES,
-                              RUNTIME_DSPIC_DEVICES)
+                              RUNTIME_DSPIC_DEVICES, RUNTIME_SIMULATED)
 
 # -O1 as on the robot (the dspic Makefile; XC16's free edition stops there)
 # and in the sanitizer builds of the tests: the harness runs no slower than
@@ -43,7 +43,7 @@ BUILD_FLAGS = ["-pipe"]
 
 
 # The runtime's files for each target, relative to runtime_c/.
-HOST_SOURCES = [*RUNTIME_CORE, *RUNTIME_DEVICES, "host/platform_host.c", "host/scenario.c",
+HOST_SOURCES = [*RUNTIME_CORE, *RUNTIME_SIMULATED, *RUNTIME_DEVICES, "host/platform_host.c", "host/scenario.c",
                 "host/epuck_stub.c", "host/stub_devices.c", "host/cmain.c", "host/epuck_more.c"]
 
 
@@ -81,7 +81,7 @@ class BuildError(Exception):
         self.status = status
 
 
-@dataclass
+@record
 class Program:
     """A C program ready to build.
 

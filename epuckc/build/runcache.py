@@ -1,5 +1,6 @@
 """`epuckc run` of a rule file that was built before: straight to the
-executable, keyed on the inputs rather than on the generated C.
+executable (or, with `--world`, to the robot's shared object), keyed on the
+inputs rather than on the generated C.
 
 The host build cache (build.py) is keyed on the generated C, so reaching it
 means checking the file, lowering it and rendering the Jinja2 template,
@@ -15,14 +16,18 @@ decides the executable and the messages printed on the way,
   - the runtime's sources (size and modification time),
   - the C compiler ($CC) and the capacities (--max-actions, --max-events),
 
-the path of the executable, the bytes of every extern C file the program
-includes (compared whole on a hit), and the diagnostics as they were
-printed (warnings: only a program without errors is built), with and
-without colour. `lookup` returns that entry when the key matches and the
-executable and extern files are unchanged; the next run prints the same
-warnings and runs the executable without importing the front end or
-Jinja2. Anything unexpected (a missing or unreadable entry, another
-format) is a miss: the normal path runs and records again.
+  - what is built: the host's executable (`run`) or a robot of an Enki
+    world (`run --world`), which are two entries,
+
+the path of the executable (the shared object), the bytes of every extern C
+file the program includes (compared whole on a hit), the diagnostics as
+they were printed (warnings: only a program without errors is built), with
+and without colour, and what a world run reads of the program besides
+(`extra`: its devices and variables). `lookup` returns that entry when the
+key matches and the executable and extern files are unchanged; the next run
+prints the same warnings and runs the executable without importing the
+front end or Jinja2. Anything unexpected (a missing or unreadable entry,
+another format) is a miss: the normal path runs and records again.
 """
 from __future__ import annotations
 
@@ -36,7 +41,7 @@ from typing import Optional
 from .. import __version__
 from ..base.resources import cache_dir, grammar_path, runtime_dir, templates_dir
 
-FORMAT = 1
+FORMAT = 2
 _PACKAGE = Path(__file__).resolve().parent.parent     # epuckc/, every stage's folder
 
 
@@ -55,17 +60,19 @@ def _stat_lines(folder: Path, suffixes: tuple, recursive: bool) -> list:
 
 
 def input_key(path: Path, data: bytes, shown_name: str, max_actions,
-              max_events) -> Optional[bytes]:
+              max_events, kind: str = "host") -> Optional[bytes]:
     """Everything a `run` of this rule file depends on, as one byte string;
-    None when some of it cannot be read (the normal path will say why)."""
+    None when some of it cannot be read (the normal path will say why).
+    `kind`: what is built, "host" (the executable) or "world" (a robot)."""
     try:
-        return _input_key(path, data, shown_name, max_actions, max_events)
+        return _input_key(path, data, shown_name, max_actions, max_events, kind)
     except OSError:
         return None
 
 
-def _input_key(path: Path, data: bytes, shown_name: str, max_actions, max_events) -> bytes:
-    parts = [f"format {FORMAT}", f"epuckc {__version__}", f"python {sys.version}",
+def _input_key(path: Path, data: bytes, shown_name: str, max_actions, max_events,
+               kind: str) -> bytes:
+    parts = [f"format {FORMAT}", f"built {kind}", f"epuckc {__version__}", f"python {sys.version}",
              f"file {path.resolve()}", f"shown {shown_name}",
              f"cc {os.environ.get('CC') or 'cc'}",
              f"capacity {max_actions} {max_events}"]
@@ -85,12 +92,13 @@ class Entry:
     """A recorded build: the executable, its extern files, what was printed."""
 
     def __init__(self, exe: str, user_files: tuple, shown: str, shown_colour: str,
-                 warnings: int):
+                 warnings: int, extra: dict):
         self.exe = exe
         self.user_files = user_files        # ((absolute path, bytes), ...)
         self.shown = shown                  # the diagnostics, as printed
         self.shown_colour = shown_colour
         self.warnings = warnings
+        self.extra = extra                  # what else a run reads of the program
 
 
 def lookup(key: bytes) -> Optional[Entry]:
@@ -99,7 +107,7 @@ def lookup(key: bytes) -> Optional[Entry]:
             data = marshal.load(f)
     except (OSError, EOFError, ValueError, TypeError):
         return None
-    if not (isinstance(data, tuple) and len(data) == 7 and data[0] == FORMAT
+    if not (isinstance(data, tuple) and len(data) == 8 and data[0] == FORMAT
             and data[1] == key):
         return None
     entry = Entry(*data[2:])
@@ -116,7 +124,7 @@ def lookup(key: bytes) -> Optional[Entry]:
 
 
 def record(key: bytes, exe: Path, user_files: list, shown: str, shown_colour: str,
-           warnings: int) -> None:
+           warnings: int, extra: Optional[dict] = None) -> None:
     """Remember a build; a cache that cannot be written is not an error."""
     try:
         exe = Path(exe).resolve()
@@ -131,7 +139,8 @@ def record(key: bytes, exe: Path, user_files: list, shown: str, shown_colour: st
     tmp = path.with_name(f"{path.name}.{os.getpid()}.tmp")
     try:
         with open(tmp, "wb") as f:
-            marshal.dump((FORMAT, key, str(exe), files, shown, shown_colour, warnings), f)
+            marshal.dump((FORMAT, key, str(exe), files, shown, shown_colour, warnings,
+                          extra or {}), f)
         os.replace(tmp, path)
     except (OSError, ValueError):
         try:

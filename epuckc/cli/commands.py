@@ -234,23 +234,28 @@ def cmd_run(args) -> int:
         os.environ["EPUCK_SEED"] = str(args.seed)
     if args.watchdog is not None:   # and this (host/cmain.c)
         os.environ["EPUCK_WATCHDOG_MS"] = str(args.watchdog)
-    # A rule file built before goes straight to its executable (runcache.py).
+    # A rule file built before goes straight to its executable, or in a
+    # world to its robot (runcache.py).
     path, key, data = Path(args.file), None, None
-    if path.suffix != ".c" and not wants_world and not args.defines and not args.more \
-            and not args.int16:
+    in_world = bool(args.world)     # (pictures of a run without a world: not cached)
+    if path.suffix != ".c" and (in_world or not wants_world) and not args.defines \
+            and not args.more and not args.int16:
         from ..build import runcache
         try:
             data = path.read_bytes()
         except OSError:
             data = None         # the normal path says why
         if data is not None:
-            key = runcache.input_key(path, data, args.file, args.max_actions, args.max_events)
+            key = runcache.input_key(path, data, args.file, args.max_actions, args.max_events,
+                                     kind="world" if in_world else "host")
             entry = runcache.lookup(key) if key is not None else None
             if entry is not None:
                 _show_report_text(entry.shown_colour if _colour_wanted(sys.stderr)
                                   else entry.shown, "human")
                 if args.werror and entry.warnings:
                     return EXIT_ERRORS
+                if in_world:
+                    return _run_built_robot(args, entry)
                 problem = args.scenario and _scenario_problem(args.scenario)
                 if problem:
                     _error(problem)
@@ -267,6 +272,34 @@ def cmd_run(args) -> int:
         return _load_and_run(args, path, key, data, wants_world)
     finally:
         _stop_runtime_started()
+
+
+def _run_built_robot(args, entry) -> int:
+    """`run --world` of a rule file whose robot was built before."""
+    from . import world as world_cli
+    from ..sim.enki import BuiltRobot
+    extra = entry.extra
+    robot = BuiltRobot(Path(entry.exe), extra.get("devices"), list(extra.get("variables", ())))
+    return world_cli.run(args, robot, _robot_program_loader(args), None)
+
+
+def _remember_robot(key, program, report) -> None:
+    """After a rule file was checked for a world run: its robot, built now
+    (run_world finds it in the build cache), goes in the run cache."""
+    from ..build import runcache
+    from ..build.common import BuildError, user_headers
+    from ..diagnostics.render import render_report
+    from ..sim.enki import build_robot, enki_available
+    if not enki_available():
+        return                  # run_world says what is missing
+    try:
+        lib = build_robot(program)
+    except BuildError:
+        return                  # and what does not build
+    runcache.record(key, lib, program.user_files + [h for _, h, _ in user_headers(program)],
+                    render_report(report, "human"), render_report(report, "human", colour=True),
+                    report.warning_count,
+                    {"devices": program.devices, "variables": list(program.variables)})
 
 
 def _start_runtime_early(path: Path, data, args) -> None:
@@ -309,16 +342,12 @@ def _load_and_run(args, path: Path, key, data, wants_world: bool) -> int:
     if args.int16:
         return _run_int16(args, program)
     if wants_world:
+        if key is not None and args.world and _unchanged(path, data):
+            _remember_robot(key, program, report)
         return world_cli.run(args, program, _robot_program_loader(args), run_host)
 
     def remember(exe):
-        if key is None:
-            return
-        try:
-            unchanged = path.read_bytes() == data
-        except OSError:
-            unchanged = False
-        if unchanged:
+        if key is not None and _unchanged(path, data):
             from ..build.common import user_headers
             runcache.record(key, exe, program.user_files
                             + [header for _, header, _ in user_headers(program)],
@@ -333,6 +362,15 @@ def _load_and_run(args, path: Path, key, data, wants_world: bool) -> int:
     except OSError as exc:
         _error(f"{exc.strerror or exc}: {exc.filename or ''}".rstrip(": "))
         return EXIT_USAGE
+
+
+def _unchanged(path: Path, data: bytes) -> bool:
+    """The rule file still holds what was checked (else its build is not
+    recorded under the key of what was read)."""
+    try:
+        return path.read_bytes() == data
+    except OSError:
+        return False
 
 
 def _run_int16(args, program) -> int:

@@ -170,6 +170,19 @@ class _Printer:
 ODOMETRY = frozenset({"x", "y", "heading"})
 
 
+def changes_with_time(e: Expr) -> bool:
+    """Whether an expression's value can change while only time passes:
+    the odometry follows the wheels, `random` is new at each evaluation
+    (everything else it can read is an input or a variable)."""
+    todo = [e]
+    while todo:
+        x = todo.pop()
+        if x.op == "random" or (x.op == "read" and x.name in ODOMETRY):
+            return True
+        todo.extend(x.args)
+    return False
+
+
 def variables_of(e: Expr) -> set:
     """The names of the variables an expression's C reads (after folding:
     a variable inside a comparison that the checker decided is not read)."""

@@ -33,7 +33,8 @@ from ..check.program import CheckedProgram, ResolvedCall, calls_within
 from ..check.splice import splice
 from ..stdlib.table import STANDARD_ACTIONS, STANDARD_EVENTS
 from ..stdlib.units import round_nearest
-from .exprs import (CONST_PREFIX, ODOMETRY, c_expr, c_int, indexed_arrays, proximity_read,
+from .exprs import (CONST_PREFIX, ODOMETRY, c_expr, c_int, changes_with_time, indexed_arrays,
+                    proximity_read,
                     readings_of, var_name, variables_of)
 from . import statements
 from .model import (CAction, CCondition, CConditionWord, CEvent, CEventFunction, CExtern,
@@ -139,6 +140,11 @@ class _Lowerer:
         self.always = any(r.event.name == "when" and r.guard is None and r.event.kind == "standard"
                           for r in program.rules)
         self.when_reads: set = set()     # the proximity readings the `when` conditions read
+        # a compiled `when` condition can change while only time passes
+        self.conditions_vary = any(r.event.name == "when" and r.guard is None
+                                   and r.event.kind == "standard"
+                                   and changes_with_time(r.event.values["condition"])
+                                   for r in program.rules)
         self.odometry = False            # an expression reads x, y or heading
         self.variables_in_c: set = set()   # the variables the C reads or assigns
         self.const_arrays_in_c: set = set()   # the constant arrays the C indexes
@@ -388,8 +394,9 @@ class _Lowerer:
                                            c_comment(f"{registered[key]}: {_shorten(where)}"),
                                            c_string(_shorten(body_text))))
             function, param, memory, condition = self.event(rule, index)
-            if rule.guard is not None:
-                function, param = self.guarded(rule, index, function, param), "NULL"
+            if rule.guard is not None:      # the entry keeps its event's parameter,
+                # which the runtime reads for RT_WAKE_AS_TIMER (the function reads its own)
+                function = self.guarded(rule, index, function, param)
             event_id = len(out.events)
             if condition is not None:
                 what, text = condition
@@ -416,7 +423,8 @@ class _Lowerer:
                 mode=self.mode_ids[rule.mode] if rule.mode is not None else 0))
         out.conditions = [CConditionWord(w, terms) for w, terms in sorted(conditions.items())]
         out.sensors = f"0x{sum(1 << n for n in self.sensors):02x}" + (
-            " | RT_CONDITIONS_ALWAYS" if self.always else "")
+            " | RT_CONDITIONS_ALWAYS" if self.always else "") + (
+            " | RT_CONDITIONS_ON_CHANGE" if self.always and not self.conditions_vary else "")
         out.conditions_comment = [
             "/* The rules' sensor conditions, from this poll's proximity readings",
             " * epk_ir[0..7]: bit k % 16 of epk_c[k / 16] is event k's.  The runtime",
@@ -503,16 +511,37 @@ class _Lowerer:
 
 
 def event_flags(rule) -> str:
-    """The rt_event flags of a rule: RT_REPEAT, and how it holds the motors it
+    """The rt_event flags of a rule: RT_REPEAT, how it holds the motors it
     commands (docs/runtime.md, "Holding the motors"): a condition while it
     stays true, a guarded `every` until a period whose guard is false; any
-    other rule until its action or sequence has ended (no flag)."""
+    other rule until its action or sequence has ended (no flag); and when
+    its event can occur if nothing but time passes (RT_WAKE_*, the table's
+    `wake`: "Idle polls in bulk")."""
     flags = ["RT_REPEAT"] if rule.repeat else []
     if rule.event.name in HOLD_WHILE and rule.event.kind != "extern":
         flags.append("RT_HOLD_WHILE")
     elif rule.event.name == "every" and rule.guard is not None:
         flags.append("RT_HOLD_GUARD")
+    wake = wake_flag(rule)
+    if wake:
+        flags.append(wake)
     return " | ".join(flags) or "0"
+
+
+WAKE_FLAGS = {"change": "RT_WAKE_ON_CHANGE", "deadline": "RT_WAKE_AT_DEADLINE",
+              "timer": "RT_WAKE_AS_TIMER"}
+
+
+def wake_flag(rule) -> Optional[str]:
+    """The event's wake flag: none for an extern event (the user's C may
+    read anything) nor for a `when` whose condition changes with time (a
+    guard is evaluated only when the event occurs: it does not count)."""
+    if rule.event.kind == "extern":
+        return None
+    spec = STANDARD_EVENTS[rule.event.name]
+    if rule.event.name == "when" and changes_with_time(rule.event.values["condition"]):
+        return None
+    return WAKE_FLAGS.get(spec.wake)
 
 
 # The events that are conditions: their rules hold the motors while they hold.

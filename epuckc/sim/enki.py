@@ -13,8 +13,6 @@ robot with Enki's collision counts.
 """
 from __future__ import annotations
 
-import hashlib
-import json
 import os
 import re
 import shlex
@@ -22,21 +20,22 @@ import shutil
 import subprocess
 import sys
 import tempfile
-from dataclasses import dataclass
+import zlib
 from pathlib import Path
 from typing import Optional
 
+from ..base.records import record
 from ..build.common import BuildError, Program, _run_compiler, c_compiler
-
-from ..build.host import compile_objects, host_build_key, runtime_cache_dir, runtime_flags
-from ..base.resources import RUNTIME_CORE, RUNTIME_DEVICES, cache_dir, runtime_dir
+from ..base.resources import (RUNTIME_CORE, RUNTIME_DEVICES, RUNTIME_SIMULATED, cache_dir,
+                              runtime_dir)
 from .world import World, runner_spec
 
-ROBOT_SOURCES = [*RUNTIME_CORE, *RUNTIME_DEVICES, "host/platform_host.c", "host/scenario.c",
+ROBOT_SOURCES = [*RUNTIME_CORE, *RUNTIME_SIMULATED, *RUNTIME_DEVICES, "host/platform_host.c", "host/scenario.c",
                  "host/epuck_stub.c", "host/stub_devices.c", "host/cmain.c", "host/epuck_more.c", "enki/robot_glue.c"]
 ROBOT_INCLUDES = [".", "epuck_api", "host", "enki", "epuck_api_unsimulated"]
 # robot_glue.c's header comment says why each of these is wrapped
-WRAPPED = ["stub_motors_1ms", "stub_pose", "stub_set_geometry", "getenv", "exit"]
+WRAPPED = ["stub_motors_1ms", "stub_motors_ms", "stub_motors_ms_end", "stub_pose",
+           "stub_set_geometry", "getenv", "exit"]
 RUNNER_FLAGS = ["-std=c++14", "-O2", "-Wall", "-Wextra"]
 # In a world the pose is Enki's (the glue wraps stub_pose): the stub's own
 # dead reckoning, sines and cosines at every ms of every robot, was a fifth
@@ -69,15 +68,38 @@ def _atomic_copy_into(cached: Path, produce) -> Path:
     return cached
 
 
+RUNNER_SOURCES = ("enki/world_runner.cpp", "enki/enki_bridge.h", "enki/world_channel.h",
+                  "enki/robot_loader.h")
+
+
 def build_runner() -> Path:
-    """The world runner executable, cached by its sources and the compiler."""
+    """The world runner executable, cached by its sources and the compiler.
+    Found again from the sources' sizes and times (a stamp file of the
+    cache, compared whole), so that a run hashes them only after a change:
+    hashing took a tenth of the Python around a world run."""
+    rt = runtime_dir()
+    paths = [*(rt / rel for rel in RUNNER_SOURCES), ENKI_HEADER]
+    try:
+        stamp = "\n".join([" ".join(cxx_compiler() + RUNNER_FLAGS)] + [
+            f"{path} {st.st_size} {st.st_mtime_ns}" for path, st in zip(paths, map(os.stat, paths))])
+    except OSError:
+        stamp = None
+    stamps = cache_dir() / "enki" / "stamps"
+    if stamp is not None:
+        known = stamps / f"{zlib.crc32(stamp.encode()):08x}"
+        try:
+            text = known.read_text(encoding="utf-8")
+        except (OSError, UnicodeDecodeError):
+            text = ""
+        seen, _, exe = text.rpartition("\n")
+        if seen == stamp and Path(exe).is_file():
+            return Path(exe)
     if not enki_available():
         raise BuildError(ENKI_MISSING)
-    rt = runtime_dir()
+    import hashlib
     h = hashlib.sha256()
-    for rel in ("enki/world_runner.cpp", "enki/enki_bridge.h", "enki/world_channel.h"):
-        h.update((rt / rel).read_bytes())
-    h.update(ENKI_HEADER.read_bytes())
+    for path in paths:
+        h.update(path.read_bytes())
     h.update(" ".join(cxx_compiler() + RUNNER_FLAGS).encode())
     exe = cache_dir() / "enki" / f"runner-{h.hexdigest()[:24]}" / "epuck-world"
 
@@ -85,11 +107,35 @@ def build_runner() -> Path:
         _run_compiler(cxx_compiler() + RUNNER_FLAGS + [f"-I{rt / 'enki'}",
                       str(rt / "enki" / "world_runner.cpp"), "-o", str(out), "-lenki", "-ldl"],
                       "the Enki world runner")
-    return _atomic_copy_into(exe, produce)
+    _atomic_copy_into(exe, produce)
+    if stamp is not None:
+        from ..base.output import write_atomic
+        try:
+            known.parent.mkdir(parents=True, exist_ok=True)
+            write_atomic(known, f"{stamp}\n{exe}")
+        except OSError:
+            pass            # found by hashing next time
+    return exe
+
+
+@record
+class BuiltRobot:
+    """A program built before as a robot (build/runcache.py found it): its
+    shared object and what a world run reads of its Program."""
+    lib: Path
+    devices: Optional[frozenset]
+    variables: list
+
+
+def robot_library(program) -> Path:
+    """The shared object of a Program, or of a BuiltRobot."""
+    return program.lib if isinstance(program, BuiltRobot) else build_robot(program)
 
 
 def build_robot(program: Program) -> Path:
     """The program as a robot of a world: a shared object, cached."""
+    import hashlib
+    from ..build.host import compile_objects, host_build_key, runtime_cache_dir, runtime_flags
     key = hashlib.sha256(("enki-robot\0" + " ".join(ROBOT_RUNTIME_FLAGS) + "\0"
                           + host_build_key(program)).encode()).hexdigest()[:24]
     lib = cache_dir() / "enki" / key / f"{program.name}.so"
@@ -109,7 +155,7 @@ def build_robot(program: Program) -> Path:
     return _atomic_copy_into(lib, produce)
 
 
-@dataclass
+@record
 class RobotResult:
     name: str
     status: int
@@ -126,6 +172,7 @@ def merge_traces(world: World, traces: list, results: list, end_ms: int) -> str:
     """One trace for the run: the world, every robot's records in time order
     (ties: robots in the world's order, each robot's own order kept), and
     each robot's collision counts."""
+    import json
     lines = [json.dumps(world.to_json())]
     records = []
     for index, (placement, text) in enumerate(zip(world.robots, traces)):
@@ -156,7 +203,7 @@ def _contact_line(r: RobotResult) -> str:
             f"the first at {r.first_contact_ms} ms")
 
 
-@dataclass
+@record
 class WorldRun:
     """What one run of a world gave: each robot's result (status and
     contacts, in the world's order), each robot's own trace (JSON lines),
@@ -172,7 +219,8 @@ class WorldTimeout(Exception):
 
 def simulate(world: World, libs: list, time_limit_ms: int, seed: int = 1,
              pose_ms: Optional[int] = None, quiet: bool = False, capture: bool = False,
-             timeout_s: Optional[float] = None, devices: Optional[list] = None) -> WorldRun:
+             timeout_s: Optional[float] = None, devices: Optional[list] = None,
+             with_traces: bool = True) -> WorldRun:
     """Run the world once: `libs` are the robots' built shared objects, in
     the world's order; Enki's generator is seeded by the world's `seed`,
     robot k's `random` by `seed + k`. `quiet`: the robots print nothing;
@@ -180,26 +228,31 @@ def simulate(world: World, libs: list, time_limit_ms: int, seed: int = 1,
     line of stderr then says why it failed). After `timeout_s` seconds of wall clock it is
     killed (WorldTimeout). `devices`: each robot's devices its program reads
     (stdlib DEVICES; None: all), so that only those robots get Enki's
-    camera and the ToF ray. BuildError when the runner fails."""
+    camera and the ToF ray. `with_traces`: the robots write their traces (without
+    them the run's traces are empty and its end_ms 0). BuildError when the
+    runner fails."""
     runner = build_runner()
     with tempfile.TemporaryDirectory(prefix="epuckc-world-") as tmp:
         tmpdir = Path(tmp)
         entries = []
         for i, lib in enumerate(libs):
-            # each robot loads its own copy: its own globals (docs/world.md)
-            copy = tmpdir / f"robot{i}.so"
-            shutil.copyfile(lib, copy)
+            # the runner loads a copy for each robot, beside the spec: its own
+            # globals (docs/world.md)
             settings = {"EPUCK_TIME_LIMIT_MS": str(time_limit_ms),
-                        "EPUCK_TRACE": str(tmpdir / f"robot{i}.jsonl"),
                         # each robot its own `random` (`run --seed N`: N + i)
                         "EPUCK_SEED": str((seed + i) & 0xFFFFFFFF)}
+            if with_traces:
+                settings["EPUCK_TRACE"] = str(tmpdir / f"robot{i}.jsonl")
             if pose_ms:
                 settings["EPUCK_POSE_MS"] = str(pose_ms)
             if os.environ.get("EPUCK_WATCHDOG_MS"):     # `run --watchdog`
                 settings["EPUCK_WATCHDOG_MS"] = os.environ["EPUCK_WATCHDOG_MS"]
+            for name in ("EPUCK_POLL_EVERY_MS", "EPUCK_POLL_STATS"):    # tests, benches
+                if os.environ.get(name):
+                    settings[name] = os.environ[name]
             if quiet:
                 settings["EPUCK_QUIET"] = "1"
-            entries.append((copy, settings, None if devices is None else devices[i]))
+            entries.append((lib, settings, None if devices is None else devices[i]))
         spec = tmpdir / "world.spec"
         spec.write_text(runner_spec(world, entries), encoding="utf-8")
         results_file = tmpdir / "results"
@@ -238,10 +291,11 @@ def simulate(world: World, libs: list, time_limit_ms: int, seed: int = 1,
     return WorldRun(results, traces, end_ms)
 
 
-def run_world(world: World, default_program: Program, load_program, time_limit_ms: int,
+def run_world(world: World, default_program, load_program, time_limit_ms: int,
               trace: Optional[Path], pose_ms: Optional[int] = None) -> int:
-    """Build and run every robot of the world; print the robots' readable
-    traces and a collision summary; write the merged trace to `trace`.
+    """Build and run every robot of the world (a program: a Program, or a
+    BuiltRobot found in the run cache); print the robots' readable traces
+    and a collision summary; write the merged trace to `trace`.
     `load_program(path, more_c)` gives the Program of a robot's own
     `program` (and its other C files), or raises BuildError. Returns the highest of the robots' exit statuses."""
     build_runner()
@@ -253,12 +307,13 @@ def run_world(world: World, default_program: Program, load_program, time_limit_m
         program = default_program if placement.program is None else \
             load_program(placement.program, placement.more_c)
         if id(program) not in libs:
-            libs[id(program)] = (program, build_robot(program))
+            libs[id(program)] = (program, robot_library(program))
         robots.append(libs[id(program)][1])
         devices.append(program.devices)
     quiet = os.environ.get("EPUCK_QUIET", "")
     quiet = bool(quiet and quiet != "0")
-    run = simulate(world, robots, time_limit_ms, seed, pose_ms, quiet=quiet, devices=devices)
+    run = simulate(world, robots, time_limit_ms, seed, pose_ms, quiet=quiet, devices=devices,
+                   with_traces=trace is not None)
     if not quiet:
         for r in run.results:
             print(_contact_line(r))

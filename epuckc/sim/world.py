@@ -24,9 +24,10 @@ from __future__ import annotations
 
 import math
 import re
-from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Optional
+
+from ..base.records import field, record
 
 ROBOT_RADIUS_MM = 37.0          # Enki's e-puck body
 DEFAULT_HEIGHT_MM = 50.0        # boxes and cylinders: taller than the IR sensors (25 mm)
@@ -44,7 +45,7 @@ COLOURS = {"red": (230, 30, 30), "yellow": (230, 220, 40), "green": (40, 190, 60
 DEFAULT_COLOUR = "grey"         # walls, boxes, cylinders and robots without one
 
 
-@dataclass
+@record
 class Messages:
     """The IR message channel (runtime_c/enki/world_channel.h); the defaults
     and where they come from are in docs/world.md."""
@@ -60,7 +61,7 @@ class WorldError(Exception):
     """A problem in a world file; str() is the whole diagnostic."""
 
 
-@dataclass
+@record
 class Box:
     x_mm: float
     y_mm: float
@@ -72,7 +73,7 @@ class Box:
     colour: str = DEFAULT_COLOUR
 
 
-@dataclass
+@record
 class Cylinder:
     x_mm: float
     y_mm: float
@@ -82,7 +83,7 @@ class Cylinder:
     colour: str = DEFAULT_COLOUR
 
 
-@dataclass
+@record
 class RobotPlacement:
     name: str
     x_mm: float
@@ -94,7 +95,7 @@ class RobotPlacement:
     more_c: tuple = ()                  # a C program's other files, after its main
 
 
-@dataclass
+@record
 class World:
     path: Path
     width_mm: Optional[float] = None    # None: open ground
@@ -147,7 +148,7 @@ _TOKEN = re.compile(r"\s*(?:(?P<num>[-+]?(?:\d+\.?\d*|\.\d+))(?P<unit>[A-Za-z%]+
                     r"|(?P<word>[^\s,]+)|(?P<comma>,))")
 
 
-@dataclass
+@record
 class _Tok:
     text: str
     col: int

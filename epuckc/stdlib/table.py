@@ -110,6 +110,12 @@ class EventSpec:
     # not `on NAME(...)`
     head: bool = False
     device: str = ""          # the device it needs (DEVICES)
+    # when it can occur if nothing but time passes (a host skips the polls
+    # that cannot see it occur: docs/runtime.md, "Idle polls in bulk"):
+    # "change" only after the inputs or the program's state changed,
+    # "deadline" when the clock reaches the time in its memory (its own
+    # timer), "timer" as `timer` on its parameter; "": at any poll
+    wake: str = ""
 
     @property
     def signature(self) -> str:
@@ -301,42 +307,43 @@ EVENTS = (
               (Param("condition", "condition", "a condition on variables and readings",
                      "comparisons joined with `and`, `or`, `not` [E050]"),),
               "when the condition becomes true (and, with `repeat`, every time it becomes "
-              "true again)", "rt_when", head=True),
+              "true again)", "rt_when", head=True, wake="change"),
     EventSpec("every",
               (Param("period", DURATION, "time between two firings",
                      "> 0 [E033], at most 2147483647 ms [E034]"),),
               "every `period`, counted from when the rule is armed (start, or its mode's "
               "entry); its own timer", "event_every", "param_event_every",
-              fields=("{period}L",), head=True),
+              fields=("{period}L",), head=True, wake="deadline"),
     EventSpec("after",
               (Param("delay", DURATION, "time from when the rule is armed",
                      "> 0 [E033], at most 2147483647 ms [E034]"),),
               "once, `delay` after the rule is armed (start, or its mode's entry); its own "
-              "timer", "event_after", "param_event_every", fields=("{delay}L",), head=True),
+              "timer", "event_after", "param_event_every", fields=("{delay}L",), head=True,
+              wake="deadline"),
     EventSpec("immediate", (), "at the first poll", "immediate", memory=False),
     EventSpec("stop_motor", (),
               "when a motion has ended (reached its distance or stopped by `stop_motor`)",
-              "event_stop_motor", memory=False),
+              "event_stop_motor", memory=False, wake="change"),
     EventSpec("timer",
               (Param("time", DURATION, "time since `set_timer`",
                      "> 0 [E033], at most 2147483647 ms [E034]"),),
               "when the timer has run `time` since `set_timer`",
-              "timer", "param_event_timer"),
+              "timer", "param_event_timer", wake="timer"),
     EventSpec("sensor", None,
               "when some listed sensor's reading passes its threshold",
-              "sensor", "param_event_sensor"),
+              "sensor", "param_event_sensor", wake="change"),
     EventSpec("enter", (), "at the first poll after its mode was entered; only inside a "
-              "mode [E044]", "event_enter_mode", in_mode=True),
+              "mode [E044]", "event_enter_mode", in_mode=True, wake="change"),
     EventSpec("selector",
               (Param("position", INT, "a position of the 16-position selector",
                      "a whole number 0..15 [E042]", lo=0, hi=15),),
               "when the selector (`getselector()`) is at `position` at start, or turns to it",
-              "event_selector", "param_event_selector", fields=("{position}",)),
+              "event_selector", "param_event_selector", fields=("{position}",), wake="change"),
     EventSpec("clap",
               (Param("volume", INT, "microphone volume (peak to peak, raw)", _READING_RANGE,
                      lo=0, hi=THRESHOLD_MAX, range_code="E032"),),
               "when some microphone's volume (`e_get_micro_volume`) goes over `volume`",
-              "event_clap", "param_event_clap", fields=("{volume}",)),
+              "event_clap", "param_event_clap", fields=("{volume}",), wake="change"),
     EventSpec("tap",
               (Param("threshold", INT, "change of a raw accelerometer axis in one poll",
                      _READING_RANGE, lo=0, hi=THRESHOLD_MAX, range_code="E032"),),
@@ -354,18 +361,18 @@ EVENTS = (
                      "a digit 0..9 [E042] or one of " + ", ".join(f"`{n}`" for n in KEYS.names())
                      + " [E041]", choices=KEYS),),
               "when that key of the remote control is pressed (`e_get_check`, `e_get_data`)",
-              "event_remote", "param_event_remote", fields=("{key}",)),
+              "event_remote", "param_event_remote", fields=("{key}",), wake="change"),
     EventSpec("ambient", None,
               "when some listed sensor's ambient light reading (`e_get_ambient_light`) passes "
               "its threshold; needs no `start_sensor`",
-              "event_ambient", "param_event_sensor",
+              "event_ambient", "param_event_sensor", wake="change",
               conditions_doc=f"`{SENSOR_NAMES_DOC[0]}`..`{SENSOR_NAMES_DOC[1]}` `>` or `<` a "
               f"whole threshold in 0..{THRESHOLD_MAX} [E032] (raw ambient light readings)"),
     EventSpec("message", (),
               "for each message received (`ircomPopMessage`), one per poll, in the order they "
               "came; while its action runs, `message`, `message_bearing` and `message_range` "
               "describe it (the runtime queues 8; when full, the oldest is dropped)",
-              "event_message", memory=False, device="messages"),
+              "event_message", memory=False, device="messages", wake="change"),
 )
 
 STANDARD_ACTIONS = {spec.name: spec for spec in ACTIONS}

@@ -14,7 +14,7 @@
 #ifndef ENKI_BRIDGE_H
 #define ENKI_BRIDGE_H
 
-#define ENKI_BRIDGE_VERSION 3
+#define ENKI_BRIDGE_VERSION 4
 #define ENKI_MAX_SETTINGS 8
 #define ENKI_MAX_SENT 16        /* values a robot sends in one world step, at most */
 #define ENKI_MAX_INBOX 64       /* messages delivered to a robot in one world step */
@@ -33,37 +33,41 @@ typedef struct enki_message {
 } enki_message;
 
 typedef struct enki_robot_io {
+    /* What each world step reads and writes comes first, together (a few
+     * cache lines for every robot at every step); the settings, the
+     * camera's pixels and the inbox after it. */
     int version;                    /* ENKI_BRIDGE_VERSION */
     int step_ms;                    /* ms of virtual time per world step */
-    /* settings the robot's getenv() sees instead of the process
-     * environment (EPUCK_TRACE, EPUCK_TIME_LIMIT_MS, ...); NULL-terminated
-     * name/value pairs.  Any other EPUCK_* name reads as unset. */
-    const char *settings[2 * ENKI_MAX_SETTINGS + 2];
+
+    /* robot -> world */
+    int ms_in_window;
+    int finished;                   /* main returned or exit() was called */
+    int status;                     /* its value */
+    int n_sent;                     /* values sent (ircomSend) in the world step */
+    long window_left, window_right; /* wheel steps in the world step just ended */
+    long pending_left, pending_right; /* steps Enki has not integrated yet */
+    double mm_per_step, axle_mm;    /* the program's geometry */
+
+    /* the runner's coroutine switch: back to the world until it has stepped
+     * (never returns once `finished` is set) */
+    void (*yield)(struct enki_robot_io *robot);
+    void *runner;                   /* the runner's own data */
 
     /* world -> robot, at each world step */
     double x_mm, y_mm;              /* Enki's pose of the body (world frame) */
     double heading_rad;             /* counter-clockwise from +x */
     int prox[8];                    /* IR readings, library units 0..4095 */
     int distance_mm;                /* the ToF ray (VL53L0X_get_dist_mm) */
-    unsigned char camera[3 * ENKI_CAMERA_PIXELS];   /* r, g, b of each pixel, leftmost first */
+    int camera_on;                  /* (at attach) the world fills camera[] */
     int n_inbox;                    /* messages delivered in the world step */
-    enki_message inbox[ENKI_MAX_INBOX];
     int message_frame_ms;           /* (at attach) one message's time on the air */
-
-    /* robot -> world */
-    long window_left, window_right; /* wheel steps in the world step just ended */
-    long pending_left, pending_right; /* steps Enki has not integrated yet */
-    int n_sent;                     /* values sent (ircomSend) in the world step */
-    long sent[ENKI_MAX_SENT];
-    double mm_per_step, axle_mm;    /* the program's geometry */
-    int ms_in_window;
-    int finished;                   /* main returned or exit() was called */
-    int status;                     /* its value */
-
-    /* the runner's coroutine switch: back to the world until it has stepped
-     * (never returns once `finished` is set) */
-    void (*yield)(struct enki_robot_io *robot);
-    void *runner;                   /* the runner's own data */
+    long sent[ENKI_MAX_SENT];       /* robot -> world: the values sent */
+    unsigned char camera[3 * ENKI_CAMERA_PIXELS];   /* r, g, b of each pixel, leftmost first */
+    /* settings the robot's getenv() sees instead of the process
+     * environment (EPUCK_TRACE, EPUCK_TIME_LIMIT_MS, ...); NULL-terminated
+     * name/value pairs.  Any other EPUCK_* name reads as unset. */
+    const char *settings[2 * ENKI_MAX_SETTINGS + 2];
+    enki_message inbox[ENKI_MAX_INBOX];
 } enki_robot_io;
 
 #endif

@@ -6,14 +6,17 @@
  * e-puck library (host/epuck_stub.c: stepper motors with 16-bit counters,
  * agendas, proximity registers) and this file, linked with
  *
- *   -Wl,--wrap=stub_motors_1ms,--wrap=stub_pose,--wrap=stub_set_geometry
+ *   -Wl,--wrap=stub_motors_1ms,--wrap=stub_motors_ms,--wrap=stub_motors_ms_end,
+ *   -Wl,--wrap=stub_pose,
+ *   -Wl,--wrap=stub_set_geometry
  *   -Wl,--wrap=getenv,--wrap=exit -Wl,-Bsymbolic
  *
  * so that, without a change to any of those sources:
  *   - the wheels still step exactly as on the stub harness (the same
  *     e_set_speed_left/e_get_steps_left code), but every `step_ms` ms the
  *     steps made are handed to the world runner, which drives the robot's
- *     Enki body with them and steps the physics;
+ *     Enki body with them and steps the physics (stub_motors_ms, the
+ *     idle ms in bulk, stops there too);
  *   - e_get_prox() reads what Enki's eight IR sensors measured (the runner
  *     writes them into the stub's proximity registers with stub_set_prox);
  *   - libIrcom's sends (host/stub_devices.c) go to the world's channel
@@ -69,7 +72,8 @@ static void yield_to_world(void)
     for (n = 0; n < 8; n++)
         stub_set_prox(n, io->prox[n]);
     stub_set_distance(io->distance_mm);
-    stub_set_camera(io->camera, ENKI_CAMERA_PIXELS);
+    if (io->camera_on)          /* else the pixels stay as they were: black */
+        stub_set_camera(io->camera, ENKI_CAMERA_PIXELS);
     for (n = 0; n < io->n_inbox; n++) {
         const enki_message *m = &io->inbox[n];
         stub_ircom_receive(m->value, m->distance_cm, m->direction_rad, m->sensor, m->from,
@@ -85,6 +89,27 @@ void __wrap_stub_motors_1ms(void)
     io->window_left += stub_total_steps_left() - l;
     io->window_right += stub_total_steps_right() - r;
     if (++io->ms_in_window >= io->step_ms)
+        yield_to_world();
+}
+
+/* Several ms at once (rt_idle.c): never past the end of the world's step;
+ * when they end it, the world steps at stub_motors_ms_end, once the host's
+ * clock is at the last of them (what it hands over is traced then). */
+long __real_stub_motors_ms(long n, long left, long right);
+long __wrap_stub_motors_ms(long n, long left, long right)
+{
+    long l = stub_total_steps_left(), r = stub_total_steps_right(), done;
+    long room = (long)(io->step_ms - io->ms_in_window);
+    done = __real_stub_motors_ms(n < room ? n : room, left, right);
+    io->window_left += stub_total_steps_left() - l;
+    io->window_right += stub_total_steps_right() - r;
+    io->ms_in_window += (int)done;
+    return done;
+}
+
+void __wrap_stub_motors_ms_end(void)
+{
+    if (io->ms_in_window >= io->step_ms)
         yield_to_world();
 }
 

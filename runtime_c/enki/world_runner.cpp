@@ -20,13 +20,16 @@
  *   cylinder X Y R HEIGHT [R G B]        a static cylinder
  *   robot NAME X Y ANGLE                 an e-puck; the lines below belong to it
  *   lib PATH                             its program + runtime, a shared object
+ *                                        (robots may name the same one)
  *   setting NAME VALUE                   what its getenv(NAME) returns
  *   colour R G B                         its body's colour (what cameras see)
  *   camera                               it has Enki's camera (its program reads it)
  *   tof                                  its ToF ray is cast (its program reads it)
  *
  * Each robot's shared object is loaded from its own file (so its globals
- * are its own) and its main() runs as a coroutine: it runs step_ms poll
+ * are its own: robots of one program load copies of its `lib`, in memory
+ * or beside the SPEC, whose code they share; robot_loader.h) and its main()
+ * runs as a coroutine: it runs step_ms poll
  * cycles, then yields (robot_glue.c), and the world steps once.  Robots are
  * resumed in the order of the SPEC; nothing depends on wall-clock time, so
  * a run is reproducible byte for byte.
@@ -53,11 +56,15 @@
 #include <string>
 #include <utility>
 #include <vector>
+#ifdef __GLIBC__
+#include <stdio_ext.h>         // __fpending
+#endif
 
 #include <enki/PhysicalEngine.h>
 #include <enki/robots/e-puck/EPuck.h>
 
 #include "enki_bridge.h"
+#include "robot_loader.h"
 #include "world_channel.h"
 
 namespace {
@@ -343,6 +350,10 @@ void flush_output(Robot &r, bool all)
 {
     if (r.out == nullptr)
         return;
+#ifdef __GLIBC__
+    if (!all && __fpending(r.out) == 0 && r.out_size == r.out_done)
+        return;                 // nothing written since the last step (most)
+#endif
     std::fflush(r.out);
     size_t end = r.out_size;
     if (!all)
@@ -451,6 +462,10 @@ int main(int argc, char **argv)
         world->addObject(p);
     }
 
+    // the robots' copies go beside the SPEC where memory files are missing
+    // (robot_loader.h)
+    std::string folder(argv[1]);
+    folder = folder.find('/') == std::string::npos ? "./" : folder.substr(0, folder.rfind('/') + 1);
     const bool several = robots.size() > 1;
     for (Robot &r : robots) {
         std::memset(&r.io, 0, sizeof r.io);
@@ -459,13 +474,27 @@ int main(int argc, char **argv)
         r.io.runner = &r;
         r.io.step_ms = step_ms;
         r.io.message_frame_ms = messages.interval_ms;
+        r.io.camera_on = r.camera;
         if (r.settings.size() / 2 > ENKI_MAX_SETTINGS)
             die("too many settings for robot " + r.name);
         for (size_t i = 0; i < r.settings.size(); i++)
             r.io.settings[i] = r.settings[i].c_str();
-        r.handle = dlopen(r.lib.c_str(), RTLD_NOW | RTLD_LOCAL);
+        // its own copy of its program's file (its own globals), the code
+        // shared with the first robot of that program (robot_loader.h)
+        void *first = nullptr;
+        for (Robot &o : robots) {
+            if (&o == &r)
+                break;
+            if (o.lib == r.lib) {
+                first = o.handle;
+                break;
+            }
+        }
+        std::string error;
+        r.handle = loader::load(r.lib, first, folder + "robot" + std::to_string(&r - &robots[0])
+                                + ".so", &error);
         if (r.handle == nullptr)
-            die("cannot load robot " + r.name + ": " + dlerror());
+            die("cannot load robot " + r.name + ": " + error);
         auto attach = (int (*)(enki_robot_io *))dlsym(r.handle, "enki_robot_attach");
         r.main = (int (*)(int, char **))dlsym(r.handle, "main");
         r.cmain_signal = (void (*)(int))dlsym(r.handle, "epuck_cmain_signal");
@@ -486,6 +515,7 @@ int main(int argc, char **argv)
                 die("out of memory");
         }
     }
+    loader::loaded();
     // readings for the first poll: the world as placed, nothing moving
     const double dt = step_ms / 1000.0;
     channel::Random random(seed);

@@ -75,8 +75,11 @@ static struct {
     int cycle;      /* 0.1 ms; 0 = inactive */
     long count;     /* 0.1 ms ticks since the last call */
     int paused;
+    int counter;    /* the stub's own, which only counts (stub_activate_counter) */
 } agendas[STUB_MAX_AGENDAS];
 static int agendas_running;
+static int agendas_changed = 1;     /* stub_agendas_count_only looks again */
+static int agendas_used;            /* the slots ever used: the loops stop there */
 
 static int agenda_find(void (*func)(void))
 {
@@ -89,11 +92,13 @@ static int agenda_find(void (*func)(void))
 
 void e_start_agendas_processing(void)
 {
+    agendas_changed = 1;
     agendas_running = 1;
 }
 
 void e_end_agendas_processing(void)
 {
+    agendas_changed = 1;
     agendas_running = 0;
 }
 
@@ -109,6 +114,10 @@ int e_activate_agenda(void (*func)(void), int cycle)
             agendas[i].cycle = cycle < 0 ? 0 : cycle;
             agendas[i].count = 0;
             agendas[i].paused = 0;
+            agendas[i].counter = 0;
+            agendas_changed = 1;
+            if (i >= agendas_used)
+                agendas_used = i + 1;
             return 0;
         }
     }
@@ -121,6 +130,7 @@ int e_destroy_agenda(void (*func)(void))
     if (i < 0)
         return 1;
     agendas[i].func = NULL;
+    agendas_changed = 1;
     return 0;
 }
 
@@ -130,6 +140,7 @@ int e_set_agenda_cycle(void (*func)(void), int cycle)
     if (i < 0)
         return 1;
     agendas[i].cycle = cycle < 0 ? 0 : cycle;
+    agendas_changed = 1;
     return 0;
 }
 
@@ -148,6 +159,7 @@ int e_pause_agenda(void (*func)(void))
     if (i < 0)
         return 1;
     agendas[i].paused = 1;
+    agendas_changed = 1;
     return 0;
 }
 
@@ -157,7 +169,36 @@ int e_restart_agenda(void (*func)(void))
     if (i < 0)
         return 1;
     agendas[i].paused = 0;
+    agendas_changed = 1;
     return 0;
+}
+
+int stub_activate_counter(void (*func)(void), int cycle)
+{
+    if (e_activate_agenda(func, cycle) != 0)
+        return 1;
+    agendas[agenda_find(func)].counter = 1;
+    return 0;
+}
+
+/* Every agenda that processing would call is `clock` or a counter of the
+ * stub's own (and processing runs); counted again after the table changed. */
+int stub_agendas_count_only(void (*clock)(void))
+{
+    static int only;
+    static void (*seen)(void);
+    int i;
+    if (agendas_changed || clock != seen) {
+        agendas_changed = 0;
+        seen = clock;
+        only = agendas_running;
+        for (i = 0; i < agendas_used && only; i++) {
+            if (agendas[i].func != NULL && agendas[i].cycle > 0 && !agendas[i].paused
+                    && agendas[i].func != clock && !agendas[i].counter)
+                only = 0;
+        }
+    }
+    return only;
 }
 
 void stub_agendas_1ms(void)
@@ -165,10 +206,30 @@ void stub_agendas_1ms(void)
     int i;
     if (!agendas_running)
         return;
-    for (i = 0; i < STUB_MAX_AGENDAS; i++) {
+    for (i = 0; i < agendas_used; i++) {
         if (agendas[i].func == NULL || agendas[i].cycle <= 0 || agendas[i].paused)
             continue;
         agendas[i].count += 10;     /* 1 ms = 10 ticks of 0.1 ms */
+        while (agendas[i].func != NULL && agendas[i].count >= agendas[i].cycle) {
+            agendas[i].count -= agendas[i].cycle;
+            agendas[i].func();
+        }
+    }
+}
+
+void stub_agendas_ms(long n, void (*clock)(void))
+{
+    int i;
+    if (!stub_agendas_count_only(clock)) {
+        while (n-- > 0)
+            stub_agendas_1ms();
+        return;
+    }
+    /* agendas that only count: each one's calls of the n ms in a row */
+    for (i = 0; i < agendas_used; i++) {
+        if (agendas[i].func == NULL || agendas[i].cycle <= 0 || agendas[i].paused)
+            continue;
+        agendas[i].count += 10L * n;
         while (agendas[i].func != NULL && agendas[i].count >= agendas[i].cycle) {
             agendas[i].count -= agendas[i].cycle;
             agendas[i].func();
@@ -351,6 +412,61 @@ void stub_motors_1ms(void)
 #endif
 }
 
+/* The ms a wheel needs to make `steps` (>= 1) more steps; -1: never. */
+static long wheel_ms_for(const wheel *w, long steps)
+{
+    long s = w->speed < 0 ? -(long)w->speed : w->speed;
+    if (s == 0)
+        return -1;
+    if (steps > 1000000L)
+        return 1000000L;        /* beyond any bulk of ms (rt_idle.c) */
+    /* after m ms it has made (phase + m s) / 1000 steps; phase < 1000 */
+    return (steps * 1000L - w->phase + s - 1) / s;
+}
+
+#ifdef EPUCK_STUB_NO_POSE
+/* n ms of wheel_1ms at once */
+static void wheel_ms(wheel *w, long n)
+{
+    long s = w->speed < 0 ? -(long)w->speed : w->speed, k;
+    if (s == 0 || n <= 0)
+        return;
+    k = (w->phase + n * s) / 1000L;
+    w->phase = (w->phase + n * s) % 1000L;
+    if (w->speed > 0) {
+        w->counter = (uint16_t)(w->counter + (unsigned)(k & 0xFFFFL));
+        w->total += k;
+    } else {
+        w->counter = (uint16_t)(w->counter - (unsigned)(k & 0xFFFFL));
+        w->total -= k;
+    }
+}
+#endif
+
+void stub_motors_ms_end(void)
+{
+}
+
+long stub_motors_ms(long n, long left, long right)
+{
+    long m;
+    if (left > 0 && (m = wheel_ms_for(&left_wheel, left)) >= 0 && m < n)
+        n = m;
+    if (right > 0 && (m = wheel_ms_for(&right_wheel, right)) >= 0 && m < n)
+        n = m;
+    if (n < 1)
+        n = 1;
+#ifdef EPUCK_STUB_NO_POSE
+    wheel_ms(&left_wheel, n);
+    wheel_ms(&right_wheel, n);
+#else
+    /* the pose moves along each ms's mean heading */
+    for (m = 0; m < n; m++)
+        stub_motors_1ms();
+#endif
+    return n;
+}
+
 void stub_pose(double *x_mm, double *y_mm, double *heading_deg)
 {
     *x_mm = pose_x;
@@ -363,8 +479,23 @@ void stub_pose(double *x_mm, double *y_mm, double *heading_deg)
 static int prox[8];
 static int ad_scan_on;      /* e_init_ad_scan(ALL_ADC) called */
 
+/* ---- the inputs' epoch: each setter counts ---------------------------------- */
+
+static unsigned long inputs_set;
+
+unsigned long stub_inputs_epoch(void)
+{
+    return inputs_set;
+}
+
+void stub_input_set(void)
+{
+    inputs_set++;
+}
+
 void stub_set_prox(int n, int value)
 {
+    inputs_set++;
     if (n >= 0 && n < 8)
         prox[n] = value;
 }
@@ -418,6 +549,7 @@ static int ambient[8];
 
 void stub_set_ambient(int n, int value)
 {
+    inputs_set++;
     if (n >= 0 && n < 8)
         ambient[n] = value;
 }
@@ -576,6 +708,7 @@ static int micro_volume[3];
 
 void stub_set_micro(int n, int volume)
 {
+    inputs_set++;
     if (n >= 0 && n < 3)
         micro_volume[n] = volume;
 }
@@ -605,6 +738,7 @@ static int acc[3] = { STUB_ACC_REST, STUB_ACC_REST, STUB_ACC_REST };
 
 void stub_set_acc(int axis, int value)
 {
+    inputs_set++;
     if (axis >= 0 && axis < 3)
         acc[axis] = value;
 }
@@ -637,6 +771,7 @@ void e_init_remote_control(void)
 
 void stub_press_key(int key)
 {
+    inputs_set++;
     if (!remote_on)
         return;     /* the receiver is not initialised: the press is lost */
     remote_check = (unsigned char)!remote_check;
@@ -664,6 +799,7 @@ static int selector;
 
 void stub_set_selector(int position)
 {
+    inputs_set++;
     selector = position & 15;
 }
 

@@ -12,6 +12,28 @@ void stub_motors_1ms(void);
 /* Run the active agendas for 1 ms (10 agenda ticks of 0.1 ms) when agenda
  * processing has been started. */
 void stub_agendas_1ms(void);
+/* Several ms at once, for a host that skips idle polls (rt_idle.c):
+ * stub_motors_ms advances the wheels as n calls of stub_motors_1ms would,
+ * but stops after the ms in which the left wheel made its `left`-th step
+ * or the right one its `right`-th (0: no such stop); returns the ms
+ * advanced (1..n); stub_motors_ms_end follows once the host's clock is at
+ * the last of them (a world steps there when they end its step: the glue
+ * wraps both).  stub_agendas_ms runs the agendas as n calls of
+ * stub_agendas_1ms would; when stub_agendas_count_only(clock), every agenda
+ * that processing calls is `clock` (the runtime's, which only counts ms) or
+ * one that the stub made with stub_activate_counter (its own, which only
+ * counts: libIrcom's frame on the air), and their calls are made agenda
+ * after agenda, at once. */
+long stub_motors_ms(long n, long left, long right);
+void stub_motors_ms_end(void);
+/* A count of the calls of the inputs' setters (stub_set_prox ... and the
+ * devices' of stub_devices.c, which call stub_input_set): what a reading
+ * gives may have changed since it last was what it is now. */
+unsigned long stub_inputs_epoch(void);
+void stub_input_set(void);
+int stub_agendas_count_only(void (*clock)(void));
+void stub_agendas_ms(long n, void (*clock)(void));
+int stub_activate_counter(void (*func)(void), int cycle);
 /* Set the reading of proximity sensor n (0..7). */
 void stub_set_prox(int n, int value);
 /* Total signed steps of each wheel since start (not wrapped). */

@@ -19,5 +19,6 @@ void host_record_input(const char *name, int index, int value);
 /* scenario.c */
 void host_load_scenario(const char *path);
 void host_scenario_apply(long t);      /* the lines whose time has come */
+long host_scenario_next_ms(void);      /* the next line's time; -1: none */
 
 #endif

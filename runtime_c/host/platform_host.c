@@ -13,6 +13,9 @@
  *   EPUCK_QUIET          set and not "0": no readable trace on stdout
  *   EPUCK_FRONTEND       "epuckc": messages name epuckc's options (--trace)
  *   EPUCK_POSE_MS        also a "pose" record every so many ms (JSON only)
+ *   EPUCK_POLL_EVERY_MS  set and not "0": poll at every ms, none skipped in
+ *                        bulk (the same trace, slower: for tests)
+ *   EPUCK_POLL_STATS     a file: "ms N skipped K" appended at the end
  * Exit statuses: 2 bad setting or scenario, 3 time limit reached.
  * docs/runtime.md describes the formats.
  */
@@ -37,6 +40,7 @@ static long limit_ms = DEFAULT_TIME_LIMIT_MS;
 static FILE *trace_file;
 static int quiet = -1;              /* -1: EPUCK_QUIET not read yet */
 static long events_fired, actions_run, steps_run, pose_every_ms;  /* pose: 0 none */
+static int bulk = 1;                /* idle polls in bulk; 0: every ms polled (EPUCK_POLL_EVERY_MS) */
 
 /* ---- names ------------------------------------------------------------------ */
 
@@ -295,8 +299,24 @@ static void print_pose(void)
     printf("pose (%.1f, %.1f) %.1f deg", tidy(x), tidy(y), tidy(h));
 }
 
+/* EPUCK_POLL_STATS: a line appended to that file at the end, the ms run and
+ * how many of their polls were skipped in bulk (for tests and benches). */
+static long polls_skipped;
+
+static void poll_stats(void)
+{
+    const char *path = getenv("EPUCK_POLL_STATS");
+    FILE *f;
+
+    if (path == NULL || *path == '\0' || (f = fopen(path, "a")) == NULL)
+        return;
+    fprintf(f, "ms %ld skipped %ld\n", now_ms, polls_skipped);
+    fclose(f);
+}
+
 static void summary(const char *how)
 {
+    poll_stats();
     if (is_quiet())
         return;
     printf("%s at %ld ms: ", how, now_ms);
@@ -511,6 +531,7 @@ void rt_platform_init(void)
     const char *pose = getenv("EPUCK_POSE_MS");
     const char *scn = getenv("EPUCK_SCENARIO");
     const char *trace = getenv("EPUCK_TRACE");
+    const char *every = getenv("EPUCK_POLL_EVERY_MS");
 
     if (host_init_hook != NULL)
         host_init_hook();       /* cmain.c: mainloop runs, or main's first call */
@@ -520,6 +541,7 @@ void rt_platform_init(void)
         limit_ms = ms_setting("EPUCK_TIME_LIMIT_MS", limit);
     if (pose != NULL && *pose != '\0')
         pose_every_ms = ms_setting("EPUCK_POSE_MS", pose);
+    bulk = every == NULL || *every == '\0' || strcmp(every, "0") == 0;
     if (scn != NULL && *scn != '\0')
         host_load_scenario(scn);
     if (trace != NULL && *trace != '\0') {
@@ -533,9 +555,36 @@ void rt_platform_init(void)
         record("pose", "pose", -1, -1, 0);
 }
 
-/* One poll cycle = 1 ms of virtual time. */
+/* How many ms this poll cycle may advance at once (docs/runtime.md, "Idle
+ * polls in bulk"): the runtime's horizon (rt_idle.c) while the agendas only
+ * count (the runtime's clock, libIrcom's frame), within the time limit (its
+ * poll runs), before the next pose record and the scenario's next line. */
+static long bulk_ms(long *left, long *right)
+{
+    long n, t;
+
+    *left = *right = 0;
+    if (!bulk)
+        return 1;
+    n = rt_idle_horizon(left, right);
+    if (n <= 1 || !stub_agendas_count_only(rt_clock_tick))
+        return 1;
+    if (n > limit_ms - now_ms)
+        n = limit_ms - now_ms;
+    if (pose_every_ms > 0 && n > pose_every_ms - now_ms % pose_every_ms)
+        n = pose_every_ms - now_ms % pose_every_ms;
+    t = host_scenario_next_ms();
+    if (t >= 0 && n > t - now_ms)
+        n = t - now_ms;
+    return n;
+}
+
+/* One poll cycle = 1 ms of virtual time; or several, when the polls before
+ * the last would change nothing but time. */
 void rt_platform_idle(void)
 {
+    long n, left, right;
+
     if (now_ms >= limit_ms) {
         record("timeout", "timeout", -1, -1, 0);
         if (!is_quiet()) {
@@ -548,10 +597,39 @@ void rt_platform_idle(void)
             fclose(trace_file);
         exit(EXIT_TIMEOUT);
     }
-    stub_motors_1ms();      /* the wheels move during the ms ... */
-    now_ms++;
-    host_scenario_apply(now_ms); /* ... the readings of the new ms hold ... */
-    stub_agendas_1ms();     /* ... and the clock agenda ticks */
+    n = bulk_ms(&left, &right);
+    if (n > 1 && rt_idle_each_ms()) {
+        /* the same, one ms at a time, each measured as its poll would (the
+         * odometry), stopping at a change of the inputs or the motion's end */
+        unsigned long inputs = stub_inputs_epoch();
+        for (;;) {
+            stub_motors_1ms();
+            now_ms++;
+            host_scenario_apply(now_ms);
+            stub_agendas_1ms();
+            if (--n == 0 || stub_inputs_epoch() != inputs || !rt_idle_ms())
+                break;
+            rt_idle_skipped(1);
+            polls_skipped++;
+        }
+    } else if (n > 1) {
+        /* the ms of the polls that would change nothing, and the next one's
+         * (fewer when a wheel reached the motion's end, or a world's step
+         * ended: its poll runs), as one ms after another would make them */
+        n = stub_motors_ms(n, left, right);
+        now_ms += n - 1;
+        stub_motors_ms_end();   /* a world steps at the end of its step, at this ms */
+        now_ms++;
+        host_scenario_apply(now_ms);    /* no line before it */
+        stub_agendas_ms(n, rt_clock_tick);
+        rt_idle_skipped(n - 1);
+        polls_skipped += n - 1;
+    } else {
+        stub_motors_1ms();      /* the wheels move during the ms ... */
+        now_ms++;
+        host_scenario_apply(now_ms); /* ... the readings of the new ms hold ... */
+        stub_agendas_1ms();     /* ... and the clock agenda ticks */
+    }
     if (pose_every_ms > 0 && now_ms % pose_every_ms == 0)
         record("pose", "pose", -1, -1, 0);
 }

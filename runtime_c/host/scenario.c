@@ -316,6 +316,11 @@ void host_load_scenario(const char *path)
     free(data);
 }
 
+long host_scenario_next_ms(void)
+{
+    return scenario_next < scenario_size ? scenario[scenario_next].t_ms : -1L;
+}
+
 /* Apply the scenario lines whose time has come.  Inputs other than the
  * proximity sensors are traced ("input" records). */
 void host_scenario_apply(long t)

@@ -43,7 +43,7 @@ static void on_air_1ms(void)
 
 void ircomStart(void)
 {
-    e_activate_agenda(on_air_1ms, 10);
+    stub_activate_counter(on_air_1ms, 10);
 }
 
 void ircomEnableContinuousListening(void)
@@ -89,6 +89,7 @@ int stub_ircom_take_sent(long *values, int max)
 void stub_ircom_receive(long value, double distance_cm, double direction_rad, int sensor,
                         const char *from, double from_x_mm, double from_y_mm)
 {
+    stub_input_set();
     IrcomMessage *m;
     double bearing;
     if (in_count == IRCOM_MESSAGES_MAX) {     /* as libIrcom: the oldest goes */
@@ -129,6 +130,7 @@ void VL53L0X_start(void)
 
 void stub_set_distance(int mm)
 {
+    stub_input_set();
     distance_mm = mm < 0 ? 0 : mm;
 }
 
@@ -146,6 +148,7 @@ static char *capture;
 
 void stub_set_camera(const unsigned char *rgb, int pixels)
 {
+    stub_input_set();
     if (pixels > STUB_CAMERA_PIXELS)
         pixels = STUB_CAMERA_PIXELS;
     memcpy(camera_rgb, rgb, (size_t)(3 * pixels));

@@ -135,3 +135,36 @@ def test_check_imports_neither_lark_nor_jinja2_nor_lowering():
         assert name not in modules, (
             f"`epuckc check` imports {name}: declare the classes of the modules check imports "
             "with epuckc.records.record (same syntax as @dataclass), see docs/performance.md")
+
+
+WORLD = "arena 60 cm x 60 cm\nrobot at 20 cm, 20 cm heading 30 deg\nrobot at 40 cm, 35 cm\n"
+
+
+def test_a_world_run_skips_the_front_end_the_second_time(program):
+    """`run --world` of a rule file built before goes straight to its
+    robot: the same output and trace, the warning shown again, no front
+    end, no Jinja2, no dataclasses; an edited rule file is checked again."""
+    from tests.conftest import require_enki
+    require_enki()
+    world = program.parent / "w.world"
+    world.write_text(WORLD, encoding="utf-8")
+    args = ("run", program.name, "--world", "w.world", "--time-limit", "2s", "--trace", "t.jsonl")
+    first, first_modules, first_err = imported(*args, cwd=program.parent)
+    assert first.returncode == 3, first_err
+    assert "W007" in first_err and "epuckc.check.checker" in first_modules
+    first_trace = (program.parent / "t.jsonl").read_bytes()
+    second, modules, second_err = imported(*args, cwd=program.parent)
+    assert second.returncode == 3, second_err
+    assert (second.stdout, second_err) == (first.stdout, first_err)
+    assert (program.parent / "t.jsonl").read_bytes() == first_trace
+    for name in ("jinja2", "epuckc.check.checker", "epuckc.syntax.parser", "epuckc.lower.program",
+                 "epuckc.emit.program", "epuckc.check.frontend", "epuckc.build.host",
+                 "dataclasses"):
+        assert name not in modules, name
+    # the plain run of the same file is another entry
+    plain, plain_modules, _ = imported("run", program.name, cwd=program.parent)
+    assert plain.returncode == 0 and "epuckc.check.checker" in plain_modules
+    text = program.read_text(encoding="utf-8")
+    program.write_text(text.replace("const UNUSED = 5 mm", "const UNUSED = 7 mm"), encoding="utf-8")
+    third, modules, _ = imported(*args, cwd=program.parent)
+    assert third.returncode == 3 and "epuckc.check.checker" in modules

@@ -5,7 +5,7 @@ rule file."""
 import re
 import subprocess
 
-from epuckc.base.resources import RUNTIME_CORE
+from epuckc.base.resources import RUNTIME_CORE, RUNTIME_SIMULATED
 from epuckc.check.cnames import KEYWORDS, visible_names
 from epuckc.lower.program import PREFIX, c_comment, c_string
 from tests.conftest import require_tool
@@ -45,7 +45,8 @@ def test_runtime_symbols_are_all_known_to_the_checker(tmp_path):
     can clash at link time."""
     cc, nm = require_tool("cc"), require_tool("nm")
     names = visible_names()
-    for src in (*RUNTIME_CORE, "host/platform_host.c", "host/scenario.c", "host/epuck_stub.c",
+    for src in (*RUNTIME_CORE, *RUNTIME_SIMULATED, "host/platform_host.c", "host/scenario.c",
+                "host/epuck_stub.c",
                 "platform_robot.c"):
         obj = tmp_path / "x.o"
         subprocess.run([cc, *STRICT, f"-I{RUNTIME}", f"-I{RUNTIME / 'epuck_api'}",

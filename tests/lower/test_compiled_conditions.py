@@ -13,7 +13,7 @@ import os
 import subprocess
 from pathlib import Path
 
-from epuckc.base.resources import RUNTIME_CORE
+from epuckc.base.resources import RUNTIME_CORE, RUNTIME_SIMULATED
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
@@ -122,7 +122,8 @@ def build_and_run(text: str, scn: str, tmp_path: Path) -> list:
     exe = tmp_path / "rules"
     subprocess.run([require_tool("cc"), *STRICT, "-O1", "-DMAX_ACTIONS=1", "-DMAX_EVENTS=1",
                     f"-I{RT}", f"-I{RT / 'epuck_api'}", f"-I{RT / 'host'}", str(c_file),
-                    *(str(RT / name) for name in RUNTIME_CORE), str(RT / "host" / "platform_host.c"),
+                    *(str(RT / name) for name in (*RUNTIME_CORE, *RUNTIME_SIMULATED)),
+                    str(RT / "host" / "platform_host.c"),
                     str(RT / "host" / "scenario.c"), str(RT / "host" / "epuck_stub.c"), "-o",
                     str(exe)], check=True)
     (tmp_path / "rules.scn").write_text(scn)

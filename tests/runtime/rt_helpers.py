@@ -9,11 +9,11 @@ from pathlib import Path
 import pytest
 
 from conftest import REPO, require_tool
-from epuckc.base.resources import RUNTIME_CORE, RUNTIME_DEVICES
+from epuckc.base.resources import RUNTIME_CORE, RUNTIME_DEVICES, RUNTIME_SIMULATED
 
 RUNTIME = REPO / "runtime_c"
 PROGRAMS = Path(__file__).resolve().parent / "programs"
-SOURCES = [*(RUNTIME / name for name in (*RUNTIME_CORE, *RUNTIME_DEVICES)),
+SOURCES = [*(RUNTIME / name for name in (*RUNTIME_CORE, *RUNTIME_SIMULATED, *RUNTIME_DEVICES)),
            RUNTIME / "host" / "platform_host.c", RUNTIME / "host" / "scenario.c",
            RUNTIME / "host" / "epuck_stub.c",
            RUNTIME / "host" / "stub_devices.c"]

@@ -11,12 +11,13 @@ import subprocess
 import pytest
 
 from conftest import REPO, require_tool
-from epuckc.base.resources import RUNTIME_CORE
+from epuckc.base.resources import RUNTIME_CORE, RUNTIME_SIMULATED
 from epuckc.stdlib import arith
 from tests.support.programs import epuckc, run_program
 
 RUNTIME = REPO / "runtime_c"
-HOST = [*(RUNTIME / n for n in RUNTIME_CORE), RUNTIME / "host" / "platform_host.c",
+HOST = [*(RUNTIME / n for n in (*RUNTIME_CORE, *RUNTIME_SIMULATED)),
+        RUNTIME / "host" / "platform_host.c",
         RUNTIME / "host" / "scenario.c", RUNTIME / "host" / "epuck_stub.c"]
 INCLUDES = [f"-I{RUNTIME}", f"-I{RUNTIME / 'epuck_api'}", f"-I{RUNTIME / 'host'}"]
 STRICT = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic"]

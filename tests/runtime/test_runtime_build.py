@@ -7,7 +7,7 @@ import subprocess
 import sys
 from pathlib import Path
 
-from epuckc.base.resources import RUNTIME_CORE, RUNTIME_DEVICES
+from epuckc.base.resources import RUNTIME_CORE, RUNTIME_DEVICES, RUNTIME_SIMULATED
 import pytest
 
 from conftest import REPO, require_tool
@@ -326,10 +326,11 @@ def test_the_makefile_builds_the_runtime_the_compiler_builds():
     epuckc.base.resources.RUNTIME_CORE does (the one list every build and test
     takes), and every file of the runtime is in it."""
     makefile = (RUNTIME / "Makefile").read_text()
-    [core] = [line.split("=", 1)[1].split() for line in makefile.splitlines()
-              if line.startswith("CORE =")]
-    assert core == list(RUNTIME_CORE)
+    lists = {name: [line.split("=", 1)[1].split() for line in makefile.splitlines()
+                    if line.startswith(f"{name} =")] for name in ("CORE", "SIMULATED")}
+    assert lists["CORE"] == [list(RUNTIME_CORE)]
+    assert lists["SIMULATED"] == [list(RUNTIME_SIMULATED)]
     platform_files = {"platform_robot.c", "platform_epuck2.c", "check16.c"}
     top_level = {p.name for p in RUNTIME.glob("*.c")} - platform_files
-    assert top_level == set(RUNTIME_CORE) | set(RUNTIME_DEVICES), \
-        "a runtime source missing from RUNTIME_CORE or RUNTIME_DEVICES"
+    assert top_level == set(RUNTIME_CORE) | set(RUNTIME_DEVICES) | set(RUNTIME_SIMULATED), \
+        "a runtime source missing from RUNTIME_CORE, RUNTIME_DEVICES or RUNTIME_SIMULATED"

@@ -40,7 +40,7 @@ int main(void) {{
 """)
     cc = require_tool("cc")
     sources = [RUNTIME / n for n in ("epuckrt.c", "rt_motion.c", "rt_sensors.c", "rt_modes.c",
-                                     "rt_lang.c", "rt_camera.c")]
+                                     "rt_lang.c", "rt_camera.c", "rt_idle.c")]
     sources += [RUNTIME / "host" / n for n in ("platform_host.c", "scenario.c", "epuck_stub.c",
                                                "stub_devices.c")]
     exe = tmp_path / "t"

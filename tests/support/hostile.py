@@ -15,7 +15,7 @@ from pathlib import Path
 
 from hypothesis import strategies as st
 
-from epuckc.base.resources import RUNTIME_CORE
+from epuckc.base.resources import RUNTIME_CORE, RUNTIME_SIMULATED
 
 REPO = Path(__file__).resolve().parents[2]
 RUNTIME = REPO / "runtime_c"
@@ -196,7 +196,8 @@ class Outcome:
 def runtime_objects(folder: Path, cc: str) -> list:
     """The host runtime, compiled once with the sanitizers."""
     objects = []
-    for src in (*RUNTIME_CORE, "host/platform_host.c", "host/scenario.c", "host/epuck_stub.c"):
+    for src in (*RUNTIME_CORE, *RUNTIME_SIMULATED, "host/platform_host.c", "host/scenario.c",
+                "host/epuck_stub.c"):
         obj = folder / (Path(src).stem + ".o")
         if not obj.exists():
             subprocess.run([cc, *STRICT, *SANITIZE, f"-I{RUNTIME}", f"-I{RUNTIME / 'epuck_api'}",

@@ -48,11 +48,11 @@ static const rt_event epk_event_table[] = {
     /* 0: cancel.epk:2: on immediate do set_timer */
     {immediate, NULL, 0, 0, RT_NO_MEMORY, 0, 0},
     /* 1: cancel.epk:3: rule tick: on timer(100 ms) repeat do start_straight(200, 1 mm) */
-    {timer, &epk_when_r2, 1, RT_REPEAT, 0, 0, 0},
+    {timer, &epk_when_r2, 1, RT_REPEAT | RT_WAKE_AS_TIMER, 0, 0, 0},
     /* 2: cancel.epk:4: on timer(350 ms) do cancel tick */
-    {timer, &epk_when_r3, 2, 0, 1, 0, 0},
+    {timer, &epk_when_r3, 2, RT_WAKE_AS_TIMER, 1, 0, 0},
     /* 3: cancel.epk:5: on timer(1 s) do exit_main */
-    {timer, &epk_when_r4, 3, 0, 2, 0, 0},
+    {timer, &epk_when_r4, 3, RT_WAKE_AS_TIMER, 2, 0, 0},
 };
 
 /* What changes while the program runs, the only part in RAM. */

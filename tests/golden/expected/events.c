@@ -71,13 +71,13 @@ static const rt_event epk_event_table[] = {
     /* 0: events.epk:2: on immediate do start_sensor, set_timer */
     {immediate, NULL, 0, 0, RT_NO_MEMORY, 0, 0},
     /* 1: events.epk:3: rule near: on sensor(ir2 > 1000, ir5 < 20) repeat do start_straight(300, 1 cm) */
-    {NULL, NULL, 1, RT_REPEAT | RT_HOLD_WHILE, RT_NO_MEMORY, 0, 0},
+    {NULL, NULL, 1, RT_REPEAT | RT_HOLD_WHILE | RT_WAKE_ON_CHANGE, RT_NO_MEMORY, 0, 0},
     /* 2: events.epk:4: rule moved: on stop_motor repeat do reset_timer, set_timer */
-    {event_stop_motor, NULL, 2, RT_REPEAT, RT_NO_MEMORY, 0, 0},
+    {event_stop_motor, NULL, 2, RT_REPEAT | RT_WAKE_ON_CHANGE, RT_NO_MEMORY, 0, 0},
     /* 3: events.epk:5: on timer(400 ms) repeat do stop_sensor */
-    {timer, &epk_when_r4, 3, RT_REPEAT, 0, 0, 0},
+    {timer, &epk_when_r4, 3, RT_REPEAT | RT_WAKE_AS_TIMER, 0, 0, 0},
     /* 4: events.epk:6: on event_timer(time: 3 s) do stop_motor, exit_main */
-    {timer, &epk_when_r5, 4, 0, 1, 0, 0},
+    {timer, &epk_when_r5, 4, RT_WAKE_AS_TIMER, 1, 0, 0},
 };
 
 /* What changes while the program runs, the only part in RAM. */

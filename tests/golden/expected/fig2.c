@@ -28,7 +28,7 @@ static const rt_event epk_event_table[] = {
     /* 0: fig2.epk:6: on immediate do go */
     {immediate, NULL, 0, 0, RT_NO_MEMORY, 0, 0},
     /* 1: fig2.epk:7: on stop_motor do quit */
-    {event_stop_motor, NULL, 1, 0, RT_NO_MEMORY, 0, 0},
+    {event_stop_motor, NULL, 1, RT_WAKE_ON_CHANGE, RT_NO_MEMORY, 0, 0},
 };
 
 /* What changes while the program runs, the only part in RAM. */

@@ -129,13 +129,13 @@ static const rt_action epk_action_table[] = {
  * always armed. */
 static const rt_event epk_event_table[] = {
     /* 0: ifelse.epk:17: on enter priority 2 do stop_motor, if turns > 10 { led_on(all) } else { led_off(all) } (mode resting) */
-    {event_enter_mode, NULL, 0, 0, 0, 2, 1},
+    {event_enter_mode, NULL, 0, RT_WAKE_ON_CHANGE, 0, 2, 1},
     /* 1: ifelse.epk:14: on timer(5 s) repeat priority 1 do if near > NEAR { turns = clamp(turns + 1, 0, 100), dodge, if turns > 3 { cancel look, enter resting } } then led_toggle(front) */
-    {timer, &epk_when_r3, 1, RT_REPEAT, 1, 1, 0},
+    {timer, &epk_when_r3, 1, RT_REPEAT | RT_WAKE_AS_TIMER, 1, 1, 0},
     /* 2: ifelse.epk:9: on immediate do start_sensor, set_timer */
     {immediate, NULL, 2, 0, RT_NO_MEMORY, 0, 0},
     /* 3: ifelse.epk:10: rule look: every 20 ms do near = max(ir0, ir7), if near > 2000 { stop_motor, led_on(body) } else if near > NEAR { set_speed(150, 150), led_off(body) } else { set_speed(400, 400), led_off(body) } */
-    {event_every, &epk_when_r2, 3, RT_REPEAT, 2, 0, 0},
+    {event_every, &epk_when_r2, 3, RT_REPEAT | RT_WAKE_AT_DEADLINE, 2, 0, 0},
 };
 
 /* What changes while the program runs, the only part in RAM. */

@@ -54,7 +54,7 @@ static const rt_event epk_event_table[] = {
     /* 0: names.epk:5: rule main: on immediate do register_action */
     {immediate, NULL, 0, 0, RT_NO_MEMORY, 0, 0},
     /* 1: names.epk:6: rule while: on stop_motor repeat do seq_a_x, cancel main */
-    {event_stop_motor, NULL, 1, RT_REPEAT, RT_NO_MEMORY, 0, 0},
+    {event_stop_motor, NULL, 1, RT_REPEAT | RT_WAKE_ON_CHANGE, RT_NO_MEMORY, 0, 0},
 };
 
 /* What changes while the program runs, the only part in RAM. */

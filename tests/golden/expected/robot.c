@@ -108,27 +108,27 @@ static const rt_event epk_event_table[] = {
     /* 0: robot.epk:8: rule escape: on tap(600) repeat priority urgent do start_straight(-500, 5 cm) (mode explore) */
     {event_tap, &epk_when_r4, 0, RT_REPEAT, 0, 3, 1},
     /* 1: robot.epk:7: rule avoid: on sensor(ir0 > 500, ir7 > 500) repeat priority 1 do start_curve(0 mm, 90 deg, 300) (mode explore) */
-    {NULL, NULL, 1, RT_REPEAT | RT_HOLD_WHILE, RT_NO_MEMORY, 1, 1},
+    {NULL, NULL, 1, RT_REPEAT | RT_HOLD_WHILE | RT_WAKE_ON_CHANGE, RT_NO_MEMORY, 1, 1},
     /* 2: robot.epk:5: on enter do start_sensor, set_timer, led_on(led0), start_straight(300, 50 cm) (mode explore) */
-    {event_enter_mode, NULL, 2, 0, 1, 0, 1},
+    {event_enter_mode, NULL, 2, RT_WAKE_ON_CHANGE, 1, 0, 1},
     /* 3: robot.epk:6: rule wander: on stop_motor repeat do start_straight(300, 50 cm) (mode explore) */
-    {event_stop_motor, NULL, 3, RT_REPEAT, RT_NO_MEMORY, 0, 1},
+    {event_stop_motor, NULL, 3, RT_REPEAT | RT_WAKE_ON_CHANGE, RT_NO_MEMORY, 0, 1},
     /* 4: robot.epk:9: on timer(60 s) do enter rest (mode explore) */
-    {timer, &epk_when_r5, 4, 0, 2, 0, 1},
+    {timer, &epk_when_r5, 4, RT_WAKE_AS_TIMER, 2, 0, 1},
     /* 5: robot.epk:12: on enter do stop_motor, led_off(all), led_on(body), play_sound(wouaaaaaaaah) (mode rest) */
-    {event_enter_mode, NULL, 5, 0, 3, 0, 2},
+    {event_enter_mode, NULL, 5, RT_WAKE_ON_CHANGE, 3, 0, 2},
     /* 6: robot.epk:13: on remote(5) do enter explore (mode rest) */
-    {event_remote, &epk_when_r7, 6, 0, 4, 0, 2},
+    {event_remote, &epk_when_r7, 6, RT_WAKE_ON_CHANGE, 4, 0, 2},
     /* 7: robot.epk:14: on remote(standby) do exit_main (mode rest) */
-    {event_remote, &epk_when_r8, 7, 0, 5, 0, 2},
+    {event_remote, &epk_when_r8, 7, RT_WAKE_ON_CHANGE, 5, 0, 2},
     /* 8: robot.epk:16: on clap(3000) repeat do led_toggle(front) */
-    {event_clap, &epk_when_r9, 8, RT_REPEAT, 6, 0, 0},
+    {event_clap, &epk_when_r9, 8, RT_REPEAT | RT_WAKE_ON_CHANGE, 6, 0, 0},
     /* 9: robot.epk:17: on ambient(ir0 < 200) repeat do play_sound(haa) */
-    {event_ambient, &epk_when_r10, 9, RT_REPEAT | RT_HOLD_WHILE, 7, 0, 0},
+    {event_ambient, &epk_when_r10, 9, RT_REPEAT | RT_HOLD_WHILE | RT_WAKE_ON_CHANGE, 7, 0, 0},
     /* 10: robot.epk:18: on tilt(800) do exit_main */
     {event_tilt, &epk_when_r11, 10, 0, 8, 0, 0},
     /* 11: robot.epk:19: on selector(15) do exit_main */
-    {event_selector, &epk_when_r12, 11, 0, 9, 0, 0},
+    {event_selector, &epk_when_r12, 11, RT_WAKE_ON_CHANGE, 9, 0, 0},
 };
 
 /* What changes while the program runs, the only part in RAM. */

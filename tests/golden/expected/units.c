@@ -62,9 +62,9 @@ static const rt_event epk_event_table[] = {
     /* 0: units.epk:4: on immediate do start_straight(250, 100) then start_straight(100 mm/s, 5 cm) then start_straight(speed: 2 cm/s, distance: 0.01 m) then start_straight(distance: 40 steps, speed: -200 steps/s) then start_curve(radius: 10 cm, degrees: -45 deg, speed: 300) then set_timer */
     {immediate, NULL, 0, 0, RT_NO_MEMORY, 0, 0},
     /* 1: units.epk:10: on timer(1500 ms) do exit_main */
-    {timer, &epk_when_r2, 1, 0, 0, 0, 0},
+    {timer, &epk_when_r2, 1, RT_WAKE_AS_TIMER, 0, 0, 0},
     /* 2: units.epk:11: on timer(2 s) do exit_main */
-    {timer, &epk_when_r3, 2, 0, 1, 0, 0},
+    {timer, &epk_when_r3, 2, RT_WAKE_AS_TIMER, 1, 0, 0},
 };
 
 /* What changes while the program runs, the only part in RAM. */

@@ -28,7 +28,7 @@ static const rt_action epk_action_table[] = {
  * always armed. */
 static const rt_event epk_event_table[] = {
     /* 0: warnings.epk:4: on timer(1 s) do exit_main */
-    {timer, &epk_when_r1, 0, 0, 0, 0, 0},
+    {timer, &epk_when_r1, 0, RT_WAKE_AS_TIMER, 0, 0, 0},
     /* 1: warnings.epk:5: on immediate do start_straight(200, 1 cm) */
     {immediate, NULL, 1, 0, RT_NO_MEMORY, 0, 0},
 };

@@ -1,0 +1,229 @@
+/*
+ * robot_loader.h - loads the robots' shared objects for the world runner
+ * (world_runner.cpp): one copy per robot, the copies' code shared.
+ *
+ * dlopen loads a file once, and every robot needs its own globals (the
+ * runtime's state is its globals), so each robot after the first of a
+ * program loads its own copy of the program's file: a file in memory
+ * (memfd_create) where Linux has them, else a file written beside the
+ * SPEC (creating 50 files on a journalled file system took 0.15 s of
+ * wall-clock time, a memory file some microseconds).  The copies' read-only segments (code, constants, symbol tables)
+ * hold the same bytes as the first robot's, but at other pages: with 50
+ * robots the processor's caches held 50 copies of the same code, and
+ * fetching them cost a fifth of a run (docs/performance.md).  So the
+ * read-only pages of each copy are mapped again from the first robot's
+ * file, at the same addresses: the bytes stay the same, and the caches hold
+ * one copy.  Only when they are the same: a segment is shared after its
+ * loaded bytes compare equal to the first robot's and when no writable
+ * segment shares its pages; otherwise the copy keeps its own (slower, as
+ * exact).  Linux (dl_iterate_phdr, dlinfo); elsewhere the copies keep
+ * their own pages.
+ */
+#ifndef ROBOT_LOADER_H
+#define ROBOT_LOADER_H
+
+#include <dlfcn.h>
+#include <fcntl.h>
+#include <unistd.h>
+#include <cstdio>
+#include <cstring>
+#include <map>
+#include <string>
+#include <vector>
+
+#if defined(__linux__)
+#include <link.h>
+#include <sys/mman.h>
+#define ROBOT_LOADER_SHARES 1
+#else
+#define ROBOT_LOADER_SHARES 0
+#endif
+
+namespace loader {
+
+// The bytes of `path` (read once for all its robots); false when it cannot be read.
+inline bool file_bytes(const std::string &path, const std::string **bytes)
+{
+    static std::map<std::string, std::string> read;
+    auto found = read.find(path);
+    if (found == read.end()) {
+        FILE *in = std::fopen(path.c_str(), "rb");
+        if (in == nullptr)
+            return false;
+        std::string data;
+        char buf[1 << 16];
+        size_t n;
+        while ((n = std::fread(buf, 1, sizeof buf, in)) > 0)
+            data.append(buf, n);
+        bool ok = !std::ferror(in);
+        std::fclose(in);
+        if (!ok)
+            return false;
+        found = read.emplace(path, std::move(data)).first;
+    }
+    *bytes = &found->second;
+    return true;
+}
+
+inline bool write_all(int fd, const std::string &data)
+{
+    size_t done = 0;
+    while (done < data.size()) {
+        ssize_t n = write(fd, data.data() + done, data.size() - done);
+        if (n <= 0)
+            return false;
+        done += (size_t)n;
+    }
+    return true;
+}
+
+// The memory files of the copies: open until every robot is loaded, since
+// the dynamic loader knows a loaded object by its path too, and a memory
+// file's path is its descriptor's number, which a closed one gives back.
+inline std::vector<int> &memory_files()
+{
+    static std::vector<int> fds;
+    return fds;
+}
+
+// A copy of `path` to dlopen: a memory file where there are, else a file
+// at `file_path`; its path, or "" when it cannot be made.
+inline std::string copy_of(const std::string &path, const std::string &file_path)
+{
+    const std::string *bytes;
+    if (!file_bytes(path, &bytes))
+        return "";
+#if defined(__linux__) && defined(MFD_CLOEXEC)
+    int fd = memfd_create("epuck-robot", MFD_CLOEXEC);
+    if (fd >= 0) {
+        if (write_all(fd, *bytes)) {
+            memory_files().push_back(fd);
+            return "/proc/self/fd/" + std::to_string(fd);
+        }
+        close(fd);
+    }
+#endif
+    int out = open(file_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
+    if (out < 0)
+        return "";
+    bool ok = write_all(out, *bytes);
+    return close(out) == 0 && ok ? file_path : "";
+}
+
+#if ROBOT_LOADER_SHARES
+struct Segment {
+    uintptr_t start;        // page-aligned, in memory
+    size_t length;          // whole pages
+    off_t offset;           // of `start` in the file
+    int prot;
+};
+
+struct Found {
+    ElfW(Addr) base;
+    std::vector<Segment> read_only;
+    bool overlap;           // a writable segment shares a read-only page
+};
+
+inline int find_segments(struct dl_phdr_info *info, size_t, void *data)
+{
+    Found *f = static_cast<Found *>(data);
+    if (info->dlpi_addr != f->base)
+        return 0;
+    uintptr_t page = (uintptr_t)sysconf(_SC_PAGESIZE);
+    std::vector<std::pair<uintptr_t, uintptr_t>> writable;
+    for (int i = 0; i < info->dlpi_phnum; i++) {
+        const ElfW(Phdr) &ph = info->dlpi_phdr[i];
+        if (ph.p_type != PT_LOAD)
+            continue;
+        uintptr_t a = info->dlpi_addr + ph.p_vaddr;
+        uintptr_t start = a & ~(page - 1);
+        uintptr_t end = (a + ph.p_memsz + page - 1) & ~(page - 1);
+        if (ph.p_flags & PF_W) {
+            writable.push_back({start, end});
+        } else if (ph.p_filesz == ph.p_memsz) {
+            int prot = PROT_READ | ((ph.p_flags & PF_X) ? PROT_EXEC : 0);
+            f->read_only.push_back({start, end - start, (off_t)(ph.p_offset - (a - start)), prot});
+        }
+    }
+    for (const Segment &s : f->read_only)
+        for (const auto &w : writable)
+            if (w.first < s.start + s.length && s.start < w.second)
+                f->overlap = true;
+    return 1;
+}
+
+inline Found segments_of(void *handle)
+{
+    Found f{0, {}, false};
+    struct link_map *map = nullptr;
+    if (dlinfo(handle, RTLD_DI_LINKMAP, &map) != 0 || map == nullptr)
+        return Found{0, {}, true};
+    f.base = map->l_addr;
+    dl_iterate_phdr(find_segments, &f);
+    return f;
+}
+
+// The copy's read-only pages mapped from the first robot's file (`path`),
+// where they hold the same bytes as the first robot's loaded pages.
+inline void share_pages(void *first, void *copy, const std::string &path)
+{
+    Found a = segments_of(first), b = segments_of(copy);
+    if (a.overlap || b.overlap || a.read_only.size() != b.read_only.size())
+        return;
+    int fd = open(path.c_str(), O_RDONLY);
+    if (fd < 0)
+        return;
+    for (size_t i = 0; i < a.read_only.size(); i++) {
+        const Segment &s = a.read_only[i], &t = b.read_only[i];
+        if (s.length != t.length || s.offset != t.offset || s.prot != t.prot
+                || std::memcmp((const void *)s.start, (const void *)t.start, s.length) != 0)
+            continue;
+        // MAP_FIXED replaces the copy's pages at once: the code that runs
+        // here is the runner's, never the robot's
+        (void)mmap((void *)t.start, t.length, t.prot, MAP_PRIVATE | MAP_FIXED, fd, s.offset);
+    }
+    close(fd);
+}
+#endif
+
+// Loads `path` for a robot: the file itself for the first robot of that
+// path (`first` null), else a copy (in memory, or at `copy_path`) whose
+// read-only pages are shared with `first`'s.  Null (and *error) when it
+// cannot be loaded.
+inline void *load(const std::string &path, void *first, const std::string &copy_path,
+                  std::string *error)
+{
+    if (first == nullptr) {
+        void *h = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+        if (h == nullptr)
+            *error = dlerror();
+        return h;
+    }
+    std::string copy = copy_of(path, copy_path);
+    if (copy.empty()) {
+        *error = "cannot copy " + path + " to " + copy_path;
+        return nullptr;
+    }
+    void *h = dlopen(copy.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (h == nullptr) {
+        *error = dlerror();
+        return nullptr;
+    }
+#if ROBOT_LOADER_SHARES
+    share_pages(first, h, path);
+#endif
+    return h;
+}
+
+// Every robot is loaded: the memory files' descriptors are closed (the
+// mappings keep the files).
+inline void loaded()
+{
+    for (int fd : memory_files())
+        close(fd);
+    memory_files().clear();
+}
+
+}  // namespace loader
+
+#endif
