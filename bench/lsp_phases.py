@@ -29,7 +29,7 @@ from epuckc.check import checker as checker_module  # noqa: E402
 from epuckc.ide import incremental, recheck  # noqa: E402
 from epuckc.ide.lsp import Document, EpuckServer  # noqa: E402
 
-STEPS = ("_declare", "_robot", "_var_ranges", "_resolve_actions", "_rules", "_rule", "_never_fire",
+STEPS = ("_declarations", "_declare", "_robot", "_var_ranges", "_resolve_actions", "_rules", "_rule", "_never_fire",
          "_unused", "_no_warnings_beside_errors")
 
 

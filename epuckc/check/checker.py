@@ -74,11 +74,9 @@ class Checker(Names, Externs, RobotSettings, Values, Exprs, Variables, Ranges, C
     # -- entry point --
 
     def check(self) -> CheckedProgram:
-        self._declare()
-        robot_blocks = self.program.of_type(ast.RobotBlock)
-        self._robot(robot_blocks)
+        robot_given = self._declarations()
         self._var_ranges()
-        out = CheckedProgram(self.program.file, self.geo, robot_given=bool(robot_blocks))
+        out = CheckedProgram(self.program.file, self.geo, robot_given=robot_given)
         out.externs = self.externs
         out.variables = self.vars
         out.const_arrays = {name: tuple(e.value for e in values)
@@ -99,6 +97,15 @@ class Checker(Names, Externs, RobotSettings, Values, Exprs, Variables, Ranges, C
         races.check_program(self, out)
         self._no_warnings_beside_errors()
         return out
+
+    def _declarations(self) -> bool:
+        """Every declaration and the robot block (the language server
+        replays them while the statements that declare are the same);
+        whether the program describes the robot."""
+        self._declare()
+        robot_blocks = self.program.of_type(ast.RobotBlock)
+        self._robot(robot_blocks)
+        return bool(robot_blocks)
 
     def _rules(self, out: CheckedProgram):
         """Resolve every rule, in the file's order (the language server

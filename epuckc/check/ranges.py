@@ -32,7 +32,7 @@ from ..stdlib.units import INT16_MAX, INT16_MIN
 from ..syntax import ast
 from . import conditions
 from .messages import _shown
-from .program import BOOL
+from .program import BOOL, VarInfo
 
 # passes of a component's assignments before the growing bounds are widened
 RANGE_PASSES = 4
@@ -58,6 +58,10 @@ class RangeMemo:
         self.order: list = []       # its components: (members, members' set, what they read)
         self.results: dict = {}     # members -> (inputs, {name: (lo, hi)})
         self.ranges: dict = {}      # variable -> (lo, hi)
+        self.solved = None          # variable -> its VarInfo, the last analysis's
+        self.pieces: dict = {}      # what the language server keeps by piece (ide/passes.py)
+        self.piece_list: list = []  # the last analysis's pieces, in order
+        self.where: dict = {}       # id(statement) -> its piece (of those that assign)
 
 
 _ANY = object()     # (a statement whose assignments do not depend on its mode)
@@ -128,6 +132,51 @@ def _assignments(calls, context: tuple, actions, spoiled=frozenset()) -> list:
     return out
 
 
+def statement_assignments(checker, known: dict, stmt) -> tuple:
+    """What the intervals need of a statement (`known`: the last ones, by
+    id, reused while the statement is the same object): (it, its mode when
+    it is a rule with assignments, else _ANY, ((target, entry), ...))."""
+    hit = known.get(id(stmt))
+    if hit is not None and hit[0] is stmt and (hit[1] is _ANY or hit[1] is stmt.mode):
+        return hit
+    body = stmt.body if isinstance(stmt, (ast.Rule, ast.ActionDef)) else None
+    runs_once = _runs_once(stmt)
+    # an entry: [the Assign, runs once, the names it reads (its
+    # conditions' too), its text (later), its statement's id, its
+    # place in the statement, the conditions that hold where it
+    # runs, the variables assigned before it since]
+    guard = stmt.guard if isinstance(stmt, ast.Rule) else None
+    calls = []
+    for k, step in enumerate(() if body is None else body.steps):
+        # (an `if`'s assignments may run, where its conditions held)
+        start = ((guard, True),) if guard is not None and k == 0 else ()
+        calls += _assignments(step.calls, start, checker.actions)
+    hit = known[id(stmt)] = (stmt, stmt.mode if calls and isinstance(stmt, ast.Rule) else _ANY,
+                             tuple((c.target.name, [c, runs_once, _names_read(c.value).union(
+                                 *(_names_read(cond) for cond, _ in context)), None, id(stmt), j,
+                                 context, spoiled])
+                                   for j, (c, context, spoiled) in enumerate(calls)))
+    return hit
+
+
+def _needs(name: str, entries: list, variables: dict) -> list:
+    """The variables a variable's assignments read (itself for `+=`)."""
+    needs = set()
+    keys = variables.keys()
+    for entry in entries:
+        needs |= entry[2] & keys
+        if entry[0].op != "=":
+            needs.add(name)
+    return sorted(needs)
+
+
+def _copy(info: VarInfo, bounds=None) -> VarInfo:
+    """A VarInfo of its own (with the interval `bounds`)."""
+    lo, hi = bounds if bounds is not None else (info.lo, info.hi)
+    return VarInfo(info.name, info.kind, info.init, lo, hi, info.index, info.node, info.size,
+                   info.inits)
+
+
 def _inputs(checker, entries: list, members: tuple, outside) -> tuple:
     """What a component's result is computed from: its assignments' text
     (kept in their entries) and whether each runs once, its members'
@@ -196,111 +245,143 @@ class Ranges:
 
     range_memo = None       # a RangeMemo where the language server keeps one
 
+    # (the language server: whether the declarations are the last analysis's,
+    # their variables the same objects, ide/passes.py)
+    _declared_same = False
+
     def _var_ranges(self):
         """Each variable's interval, component by component. With the
         language server's memo, a component is evaluated again only when
         its assignments or its members' declarations changed (a variable's
         assignments are the same objects, in the same order, when no
         statement assigning it was parsed again), or when an interval it
-        reads moved; and then only if its inputs' text differs."""
-        if not self.vars:
-            return
+        reads moved; and then only if its inputs' text differs.
+
+        A VarInfo is never changed here: a variable's interval is a new one
+        (the declared one is kept as it is, and the language server keeps
+        the last analysis's while its interval does not move, so that what
+        was checked with it compares by identity)."""
         keep = self.range_memo is not None
         memo = self.range_memo if keep else RangeMemo()
+        if not self.vars:
+            memo.solved = None
+            return
         # (the named actions: what an assignment in a branch counts as spoiling)
         env = (self.geo, tuple(self.consts.items()), frozenset(self.actions))
         if memo.env != env:
-            memo.results, memo.ranges, memo.statements = {}, {}, {}
+            memo.results, memo.ranges, memo.statements, memo.solved = {}, {}, {}, None
+            memo.pieces, memo.where = {}, {}
         memo.env = env
-        variables = self.vars
-        assigns: dict = {name: [] for name in variables}
-        known, seen = memo.statements, {}
-        for stmt in self.program.statements:
-            # hit: (statement, its mode when it is a rule with assignments, else
-            # _ANY, ((target, entry), ...))
-            hit = known.get(id(stmt))
-            if hit is None or hit[0] is not stmt or (hit[1] is not _ANY and hit[1] is not stmt.mode):
-                body = stmt.body if isinstance(stmt, (ast.Rule, ast.ActionDef)) else None
-                runs_once = _runs_once(stmt)
-                # an entry: [the Assign, runs once, the names it reads (its
-                # conditions' too), its text (later), its statement's id, its
-                # place in the statement, the conditions that hold where it
-                # runs, the variables assigned before it since]
-                guard = stmt.guard if isinstance(stmt, ast.Rule) else None
-                calls = []
-                for k, step in enumerate(() if body is None else body.steps):
-                    # (an `if`'s assignments may run, where its conditions held)
-                    start = ((guard, True),) if guard is not None and k == 0 else ()
-                    calls += _assignments(step.calls, start, self.actions)
-                hit = (stmt, stmt.mode if calls and isinstance(stmt, ast.Rule) else _ANY, tuple(
-                    (c.target.name, [c, runs_once, _names_read(c.value).union(
-                        *(_names_read(cond) for cond, _ in context)), None, id(stmt), j,
-                        context, spoiled])
-                    for j, (c, context, spoiled) in enumerate(calls)))
-            seen[id(stmt)] = hit
-            for name, entry in hit[2]:
-                found = assigns.get(name)
-                if found is not None:
-                    found.append(entry)
-        memo.statements = seen
-        self._contexts = {id(e[0]): (e[6], e[7]) for entries in assigns.values()
-                          for e in entries if e[6]}
-        if not any(assigns.values()):
-            return
-        names = tuple(variables)
+        pristine = self.vars                # as declared
+        names = tuple(pristine)
         same_names = names == memo.names
+        assigns, changed, place = self._assignments_by_variable(memo, same_names)
+        fast = same_names and changed is not None and self._declared_same \
+            and memo.solved is not None
         old_assigns, old_decls, old_graph = memo.assigns, memo.decls, memo.graph
-        graph, decls, dirty = {}, {}, set()
-        keys = variables.keys()
-        for name, entries in assigns.items():
-            info = variables[name]
-            decl = decls[name] = (info.kind, info.init)
-            if same_names and entries == old_assigns.get(name) and decl == old_decls.get(name):
-                graph[name] = old_graph[name]
-                continue
-            dirty.add(name)
-            needs = set()
-            for entry in entries:
-                needs |= entry[2] & keys
-                if entry[0].op != "=":
-                    needs.add(name)
-            graph[name] = sorted(needs)
+        if fast:            # (the declarations are the same objects: only what changed)
+            graph, decls = old_graph, old_decls
+            dirty = {n for n in changed if assigns[n] != old_assigns.get(n)}
+            for name in dirty:
+                needs = _needs(name, assigns[name], pristine)
+                if needs != graph[name]:
+                    if graph is old_graph:
+                        graph = dict(old_graph)
+                    graph[name] = needs
+        else:
+            graph, decls, dirty = {}, {}, set()
+            for name, entries in assigns.items():
+                info = pristine[name]
+                decl = decls[name] = (info.kind, info.init)
+                if same_names and entries == old_assigns.get(name) and decl == old_decls.get(name):
+                    graph[name] = old_graph[name]
+                    continue
+                dirty.add(name)
+                graph[name] = _needs(name, entries, pristine)
         memo.names, memo.assigns, memo.decls = names, assigns, decls
-        if graph != old_graph:
+        if graph is not old_graph and graph != old_graph:
             memo.graph, memo.order = graph, []
             for members in components(graph):
                 inside = frozenset(members)
                 memo.order.append((members, inside, inside.union(*(graph[m] for m in members))))
         results, old_results, old_ranges = {}, memo.results, memo.ranges
+        last = memo.solved if fast else None
+        variables = self.vars = dict(last) if fast else pristine
         moved = set()               # variables whose interval is not the last analysis's
-        statement_place = None
         for members, inside, reads in memo.order:
             old = old_results.get(members)
             if old is not None and not (dirty & reads) and not (moved & reads):
-                result = old[1]
                 results[members] = old
+                if not fast:
+                    self._give(old[1], variables, pristine, None, old_ranges, moved)
+                continue
+            entries = [e for m in members for e in assigns[m]]
+            if not entries:         # its members keep their declared intervals
+                for m in members:
+                    info = variables[m] = pristine[m]
+                    if old_ranges.get(m) != (info.lo, info.hi):
+                        moved.add(m)
+                continue
+            if len(members) > 1:                                # in file order
+                entries.sort(key=place)
+            inputs = _inputs(self, entries, members, reads - inside) if keep else None
+            if old is not None and old[0] == inputs:
+                result = old[1]
             else:
-                entries = [e for m in members for e in assigns[m]]
-                if not entries:
-                    continue
-                if len(members) > 1:                                # in file order
-                    if statement_place is None:
-                        statement_place = dict(zip(seen, itertools.count()))
-                    entries.sort(key=lambda e: (statement_place[e[4]], e[5]))
-                inputs = _inputs(self, entries, members, reads - inside) if keep else None
-                if old is not None and old[0] == inputs:
-                    result = old[1]
-                else:
-                    result = self._solve([e[0] for e in entries],
-                                         {id(e[0]) for e in entries if e[1]})
-                results[members] = (inputs, result)
-            for m, bounds in result.items():
-                info = variables[m]
-                info.lo, info.hi = bounds
-                if old_ranges.get(m) != bounds:
-                    moved.add(m)
+                for m in members:           # (solved from the declared intervals)
+                    variables[m] = _copy(pristine[m])
+                self._contexts = {id(e[0]): (e[6], e[7]) for e in entries if e[6]}
+                result = self._solve([e[0] for e in entries],
+                                     {id(e[0]) for e in entries if e[1]})
+            results[members] = (inputs, result)
+            self._give(result, variables, pristine, last, old_ranges, moved)
         memo.results = results
-        memo.ranges = {name: (info.lo, info.hi) for name, info in variables.items()}
+        if fast:
+            for name in moved:
+                info = variables[name]
+                old_ranges[name] = (info.lo, info.hi)
+        else:
+            memo.ranges = {name: (info.lo, info.hi) for name, info in variables.items()}
+        memo.solved = variables
+
+    @staticmethod
+    def _give(result: dict, variables: dict, pristine: dict, last, old_ranges: dict,
+              moved: set) -> None:
+        """The variables of a component their intervals: the last analysis's
+        VarInfo (`last`) where it has them, the declared one where they are
+        declared, else a new one."""
+        for m, bounds in result.items():
+            info = variables[m]
+            if (info.lo, info.hi) != bounds:
+                info = variables[m] = _copy(pristine[m], bounds)
+            if last is not None:
+                before = last.get(m)
+                if before is not None and before is not info and (before.lo, before.hi) == bounds:
+                    variables[m] = before
+            if old_ranges.get(m) != bounds:
+                moved.add(m)
+
+    def _assignments_by_variable(self, memo: RangeMemo, same_names: bool) -> tuple:
+        """(variable -> its assignments' entries in file order, the variables
+        whose assignments may differ from the memo's (None: any), the key
+        that puts entries in file order). The language server's does it by
+        pieces of the document (ide/passes.py)."""
+        assigns: dict = {name: [] for name in self.vars}
+        known, seen = memo.statements, {}
+        for stmt in self.program.statements:
+            hit = seen[id(stmt)] = statement_assignments(self, known, stmt)
+            for name, entry in hit[2]:
+                found = assigns.get(name)
+                if found is not None:
+                    found.append(entry)
+        memo.statements = seen
+        place: dict = {}
+
+        def in_file_order(entry):
+            if not place:
+                place.update(zip(seen, itertools.count()))
+            return place[entry[4]], entry[5]
+        return assigns, None, in_file_order
 
     def _solve(self, calls: list, once: set) -> dict:
         """A component's intervals: its assignments (in file order) joined

@@ -59,7 +59,8 @@ from ..check.program import CheckedProgram
 from ..diagnostics import Collector, Diagnostic
 from ..syntax import ast
 from ..syntax.lexer import MAX_LEXICAL_ERRORS
-from ..syntax.parser import ModePlacer, parse
+from ..syntax.parser import parse
+from .pieces import Pieces
 from .recheck import IncrementalChecker, _Memo
 from .statements import (_CR_ENDS_LINES, _MARGIN, _ONCE, VLINE, Entry, _boundaries, _common_prefix,
                          _common_suffix, _parse_chunk, line_starts,
@@ -204,7 +205,8 @@ class Analyzer:
         self._prev: Optional[tuple] = None
         self._next_id = 1
         self._memo = _Memo()
-        self._placed: dict = {}     # what ModePlacer made of each statement, last time
+        self._pieces = Pieces(name)     # the statements in pieces, placed (pieces.py)
+        self._window = None         # (k, new, old): entries k.. replaced `old` old ones (_chunks)
         self._line_starts = None    # of the last text split (_chunks)
         self._real: dict = {}   # id(Diagnostic) -> (it, statements, their lines, in real lines)
 
@@ -227,9 +229,10 @@ class Analyzer:
         if split is None:
             return self._whole(text)
         starts, lines, entries = split
-        program, diags = self._place(entries)
+        program, diags = self._pieces.place(entries, *self._window)
         items = diags.items
-        checker = IncrementalChecker(program, diags, self._memo, **self.options)
+        checker = IncrementalChecker(program, diags, self._memo, pieces=self._pieces.pieces,
+                                     **self.options)
         checked = checker.check()
         memo = self._memo.rules
         if len(memo) > 2 * len(program.statements) + 100:
@@ -238,39 +241,6 @@ class Analyzer:
         analysis = self._finish(text, starts, lines, entries, program, checker, checked, items)
         analysis._line_starts = self._line_starts     # (the split's: the same text's)
         return analysis
-
-    def _place(self, entries) -> tuple:
-        """The program of the entries' statements (ModePlacer: mode blocks
-        span statements) and a Collector of their diagnostics, in the order
-        a whole file's parse gives them. The statements are placed all at
-        once; only if placing them says something (a mode's error, an
-        expression too deep) are they placed again entry by entry, so that
-        what it says comes between the entries' own diagnostics."""
-        for interleaved in (False, True):
-            program = ast.Program(self.name)
-            diags = Collector(_Named(self.name))
-            items = diags.items
-            placer = ModePlacer(program, diags, self._placed)
-            if not interleaved:
-                placer.extend(list(itertools.chain.from_iterable(map(_STATEMENTS, entries))))
-                if items:
-                    continue
-            said = set()
-            for entry in entries if interleaved else filter(_DIAGS, entries):
-                if interleaved and entry.statements:
-                    placer.extend(entry.statements)
-                if entry.once:
-                    for d in entry.diags:
-                        if d.code in _ONCE:
-                            if (d.code, d.message) in said:
-                                continue
-                            said.add((d.code, d.message))
-                        items.append(d)
-                elif entry.diags:
-                    items.extend(entry.diags)
-            placer.finish()
-            self._placed = placer.placed
-            return program, diags
 
     def _chunks(self, text: str) -> Optional[tuple]:
         """The statements of `text`: (starts, lines, entries). Only the
@@ -344,7 +314,9 @@ class Analyzer:
         keys = o_keys[:k] + mid_keys + o_keys[j:]
         if bad >= MAX_LEXICAL_ERRORS:
             self._prev = None
+            self._pieces.reset()
             return None
+        self._window = (k, len(mid_entries), j - k)
         self._prev = (text, starts, keywords, lines, entries, keys, bad)
         self._line_starts = starts_of_lines
         return starts, lines, entries

@@ -20,6 +20,9 @@ from ..check.rules import may_never_fire
 from ..check.ranges import RangeMemo
 from ..diagnostics import Collector, Diagnostic
 from ..syntax import ast
+from .passes import PiecePasses
+from .pieces import PIECE
+from .watch import _ALL, _MISSING, _Capture, _Narrowing, _Watch, _Watched  # noqa: F401
 from .statements import VLINE
 
 # ---- checking, reusing results ----------------------------------------------
@@ -32,28 +35,27 @@ class _Memo:
         self.rules: dict = {}   # id(rule node) -> what the rule came to (see _rule)
         self.ranges = RangeMemo()   # the variables' intervals by component (check/ranges.py)
         self.races = RaceMemo()     # W009's facts of each rule and its last pairs (check/races.py)
-        self.blocks: dict = {}  # id(first rule of a block) -> _Block (IncrementalChecker._rules)
+        self.blocks: dict = {}  # id(piece) -> _Block of its rules (IncrementalChecker._rules)
+        self.declared = None    # (what declaring read, the state it left, its diagnostics, robot given)
 
 
-# A block of rules ends after a rule whose statement id is a multiple of
-# this: ids are given in the order statements are parsed, so the ends of
-# the blocks an edit does not touch stay where they were.
-BLOCK = 32
+# A block of rules is a piece's (ide/pieces.py), which ends after an entry
+# whose id is a multiple of this.
+BLOCK = PIECE
 
 
 class _Block:
-    """A run of consecutive rules replayed at once: the rules (kept alive,
-    so that their ids stay theirs), the declarations (env) they were valid
-    with, and what they came to together: their results in order, their own
-    diagnostics in order, and the union of their facts. Only rules whose
-    diagnostics are all their own (no diagnostic said once for the file)
-    make a block, so replaying it is what replaying each would do."""
-    __slots__ = ("rules", "ids", "closed", "env", "geo", "deps", "resolved", "maybe", "own",
-                 "facts")
+    """The rules of a piece of the document (ide/pieces.py) replayed at
+    once: the piece (kept alive, so that its id stays its own, and with it
+    its rules), the declarations (env) they were valid with, and what they
+    came to together: their results in order, their own diagnostics in
+    order, and the union of their facts. Only rules whose diagnostics are
+    all their own (no diagnostic said once for the file) make a block, so
+    replaying it is what replaying each would do."""
+    __slots__ = ("piece", "env", "geo", "deps", "resolved", "maybe", "own", "facts")
 
-    def __init__(self, rules, env, geo, hits):
-        self.rules, self.ids, self.env, self.geo = rules, tuple(map(id, rules)), env, geo
-        self.closed = not (rules[-1].span.line // VLINE) % BLOCK   # (else it ended the file)
+    def __init__(self, piece, env, geo, hits):
+        self.piece, self.env, self.geo = piece, env, geo
         # every name its rules looked up, once (what makes it valid again
         # when a declaration changed, see _Watched)
         self.deps = list({(attr, name, id(found)): (attr, name, found)
@@ -68,151 +70,14 @@ class _Block:
         self.facts = tuple(facts.items())
 
 
-class _Capture:
-    """Run a step of the checker with fresh diagnostics and fresh sets of
-    facts, and remember both, so that the step can be replayed.
-
-    The checker's memories within one file (a constant's chain followed
-    once, a problem of a definition said once) start empty too, so that
-    the step does all its own lookups (and notes them, see _Watched) and
-    says all its own diagnostics; what is said twice is dropped when the
-    steps are put together (IncrementalChecker._replay), as the whole
-    file's check says it once."""
-    FACTS = ("called", "used_actions", "const_used", "vars_used", "vars_assigned",
-             "devices_used")
-    FRESH = ("_const_memo", "_const_reported", "_const_diagnostics")
-
-    def __init__(self, checker: Checker):
-        self.checker = checker
-
-    def __enter__(self):
-        c = self.checker
-        fresh = [f for f in self.FRESH if hasattr(c, f)]
-        self.saved = (c.diags, {f: getattr(c, f) for f in self.FACTS},
-                      {f: getattr(c, f) for f in fresh})
-        c.diags = Collector(c.diags.source)
-        for f in self.FACTS:
-            setattr(c, f, set())
-        for f in fresh:
-            setattr(c, f, type(getattr(c, f))())
-        return self
-
-    def __exit__(self, *exc):
-        c = self.checker
-        self.diags = c.diags.items
-        self.facts = tuple((f, v) for f in self.FACTS if (v := getattr(c, f)))
-        c.diags, saved_facts, saved_fresh = self.saved
-        for f in self.FACTS:
-            setattr(c, f, saved_facts[f])
-        for f, value in saved_fresh.items():
-            setattr(c, f, value)
-        return False
-
-
-_MISSING = object()
-_ALL = object()
-_TABLES = ("consts", "const_arrays", "actions", "externs", "broken_externs", "rule_names",
-           "modes", "vars")
-
-
-class _Watched:
-    """A read-only view of one of the checker's name tables that notes
-    what a rule looked up in it: (table, name, what was found), or
-    (table, _ALL, every entry) when it looked at the whole table (the
-    candidates of a did-you-mean)."""
-    __slots__ = ("_table", "_attr", "_deps")
-
-    def __init__(self, table: dict, attr: str, deps: list):
-        self._table, self._attr, self._deps = table, attr, deps
-
-    def _all(self):
-        self._deps.append((self._attr, _ALL, tuple(self._table.items())))
-        return self._table
-
-    def get(self, name, default=None):
-        found = self._table.get(name, _MISSING)
-        self._deps.append((self._attr, name, found))
-        return default if found is _MISSING else found
-
-    def __contains__(self, name):
-        return self.get(name, _MISSING) is not _MISSING
-
-    def __getitem__(self, name):
-        found = self.get(name, _MISSING)
-        if found is _MISSING:
-            raise KeyError(name)
-        return found
-
-    def __iter__(self):
-        return iter(self._all())
-
-    def __len__(self):
-        return len(self._all())
-
-    def __getattr__(self, attr):        # items(), keys(), values(), ...
-        return getattr(self._all(), attr)
-
-
-class _Narrowing:
-    """The watched table of variables as a guard's narrowing sees it
-    (IncrementalChecker._guarded_body): its items are those of the
-    variables the guard names, the only ones `conditions.narrowed` reads,
-    so that the rule depends on them and not on every variable."""
-    __slots__ = ("_watched", "_names")
-
-    def __init__(self, watched: _Watched, names):
-        self._watched, self._names = watched, sorted(names)
-
-    def items(self):
-        found = ((n, self._watched.get(n, _MISSING)) for n in self._names)
-        return [(n, v) for n, v in found if v is not _MISSING]
-
-    def get(self, name, default=None):
-        return self._watched.get(name, default)
-
-    def __contains__(self, name):
-        return name in self._watched
-
-    def __getitem__(self, name):
-        return self._watched[name]
-
-    def __iter__(self):
-        return iter(self._watched)
-
-    def __len__(self):
-        return len(self._watched)
-
-    def __getattr__(self, attr):
-        return getattr(self._watched, attr)
-
-
-class _Watch:
-    """Check one rule with its name tables watched (see _Watched)."""
-
-    def __init__(self, checker: Checker):
-        self.checker = checker
-        self.deps: list = []
-
-    def __enter__(self):
-        c = self.checker
-        self.saved = [getattr(c, t) for t in _TABLES]
-        for t, table in zip(_TABLES, self.saved):
-            setattr(c, t, _Watched(table, t, self.deps))
-        return self
-
-    def __exit__(self, *exc):
-        for t, table in zip(_TABLES, self.saved):
-            setattr(self.checker, t, table)
-        return False
-
-
-class IncrementalChecker(Checker):
+class IncrementalChecker(PiecePasses, Checker):
     """The checker, with named actions and rules replayed from `memo` when
     nothing they can see has changed."""
 
-    def __init__(self, program, diags, memo: _Memo, **options):
+    def __init__(self, program, diags, memo: _Memo, pieces=None, **options):
         super().__init__(program, diags, **options)
         self.memo = memo
+        self.pieces = pieces        # the document's pieces (ide/pieces.py), in order
         self.range_memo = memo.ranges
         self.race_memo = memo.races
         self._known: Optional[set] = None
@@ -299,29 +164,24 @@ class IncrementalChecker(Checker):
             self.vars = table
 
     def _rules(self, out: CheckedProgram):
-        """Every rule, a block of them at a time (_Block): a block whose
-        rules are the same objects, all valid with the same declarations,
-        is replayed with one extend and a few set unions; any other is
-        checked rule by rule (_rule) and, if it can, kept as a block."""
+        """Every rule, a piece of the document at a time (_Block): the rules
+        of a piece that is the same object, all valid with the same
+        declarations, are replayed with one extend and a few set unions;
+        any other piece's are checked rule by rule (_rule) and, if they can,
+        kept as a block."""
+        if self.pieces is None:
+            return super()._rules(out)
         memo = self.memo
         old, blocks = memo.blocks, {}
         env = self._env_now
-        rules = self.program.of_type(ast.Rule)
         items, resolved = self.diags.items, out.rules
         maybe = self._maybe = []
-        start, n = 0, len(rules)
-        while start < n:
-            block = old.get(id(rules[start]))
-            end = start + len(block.ids) if block is not None else n + 1
-            if end <= n and (block.closed or end == n) \
-                    and block.ids == tuple(map(id, rules[start:end])):
-                same = True             # (a block's end is where it was: no scan)
-            else:
-                same, end = False, start
-                while end < n - 1 and (rules[end].span.line // VLINE) % BLOCK:
-                    end += 1
-                end += 1
-            run = rules[start:end]
+        for piece in self.pieces:
+            run = piece.rules
+            if not run:
+                continue
+            block = old.get(id(piece))
+            same = block is not None and block.piece is piece
             if same and block.env is not env and self._still_valid(block.geo, block.deps):
                 block.env = env             # (each of its rules too: see _rule)
                 for rule in run:
@@ -333,7 +193,7 @@ class IncrementalChecker(Checker):
                         resolved.append(r)
                         if may_never_fire(r):
                             maybe.append(r)
-                block = self._block(run, env)
+                block = self._block(piece, env)
             else:
                 items.extend(block.own)
                 resolved.extend(block.resolved)
@@ -341,16 +201,16 @@ class IncrementalChecker(Checker):
                 for f, values in block.facts:
                     getattr(self, f).update(values)
             if block is not None:
-                blocks[id(run[0])] = block
-            start = end
+                blocks[id(piece)] = block
         memo.blocks = blocks
 
     def _may_never_fire(self, out: CheckedProgram):
         return self._maybe
 
-    def _block(self, run, env) -> Optional[_Block]:
-        """The rules of `run`, just checked or replayed, as a block, if each
+    def _block(self, piece, env) -> Optional[_Block]:
+        """The rules of `piece`, just checked or replayed, as a block, if each
         can be replayed with the rest (see _Block)."""
+        run = piece.rules
         hits = [self.memo.rules.get(id(rule)) for rule in run]
         geo, same_geo = self.geo, set()
         for rule, hit in zip(run, hits):
@@ -360,7 +220,7 @@ class IncrementalChecker(Checker):
                 if hit[1] != geo:       # (each check has its own Geometry object)
                     return None
                 same_geo.add(id(hit[1]))
-        return _Block(run, env, geo, hits)
+        return _Block(piece, env, geo, hits)
 
     def _rule(self, rule: ast.Rule):
         # hit: [node, geometry, lookups, result, diagnostics said once,

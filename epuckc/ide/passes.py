@@ -1,0 +1,144 @@
+"""The checker's passes over the whole program, following an edit: each
+keeps what it found by piece of the document (ide/pieces.py), so that an
+edit costs the pieces it touched and a loop over the pieces, not a pass
+over every statement (a part of recheck.IncrementalChecker).
+
+- **Declarations** (`_declarations`): every statement that declares
+  something (all but rules without a name) and the robot block. While they
+  are the same objects (and the extern C files they name say the same),
+  what declaring them left in the checker is put back as it was: the same
+  tables, the same VarInfo objects, the same diagnostics.
+- **Assignments** (`_assignments_by_variable`, for check/ranges.py): each
+  piece's assignments by variable; a variable's list is made again only
+  when the pieces an edit replaced assigned it differently.
+"""
+from __future__ import annotations
+
+import itertools
+import operator
+
+from ..check.externs import extern_file_problem
+from ..check.ranges import statement_assignments
+
+_DECLS, _EXTERNS = operator.attrgetter("decls"), operator.attrgetter("externs")
+
+# What declaring leaves in the checker that is not a declaration's: the
+# language server's own, and what the checker is given.
+_NOT_DECLARED = frozenset({"program", "diags", "base_dir", "target", "memo", "range_memo",
+                           "race_memo", "pieces", "_known", "_env_now", "_maybe", "_compared",
+                           "_declared_same"})
+
+
+def _copy(value):
+    cls = value.__class__
+    if cls is dict:
+        return dict(value)
+    if cls is set:
+        return set(value)
+    if cls is list:
+        return list(value)
+    return value
+
+
+class PiecePasses:
+    """The whole-program passes by pieces (see the module's doc)."""
+
+    pieces = None
+
+    def _declarations(self) -> bool:
+        if self.pieces is None:
+            return super()._declarations()
+        decls = tuple(itertools.chain.from_iterable(map(_DECLS, self.pieces)))
+        externs = ()
+        if self.base_dir is not None:
+            externs = tuple(extern_file_problem(self.base_dir / s.file) for s in
+                            itertools.chain.from_iterable(map(_EXTERNS, self.pieces)))
+        key = (decls, self.base_dir, self.target, externs)
+        memo = self.memo
+        hit = memo.declared
+        if hit is not None and hit[0] == key:
+            for name, value in hit[1].items():
+                setattr(self, name, _copy(value))
+            self.diags.items.extend(hit[2])
+            self._declared_same = True
+            return hit[3]
+        start = len(self.diags.items)
+        robot_given = super()._declarations()
+        state = {name: _copy(value) for name, value in vars(self).items()
+                 if name not in _NOT_DECLARED}
+        memo.declared = (key, state, self.diags.items[start:], robot_given)
+        return robot_given
+
+    def _assignments_by_variable(self, memo, same_names: bool) -> tuple:
+        if self.pieces is None:
+            return super()._assignments_by_variable(memo, same_names)
+        old = memo.pieces           # id(piece) -> (piece, variable -> entries, id(stmt) -> place)
+        known, where = memo.statements, memo.where
+        new, fresh = {}, []
+        first_fresh = None
+        for at, piece in enumerate(self.pieces):
+            hit = old.get(id(piece))
+            if hit is None or hit[0] is not piece:
+                by_name, order = {}, {}
+                for i, stmt in enumerate(piece.statements):
+                    found = statement_assignments(self, known, stmt)[2]
+                    if found:
+                        order[id(stmt)] = i
+                        where[id(stmt)] = piece
+                        for name, entry in found:
+                            by_name.setdefault(name, []).append(entry)
+                hit = (piece, by_name, order)
+                if first_fresh is None:
+                    first_fresh = at
+                fresh.append(hit)
+            new[id(piece)] = hit
+        gone, first_gone = [], None
+        for at, piece in enumerate(memo.piece_list if old else ()):
+            if id(piece) not in new:
+                if first_gone is None:
+                    first_gone = at
+                gone.append(old[id(piece)])
+        memo.pieces, memo.piece_list = new, self.pieces
+        if len(known) > 2 * len(self.program.statements) + 100:
+            live = {id(s) for s in self.program.statements}
+            memo.statements = {k: v for k, v in known.items() if k in live}
+            memo.where = {k: v for k, v in where.items() if k in live}
+        if not same_names or not old or len(fresh) > 8:
+            assigns = {name: [] for name in self.vars}
+            for piece in self.pieces:
+                for name, entries in new[id(piece)][1].items():
+                    found = assigns.get(name)
+                    if found is not None:
+                        found.extend(entries)
+            return assigns, None, self._place_of(new)
+        # the variables the replaced pieces assign: made again where the
+        # new pieces assign them differently (the same entries in the same
+        # order, in the same place of the file, leave the list as it was)
+        in_place = first_gone == first_fresh and len(gone) == len(fresh)
+        touched = set().union(*(h[1].keys() for h in gone), *(h[1].keys() for h in fresh))
+        changed = set()
+        for name in touched:
+            before = [e for h in gone for e in h[1].get(name, ())]
+            after = [e for h in fresh for e in h[1].get(name, ())]
+            if name in memo.assigns and (not in_place or len(before) != len(after) or any(
+                    x is not y for x, y in zip(before, after))):
+                changed.add(name)
+        assigns = memo.assigns
+        if changed:
+            assigns = dict(assigns)
+            for name in changed:
+                assigns[name] = [e for piece in self.pieces
+                                 for e in new[id(piece)][1].get(name, ())]
+        return assigns, changed, self._place_of(new)
+
+    def _place_of(self, kept: dict):
+        """The key that puts entries in file order: by piece, then by
+        statement in the piece, then in the statement."""
+        where, index = self.range_memo.where, {}
+
+        def place(entry):
+            if not index:
+                index.update((id(p), i) for i, p in enumerate(self.pieces))
+            piece = where[entry[4]]
+            return index[id(piece)], kept[id(piece)][2][entry[4]], entry[5]
+        return place
