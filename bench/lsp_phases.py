@@ -64,7 +64,7 @@ def main(argv=None) -> int:
     server = EpuckServer()
     doc = Document("file:///bench/bench.epk", text, 1, server)
     analysis = doc.analyse()        # opened and published
-    [server.diagnostic(doc, analysis, d) for d in analysis.diagnostics]
+    lb.published(server, doc, analysis)
     edits = {"error": lb.error_edits, "number": lb.edits,
              "interval": lb.interval_edits}[args.kind](text, random.Random(1), args.edits)
     spent.clear()

@@ -287,10 +287,10 @@ def entry_stops(checker, every_rule, facts: dict) -> bool:
 
 class _Rules:
     """What the pair checks need of each rule, computed once (`facts`:
-    id(rule) -> RuleFacts, computed here when not given); the walk's order
-    only when a pair asks for it."""
+    id(rule) -> RuleFacts, computed here when not given; `stops`: entry_stops
+    when known); the walk's order only when a pair asks for it."""
 
-    def __init__(self, checker, rules, every_rule, facts: dict = None):
+    def __init__(self, checker, rules, every_rule, facts: dict = None, stops=None):
         if facts is None:
             named: dict = {}
             facts = {id(r): RuleFacts(checker, r, named) for r in every_rule}
@@ -304,7 +304,7 @@ class _Rules:
         self.base.update((name, (r.lo, r.hi)) for name, r in STANDARD_READINGS.items())
         self.variables = set(checker.vars)
         self._walk = None
-        self.entry_stops = entry_stops(checker, every_rule, facts)
+        self.entry_stops = entry_stops(checker, every_rule, facts) if stops is None else stops
         self.by_timing_only = False     # a big group was compared by timing alone
 
     def writes(self, rule) -> frozenset:

@@ -39,6 +39,10 @@ class Checker(Names, Externs, RobotSettings, Values, Exprs, Variables, Ranges, C
     calls.py, rules.py), the whole-program analyses in modes.py and
     arbitration.py."""
 
+    # the rules as runs (owner, resolved rules), each the same while its owner
+    # is: what W009 keeps by run (the language server's, ide/recheck.py)
+    rule_groups = None
+
     def __init__(self, program: ast.Program, diags: Collector,
                  base_dir: Optional[Path] = None, target: str = "host"):
         self.program = program
@@ -93,10 +97,15 @@ class Checker(Names, Externs, RobotSettings, Values, Exprs, Variables, Ranges, C
         if complete:
             self._unused()
         out.devices = frozenset(self.devices_used)
-        modes.check_program(self, out, complete)
-        races.check_program(self, out)
+        self._modes_program(out, complete)
+        races.check_program(self, out, self.rule_groups)
         self._no_warnings_beside_errors()
         return out
+
+    def _modes_program(self, out: CheckedProgram, complete: bool):
+        """modes.check_program (the language server gives it its rules in
+        modes and the modes they enter, kept by blocks of rules)."""
+        modes.check_program(self, out, complete)
 
     def _declarations(self) -> bool:
         """Every declaration and the robot block (the language server

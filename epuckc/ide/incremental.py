@@ -46,10 +46,8 @@ from __future__ import annotations
 
 import bisect
 import gc
-import itertools
 import operator
-import re
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Optional
 
@@ -62,24 +60,13 @@ from ..syntax.lexer import MAX_LEXICAL_ERRORS
 from ..syntax.parser import parse
 from .pieces import Pieces
 from .recheck import IncrementalChecker, _Memo
-from .statements import (_CR_ENDS_LINES, _MARGIN, _ONCE, VLINE, Entry, _boundaries, _common_prefix,
-                         _common_suffix, _parse_chunk, line_starts,
-                         patched_line_starts)
+from .showing import Shown, real_words
+from .statements import (_CR_ENDS_LINES, _MARGIN, VLINE, Entry, _boundaries, _common_prefix,
+                         _common_suffix, _parse_chunk, line_starts, patched_line_starts)
 
-# words that name lines in a diagnostic's text, and those of them that are virtual
 _ID = operator.attrgetter("id")
-_STATEMENTS, _DIAGS = operator.attrgetter("statements"), operator.attrgetter("diags")
-_FIRST, _SECOND = operator.itemgetter(0), operator.itemgetter(1)
-_LINE_WORDS = re.compile(r"\b(lines?) (\d+(?:, \d+)*)")
-_VIRTUAL_LINE = re.compile(r"\blines? (?:\d+, )*?\d{7,}")
 
 # ---- the analysis of one version of a document ----------------------------------
-
-class _Named:
-    """What a Collector needs of its source: the name shown."""
-    def __init__(self, name):
-        self.name = name
-
 
 @dataclass
 class Analysis:
@@ -117,19 +104,7 @@ class Analysis:
         lines 14, 15`: W009 names rules so) with those lines made real."""
         if self._starts is None:
             self._starts = dict(zip(map(_ID, self.entries), self.lines))
-        starts = self._starts
-
-        def lines(match):
-            # (in the order of the file, as the checker lists them: virtual
-            # lines follow statements' ids, not their places)
-            numbers = sorted(starts[n // VLINE] + n % VLINE - 1 if n >= VLINE else n
-                             for n in map(int, match.group(2).split(", ")))
-            return f"{match.group(1)} {', '.join(map(str, numbers))}"
-
-        def fix(text):
-            return _LINE_WORDS.sub(lines, text) if text else text
-        return replace(d, message=fix(d.message), help=fix(d.help),
-                       notes=tuple(replace(n, message=fix(n.message)) for n in d.notes))
+        return real_words(d, self._starts)
 
     def real(self, span: Span) -> Span:
         """A span of the AST (virtual lines) in the text's lines."""
@@ -182,19 +157,6 @@ class Analysis:
         self._line_starts = None
 
 
-def _idents(d: Diagnostic) -> tuple:
-    """The statements (ids) whose virtual lines `d` has, in its spans or
-    in its words (W009 names rules by their lines)."""
-    found = {span.line // VLINE for span in (d.span, *(n.span for n in d.notes if n.span),
-                                              *(f.span for f in d.fixes))}
-    for text in (d.message, d.help or "", *(n.message for n in d.notes)):
-        if _VIRTUAL_LINE.search(text):
-            for match in _LINE_WORDS.finditer(text):
-                found.update(int(n) // VLINE for n in match.group(2).split(", "))
-    found.discard(0)
-    return tuple(sorted(found))
-
-
 class Analyzer:
     """Analyses successive versions of one document (see the module's doc)."""
 
@@ -208,7 +170,9 @@ class Analyzer:
         self._pieces = Pieces(name)     # the statements in pieces, placed (pieces.py)
         self._window = None         # (k, new, old): entries k.. replaced `old` old ones (_chunks)
         self._line_starts = None    # of the last text split (_chunks)
-        self._real: dict = {}   # id(Diagnostic) -> (it, statements, their lines, in real lines)
+        self._line_of: dict = {}    # statement id -> its first line (_chunks)
+        self._changed = None        # the ids of the statements an edit replaced (_chunks)
+        self._shown = Shown()       # the diagnostics in real lines (showing.py)
 
     def analyse(self, text: str) -> Analysis:
         collecting = gc.isenabled()
@@ -232,13 +196,14 @@ class Analyzer:
         program, diags = self._pieces.place(entries, *self._window)
         items = diags.items
         checker = IncrementalChecker(program, diags, self._memo, pieces=self._pieces.pieces,
-                                     **self.options)
+                                     piece_of=self._pieces.of.get, **self.options)
         checked = checker.check()
         memo = self._memo.rules
         if len(memo) > 2 * len(program.statements) + 100:
             live = {id(s) for s in program.statements}
             self._memo.rules = {k: v for k, v in memo.items() if k in live}
-        analysis = self._finish(text, starts, lines, entries, program, checker, checked, items)
+        analysis = self._finish(text, starts, lines, entries, program, checker, checked, items,
+                                self._changed)
         analysis._line_starts = self._line_starts     # (the split's: the same text's)
         return analysis
 
@@ -278,8 +243,9 @@ class Analyzer:
         # the old statements that the middle replaces: their parses may serve again
         available: dict = {}
         for i in range(k, j):
-            available.setdefault(o_keys[i], []).append(o_entries[i])
+            available.setdefault(o_keys[i], []).append((o_entries[i], o_lines[i]))
             bad -= o_entries[i].bad_runs
+        relocated = False       # (an old statement in the middle, on another line)
         mid_lines, mid_entries, mid_keys = [], [], []
         ends = middle[1:] + [o_starts[j] + delta if j < len(o_entries) else len(text)]
         followings = middle_kws[1:] + [o_kws[j] if j < len(o_entries) else None]
@@ -289,7 +255,8 @@ class Analyzer:
             key = (text[start:end], column, following)
             pool = available.get(key)
             if pool:
-                entry = pool.pop()
+                entry, was = pool.pop()
+                relocated = relocated or was != line
             else:
                 entry = _parse_chunk(self.name, " " * (column - 1) + key[0], following,
                                      self._next_id)
@@ -300,11 +267,12 @@ class Analyzer:
             mid_lines.append(line)
             mid_entries.append(entry)
             mid_keys.append(key)
+        shift = 0
         if j < len(o_entries):
             # as many lines more (or fewer) as the edit added
             shift = bisect.bisect_right(starts_of_lines, o_starts[j] + delta) - o_lines[j]
-            tail_starts = [x + delta for x in o_starts[j:]]
-            tail_lines = [x + shift for x in o_lines[j:]]
+            tail_starts = list(map(delta.__add__, o_starts[j:])) if delta else o_starts[j:]
+            tail_lines = list(map(shift.__add__, o_lines[j:])) if shift else o_lines[j:]
         else:
             tail_starts, tail_lines = [], []
         starts = o_starts[:k] + middle + tail_starts
@@ -317,6 +285,20 @@ class Analyzer:
             self._pieces.reset()
             return None
         self._window = (k, len(mid_entries), j - k)
+        # the statements' first lines (kept: only the middle's change when no
+        # line moved; a copy, as the last analysis holds the dict)
+        if prev is None or shift or relocated:
+            self._line_of = dict(zip(map(_ID, entries), lines))
+            self._changed = None
+        else:
+            line_of = self._line_of = dict(self._line_of)
+            changed = self._changed = set()
+            for entry in o_entries[k:j]:
+                line_of.pop(entry.id, None)
+                changed.add(entry.id)
+            for entry, line in zip(mid_entries, mid_lines):
+                line_of[entry.id] = line
+                changed.add(entry.id)
         self._prev = (text, starts, keywords, lines, entries, keys, bad)
         self._line_starts = starts_of_lines
         return starts, lines, entries
@@ -329,47 +311,13 @@ class Analyzer:
         checker = Checker(program, diags, **self.options)
         checked = checker.check()
         entry = Entry(0, program.statements, [], 0, source.line_count)
+        self._line_of = {0: 1}
+        self._shown.reset()
         return self._finish(text, [0], [1], [entry], program, checker, checked, diags.items)
 
-    @staticmethod
-    def _real_diagnostic(analysis: Analysis, d: Diagnostic) -> Diagnostic:
-        """`d` in the text's lines (its spans, and the lines its words name)."""
-        real = analysis.real
-        if d.span.line >= VLINE or any(n.span and n.span.line >= VLINE for n in d.notes) \
-                or any(f.span.line >= VLINE for f in d.fixes):
-            d = replace(d, span=real(d.span),
-                        notes=tuple(replace(n, span=real(n.span)) if n.span else n
-                                    for n in d.notes),
-                        fixes=tuple(replace(f, span=real(f.span)) for f in d.fixes))
-        if _VIRTUAL_LINE.search(d.message) or any(_VIRTUAL_LINE.search(n.message)
-                                                  for n in d.notes):
-            d = analysis.real_words(d)
-        return d
-
     def _finish(self, text, starts, lines, entries, program, checker, checked,
-                items) -> Analysis:
+                items, changed=None) -> Analysis:
         analysis = Analysis(self.name, text, starts, lines, entries, program, checker, checked)
-        # a diagnostic in real lines is kept while the statements it names
-        # start on the same lines (the same object: the server keeps what it
-        # made of it)
-        first_lines = analysis._starts = dict(zip(map(_ID, entries), lines))
-        cache, kept = self._real, {}
-        shown = []
-        get = first_lines.get
-        for d in items:
-            # hit: (d, its statements, their first lines, (sort key, d in real lines))
-            hit = cache.get(id(d))
-            if hit is None or hit[0] is not d or (
-                    get(hit[1][0]) != hit[2][0] if len(hit[1]) == 1
-                    else tuple(map(get, hit[1])) != hit[2]):
-                idents = _idents(d)
-                real = self._real_diagnostic(analysis, d) if idents else d
-                hit = (d, idents, tuple(map(get, idents)), (real.sort_key(), real))
-            kept[id(d)] = hit
-            shown.append(hit[3])
-        self._real = kept
-        shown.sort(key=_FIRST)
-        analysis.diagnostics = list(map(_SECOND, shown))
+        analysis._starts = self._line_of
+        analysis.diagnostics = self._shown.show(analysis, items, changed)
         return analysis
-
-

@@ -11,22 +11,37 @@ over every statement (a part of recheck.IncrementalChecker).
 - **Assignments** (`_assignments_by_variable`, for check/ranges.py): each
   piece's assignments by variable; a variable's list is made again only
   when the pieces an edit replaced assigned it differently.
+- **Facts** (FactCounts): the names the replayed blocks of rules use and
+  assign, counted by block: an edit takes away and adds the blocks it
+  changed.
+- **Unused names** (`_unused`): said again only when the declarations or
+  the names used changed.
+- **A warning beside an error** (`_no_warnings_beside_errors`): the
+  statement that holds a place is found by its virtual line (the entry's
+  id, statements.py), among that entry's statements only.
 """
 from __future__ import annotations
 
+import bisect
 import itertools
 import operator
 
 from ..check.externs import extern_file_problem
 from ..check.ranges import statement_assignments
+from ..diagnostics import ERROR
+from .statements import VLINE
 
 _DECLS, _EXTERNS = operator.attrgetter("decls"), operator.attrgetter("externs")
+_SEVERITY, _SPAN, _NOTES = (operator.attrgetter("severity"), operator.attrgetter("span"),
+                            operator.attrgetter("notes"))
+_LINE = operator.itemgetter(0)
+_START = operator.itemgetter(0, 1)     # a Span's (line, column)
 
 # What declaring leaves in the checker that is not a declaration's: the
 # language server's own, and what the checker is given.
 _NOT_DECLARED = frozenset({"program", "diags", "base_dir", "target", "memo", "range_memo",
-                           "race_memo", "pieces", "_known", "_env_now", "_maybe", "_compared",
-                           "_declared_same"})
+                           "race_memo", "pieces", "piece_of", "_known", "_env_now", "_maybe",
+                           "_compared", "_declared_same"})
 
 
 def _copy(value):
@@ -44,6 +59,7 @@ class PiecePasses:
     """The whole-program passes by pieces (see the module's doc)."""
 
     pieces = None
+    piece_of = None         # entry id -> its piece (ide/pieces.py), when known
 
     def _declarations(self) -> bool:
         if self.pieces is None:
@@ -131,6 +147,79 @@ class PiecePasses:
                                  for e in new[id(piece)][1].get(name, ())]
         return assigns, changed, self._place_of(new)
 
+    def _unused(self):
+        if self.pieces is None:
+            return super()._unused()
+        # (what _unused reads: the declarations, the names used, whether
+        # there are rules)
+        declared = self.memo.declared
+        key = (frozenset(self.used_actions), frozenset(self.const_used),
+               frozenset(self.vars_used), frozenset(self.vars_assigned),
+               any(p.rules for p in self.pieces))
+        said = self.memo.unused
+        if said is None or said[0] is not declared or said[1] != key:
+            start = len(self.diags.items)
+            super()._unused()
+            said = self.memo.unused = (declared, key, self.diags.items[start:])
+        else:
+            self.diags.items.extend(said[2])
+
+    def _no_warnings_beside_errors(self):
+        if self.pieces is None:
+            return super()._no_warnings_beside_errors()
+        items = self.diags.items
+        severities = list(map(_SEVERITY, items))
+        errors = severities.count(ERROR)
+        if not errors or errors == len(items):
+            return
+        holders = {}            # entry id -> its statements' spans, in order
+
+        def holder(span):
+            """Checker._no_warnings_beside_errors's: the statement whose start
+            is the last at or before the span's, if it holds the span; in
+            virtual lines, one of the statements of the span's entry."""
+            ident = span.line // VLINE
+            spans = holders.get(ident)
+            if spans is None:
+                piece = self._piece_of(ident)
+                spans = holders[ident] = [] if piece is None else [
+                    s.span for s in piece.statements
+                    if getattr(s, "span", None) is not None and s.span.line // VLINE == ident]
+            i = bisect.bisect_right(spans, (span.line, span.column), key=_START) - 1
+            if i >= 0 and (span.end_line, span.end_column) <= (spans[i].end_line,
+                                                                spans[i].end_column):
+                return spans[i]
+            return None
+
+        broken = {holder(d.span) for d in itertools.compress(
+            items, map(ERROR.__eq__, severities))} - {None}
+        if not broken:
+            return
+        entries = {span.line // VLINE for span in broken}
+        # (only a diagnostic with a place in a broken statement's entry, or
+        # with notes, can be beside one)
+        maybe = set(itertools.compress(range(len(items)), map(
+            entries.__contains__, map(VLINE.__rfloordiv__, map(_LINE, map(_SPAN, items))))))
+        maybe.update(itertools.compress(range(len(items)), map(_NOTES, items)))
+        keep = [True] * len(items)
+        for i in maybe:
+            d = items[i]
+            if severities[i] != ERROR and (holder(d.span) in broken or any(
+                    n.span is not None and holder(n.span) in broken for n in d.notes)):
+                keep[i] = False
+        if not all(keep):
+            items[:] = list(itertools.compress(items, keep))   # in place: callers hold the list
+
+    def _piece_of(self, ident: int):
+        """The piece whose entries include the one of id `ident`."""
+        found = self.piece_of(ident) if self.piece_of is not None else None
+        if found is not None:
+            return found
+        for piece in self.pieces:
+            if any(e.id == ident for e in piece.entries):
+                return piece
+        return None
+
     def _place_of(self, kept: dict):
         """The key that puts entries in file order: by piece, then by
         statement in the piece, then in the statement."""
@@ -142,3 +231,38 @@ class PiecePasses:
             piece = where[entry[4]]
             return index[id(piece)], kept[id(piece)][2][entry[4]], entry[5]
         return place
+
+
+class FactCounts:
+    """The facts of the blocks of rules replayed (recheck.IncrementalChecker._rules),
+    counted: for each fact, how many of the blocks have each name, so that
+    an edit takes away the blocks it changed and adds the new ones instead
+    of uniting every block's."""
+
+    def __init__(self):
+        self.blocks: dict = {}      # id(block) -> block, the ones counted
+        self.counts: dict = {}      # fact -> {name: how many blocks have it}
+
+    def add(self, checker, replayed: list) -> None:
+        """Count `replayed` (and no other block), and add their facts to
+        the checker's."""
+        now = {id(b): b for b in replayed}
+        old = self.blocks
+        for gone in old.keys() - now.keys():
+            self._count(old[gone], -1)
+        for new in now.keys() - old.keys():
+            self._count(now[new], 1)
+        self.blocks = now
+        for fact, counted in self.counts.items():
+            if counted:
+                getattr(checker, fact).update(counted.keys())
+
+    def _count(self, block, by: int) -> None:
+        for fact, values in block.facts:
+            counted = self.counts.setdefault(fact, {})
+            for value in values:
+                n = counted.get(value, 0) + by
+                if n:
+                    counted[value] = n
+                else:
+                    del counted[value]

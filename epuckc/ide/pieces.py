@@ -84,9 +84,10 @@ class Pieces:
         self.name = name
         self.pieces: list = []
         self.starts: list = []      # the index of each piece's first entry
+        self.of: dict = {}          # entry id -> the last piece made of it
 
     def reset(self):
-        self.pieces, self.starts = [], []
+        self.pieces, self.starts, self.of = [], [], {}
 
     def place(self, entries: list, k: int, n_new: int, n_old: int) -> tuple:
         """The pieces of `entries`, whose entries k .. k + n_new replaced the
@@ -135,8 +136,12 @@ class Pieces:
                 else:
                     piece = Piece(piece.entries, modes, piece.placed, self.name)
                 pieces[at] = piece
+                for entry in piece.entries:
+                    self.of[entry.id] = piece
             modes = piece.mode_out
         self.pieces, self.starts = pieces, new_starts
+        if len(self.of) > 2 * len(entries) + 100:
+            self.of = {entry.id: piece for piece in pieces for entry in piece.entries}
         return self._program(pieces)
 
     def _program(self, pieces: list) -> tuple:

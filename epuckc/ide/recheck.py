@@ -12,15 +12,15 @@ from __future__ import annotations
 
 from typing import Optional
 
-from ..check import conditions as cond
+from ..check import conditions as cond, modes
 from ..check.checker import Checker
 from ..check.program import CheckedProgram
 from ..check.races import RaceMemo
 from ..check.rules import may_never_fire
 from ..check.ranges import RangeMemo
-from ..diagnostics import Collector, Diagnostic
+from ..diagnostics import Diagnostic
 from ..syntax import ast
-from .passes import PiecePasses
+from .passes import FactCounts, PiecePasses
 from .pieces import PIECE
 from .watch import _ALL, _MISSING, _Capture, _Narrowing, _Watch, _Watched  # noqa: F401
 from .statements import VLINE
@@ -37,6 +37,8 @@ class _Memo:
         self.races = RaceMemo()     # W009's facts of each rule and its last pairs (check/races.py)
         self.blocks: dict = {}  # id(piece) -> _Block of its rules (IncrementalChecker._rules)
         self.declared = None    # (what declaring read, the state it left, its diagnostics, robot given)
+        self.counts = FactCounts()  # the facts of the blocks of rules replayed, counted
+        self.unused = None      # (what _unused read, what it said)
 
 
 # A block of rules is a piece's (ide/pieces.py), which ends after an entry
@@ -49,10 +51,13 @@ class _Block:
     once: the piece (kept alive, so that its id stays its own, and with it
     its rules), the declarations (env) they were valid with, and what they
     came to together: their results in order, their own diagnostics in
-    order, and the union of their facts. Only rules whose diagnostics are
-    all their own (no diagnostic said once for the file) make a block, so
-    replaying it is what replaying each would do."""
-    __slots__ = ("piece", "env", "geo", "deps", "resolved", "maybe", "own", "facts")
+    order, the union of their facts, what the whole-program checks read of
+    them (the rules that may never fire by event, those in modes, the
+    modes they enter). Only rules whose diagnostics are all their own (no
+    diagnostic said once for the file) make a block, so replaying it is
+    what replaying each would do."""
+    __slots__ = ("piece", "env", "geo", "deps", "resolved", "maybe", "own", "facts", "in_modes",
+                 "entered")
 
     def __init__(self, piece, env, geo, hits):
         self.piece, self.env, self.geo = piece, env, geo
@@ -61,7 +66,9 @@ class _Block:
         self.deps = list({(attr, name, id(found)): (attr, name, found)
                           for h in hits for attr, name, found in h[2]}.values())
         self.resolved = [h[3] for h in hits if h[3] is not None]
-        self.maybe = [r for r in self.resolved if may_never_fire(r)]   # (see _never_fire)
+        self.maybe = by_event(self.resolved)        # (see _never_fire)
+        self.in_modes = [r for r in self.resolved if r.mode is not None]
+        self.entered = None     # (the named actions, the modes entered), when there are modes
         self.own = [d for h in hits for d in h[7]]
         facts: dict = {}
         for h in hits:
@@ -70,14 +77,25 @@ class _Block:
         self.facts = tuple(facts.items())
 
 
+def by_event(resolved: list) -> dict:
+    """The rules that may never fire, by event (_never_fire asks for those
+    of the events it can warn about)."""
+    out: dict = {}
+    for r in resolved:
+        if may_never_fire(r):
+            out.setdefault(r.event.name, []).append(r)
+    return out
+
+
 class IncrementalChecker(PiecePasses, Checker):
     """The checker, with named actions and rules replayed from `memo` when
     nothing they can see has changed."""
 
-    def __init__(self, program, diags, memo: _Memo, pieces=None, **options):
+    def __init__(self, program, diags, memo: _Memo, pieces=None, piece_of=None, **options):
         super().__init__(program, diags, **options)
         self.memo = memo
         self.pieces = pieces        # the document's pieces (ide/pieces.py), in order
+        self.piece_of = piece_of    # entry id -> its piece
         self.range_memo = memo.ranges
         self.race_memo = memo.races
         self._known: Optional[set] = None
@@ -166,20 +184,24 @@ class IncrementalChecker(PiecePasses, Checker):
     def _rules(self, out: CheckedProgram):
         """Every rule, a piece of the document at a time (_Block): the rules
         of a piece that is the same object, all valid with the same
-        declarations, are replayed with one extend and a few set unions;
-        any other piece's are checked rule by rule (_rule) and, if they can,
-        kept as a block."""
+        declarations, are replayed with one extend (their facts are
+        counted by block, passes.FactCounts); any other piece's are checked
+        rule by rule (_rule) and, if they can, kept as a block."""
         if self.pieces is None:
             return super()._rules(out)
         memo = self.memo
         old, blocks = memo.blocks, {}
         env = self._env_now
         items, resolved = self.diags.items, out.rules
-        maybe = self._maybe = []
+        maybe = self._maybe = []            # (dicts of by_event)
+        in_modes = self._in_modes = []      # (lists of rules)
+        groups = self.rule_groups = []      # (W009's, check/races.py)
+        replayed, loose = [], []
         for piece in self.pieces:
             run = piece.rules
             if not run:
                 continue
+            first = len(resolved)
             block = old.get(id(piece))
             same = block is not None and block.piece is piece
             if same and block.env is not env and self._still_valid(block.geo, block.deps):
@@ -191,21 +213,45 @@ class IncrementalChecker(PiecePasses, Checker):
                     r = self._rule(rule)
                     if r is not None:
                         resolved.append(r)
-                        if may_never_fire(r):
-                            maybe.append(r)
                 block = self._block(piece, env)
+                if block is None:
+                    checked = resolved[first:]
+                    loose += checked
+                    maybe.append(by_event(checked))
+                    in_modes.append([r for r in checked if r.mode is not None])
+                    groups.append((None, checked))
+                    continue
             else:
                 items.extend(block.own)
                 resolved.extend(block.resolved)
-                maybe.extend(block.maybe)
-                for f, values in block.facts:
-                    getattr(self, f).update(values)
-            if block is not None:
-                blocks[id(piece)] = block
+                replayed.append(block)
+            maybe.append(block.maybe)
+            in_modes.append(block.in_modes)
+            groups.append((block, block.resolved))
+            blocks[id(piece)] = block
         memo.blocks = blocks
+        self._loose = loose
+        memo.counts.add(self, replayed)
 
-    def _may_never_fire(self, out: CheckedProgram):
-        return self._maybe
+    def _may_never_fire(self, out: CheckedProgram, events: set):
+        if self.pieces is None:
+            return super()._may_never_fire(out, events)
+        return [r for by in self._maybe for event in events for r in by.get(event, ())]
+
+    def _modes_program(self, out: CheckedProgram, complete: bool):
+        if self.pieces is None:
+            return super()._modes_program(out, complete)
+
+        def entered():          # (by block, kept: its rules' bodies are the same)
+            found, actions = set(), self.memo.actions
+            for block in self.memo.blocks.values():
+                if block.entered is None or block.entered[0] is not actions:
+                    block.entered = (actions, modes.entered_by(self, [r.body for r in
+                                                                      block.resolved]))
+                found |= block.entered[1]
+            return found | modes.entered_by(self, [r.body for r in self._loose])
+        modes.check_program(self, out, complete,
+                            [r for rules in self._in_modes for r in rules], entered)
 
     def _block(self, piece, env) -> Optional[_Block]:
         """The rules of `piece`, just checked or replayed, as a block, if each
