@@ -480,6 +480,7 @@ def _racing_blocks(group: list, info: list, facts: _Rules, timing: dict) -> list
     where = {key: i for i, key in reversed(list(enumerate(keys)))}   # first index of each
     order = sorted(kinds, key=where.__getitem__)
     blocks = []
+    index: dict = {}            # id(rule) -> its place in the group, when asked
     for x, kx in enumerate(order):
         for ky in order[x:]:
             a, b = first[kx], first[ky]
@@ -489,14 +490,17 @@ def _racing_blocks(group: list, info: list, facts: _Rules, timing: dict) -> list
                 continue
             ia, ib = where[kx], where[ky]
             if kx == ky:
+                if not index:
+                    index.update((id(r), i) for i, r in enumerate(group))
                 b = kinds[kx][1]
-                ib = group.index(b)
+                ib = index[id(b)]       # (by identity: rules compare by value, slowly)
             ab = _pair_races(a, b, info[ia], info[ib], facts, timing)
             ba = ab if kx == ky else _pair_races(b, a, info[ib], info[ia], facts, timing)
             if ab and ba:
                 blocks.append((a, b, kinds[kx], kinds[ky]))
             elif ab or ba:      # it depends on which comes first: pair by pair
-                index = {id(r): i for i, r in enumerate(group)}
+                if not index:
+                    index.update((id(r), i) for i, r in enumerate(group))
                 for x in kinds[kx]:
                     for y in kinds[ky]:
                         if (ab if index[id(x)] < index[id(y)] else ba):

@@ -35,6 +35,7 @@ class RaceMemo:
         self.read = None            # (the motor rules' keys, the names their conditions read)
         self.pairs = None           # (key, walked, order, pairs, blocks, by_timing_only)
         self.said = ()              # (what the last warnings were made from, them, the rules)
+        self.kinds: dict = {}       # id(first rule of a kind) -> (it, key, its warning, rules)
 
 
 class _Group:
@@ -59,7 +60,9 @@ class _Group:
         self.moves_outside = any(f.moves_outside for f in facts)
         self.enters = any(f.enters for f in facts)
         self.entry_moves = {r.mode for r, f in zip(rules, facts) if f.entry_moves}
-        self.stops = [r for r, f in zip(rules, facts) if f.stops]
+        # (its rules that stop: whether one is not an `on enter`, and the others)
+        stops = [r for r, f in zip(rules, facts) if f.stops]
+        self.stops = (any(not _is_enter(r) for r in stops), [r for r in stops if _is_enter(r)])
         self.by_never: dict = {}
 
     def motor(self, never: frozenset) -> tuple:
@@ -110,9 +113,12 @@ def _entry_stops(checker, groups: list) -> bool:
         return False
     if any(g.moves_outside for g in groups):
         return False
+    if not any(g.enters for g in groups):
+        return True
+    if any(g.stops[0] for g in groups):
+        return False
     entry_moves = set().union(*(g.entry_moves for g in groups))
-    stops = [r for g in groups for r in g.stops if not _is_enter(r) or r.mode in entry_moves]
-    return not (any(g.enters for g in groups) and stops)
+    return not any(r.mode in entry_moves for g in groups for r in g.stops[1])
 
 
 def check_program(checker, out, groups=None) -> None:
@@ -138,41 +144,37 @@ def check_program(checker, out, groups=None) -> None:
                       dict(itertools.chain.from_iterable(g.id_facts for g in found_groups)),
                       stops=stops)
     last = memo.pairs
-    if last is not None and last[0] == key and (not last[1] or last[2] == tuple(
+    if last is None or last[0] != key or (last[1] and last[2] != tuple(
             itertools.chain.from_iterable(m[3] for m in motors))):
-        _, _, _, pairs, blocks, by_timing_only = last
-        pairs = [(motor_rules[a], motor_rules[b]) for a, b in pairs]
-        blocks = [_block(motor_rules, *block) for block in blocks]
-    else:
         found = every_rule()
         pairs, blocks = _pairs(motor_rules, found)
         at = {id(r): i for i, r in enumerate(motor_rules)}
         walked = found._walk is not None        # (the pairs read the order of the writes)
         order = tuple(itertools.chain.from_iterable(m[3] for m in motors)) if walked else None
-        by_timing_only = found.by_timing_only
-        memo.pairs = (key, walked, order, [(at[id(a)], at[id(b)]) for a, b in pairs],
-                      [_block(at, *block) for block in blocks], by_timing_only)
+        last = memo.pairs = (key, walked, order, [(at[id(a)], at[id(b)]) for a, b in pairs],
+                             [_block(at, *block) for block in blocks], found.by_timing_only)
+    by_timing_only = last[5]
     # what the warnings say depends on the rules they name (and, for the
-    # pairs' help, on the rules that write): the same objects say the same
-    # (by their ids: memo.said keeps the rules alive)
-    said_from = (by_timing_only,
-                 tuple(itertools.chain.from_iterable(m[4] for m in motors)) if pairs else (),
-                 tuple((id(a), id(b)) for a, b in pairs),
-                 tuple((id(a), id(b), tuple(map(id, xs)), tuple(map(id, ys)))
-                       for a, b, xs, ys in blocks))
+    # pairs' help, on the rules that write): the same pairs of the same
+    # objects say the same (by their ids: memo.said keeps the rules alive)
+    said_from = (last, tuple(map(id, motor_rules)),
+                 tuple(itertools.chain.from_iterable(m[4] for m in motors)) if last[3] else ())
     diags = checker.diags
-    if memo.said and memo.said[0] == said_from:
+    if memo.said and memo.said[0][0] is last and memo.said[0][1:] == said_from[1:]:
         diags.items.extend(memo.said[1])
         return
     if found is None:
-        found = every_rule()
+        pairs = [(motor_rules[a], motor_rules[b]) for a, b in last[3]]
+        blocks = [_block(motor_rules, *block) for block in last[4]]
+        # (the blocks' warnings need only the motor rules' order; the pairs' all)
+        found = every_rule() if pairs else _MotorOrder(motor_rules)
         found.by_timing_only = by_timing_only
     first = len(diags.items)
-    _report(checker, pairs, blocks, found)
+    _report(checker, pairs, blocks, found, memo)
     said = diags.items[first:]
     if memo.said and said == list(memo.said[1]):
         diags.items[first:] = memo.said[1]  # the same objects: what caches them keeps them
-    memo.said = (said_from, tuple(diags.items[first:]), rules, blocks)
+    memo.said = (said_from, tuple(diags.items[first:]), rules, motor_rules)
 
 
 def _block(to, a, b, xs, ys) -> tuple:
@@ -202,9 +204,16 @@ def _pairs(motor_rules, facts: _Rules) -> tuple:
     return pairs, blocks
 
 
-def _report(checker, pairs, blocks, facts: _Rules) -> None:
+class _MotorOrder:
+    """What the warnings of big groups read of _Rules: the rules' order."""
+    def __init__(self, rules: list):
+        self.index = {id(r): i for i, r in enumerate(rules)}
+        self.by_timing_only = False
+
+
+def _report(checker, pairs, blocks, facts: _Rules, memo=None) -> None:
     if blocks:              # a big program: the pairs by kinds of rules
-        _report_blocks(checker, blocks, facts)
+        _report_blocks(checker, blocks, facts, memo)
     pairs.sort(key=lambda p: (facts.index[id(p[0])], facts.index[id(p[1])]))
     for loser, winner in pairs[:MAX_REPORTS]:
         if facts.key(winner) < facts.key(loser):
@@ -230,10 +239,12 @@ def _report(checker, pairs, blocks, facts: _Rules) -> None:
                  "exclude each other")
 
 
-def _report_blocks(checker, blocks, facts: _Rules) -> None:
+def _report_blocks(checker, blocks, facts: _Rules, memo=None) -> None:
     """W009 for a big group: one warning a kind of rules (rules alike in
     timing and condition), naming every rule it races with (lines as
-    ranges)."""
+    ranges). With `memo` (RaceMemo), a kind's warning is the last one while
+    its rules and those it races with are the same objects."""
+    last, kept = (memo.kinds if memo is not None else {}), {}
     kinds: dict = {}        # id(first rule of a kind) -> [rule, its kind, others, among itself]
     for a, b, xs, ys in blocks:
         entry = kinds.setdefault(id(a), [a, xs, [], False])
@@ -242,6 +253,12 @@ def _report_blocks(checker, blocks, facts: _Rules) -> None:
         else:
             entry[2].extend(ys)
     for a, xs, others, itself in sorted(kinds.values(), key=lambda e: facts.index[id(e[0])]):
+        key = (tuple(map(id, xs)), tuple(map(id, others)), itself, facts.by_timing_only)
+        said = last.get(id(a))
+        if said is not None and said[0] is a and said[1] == key:
+            checker.diags.items.append(said[2])
+            kept[id(a)] = said
+            continue
         who = describe(a) if len(xs) == 1 else \
             f"the {len(xs)} rules like {_code(head_text(a))} ({_compact(xs)})"
         races = (["each other"] if itself else []) + ([_compact(others)] if others else [])
@@ -254,6 +271,9 @@ def _report_blocks(checker, blocks, facts: _Rules) -> None:
                      f" (this program has so many rules of priority {a.priority} that command "
                      f"the motors that they were compared by their timing only, not by their "
                      f"conditions)" if facts.by_timing_only else ""))
+        kept[id(a)] = (a, key, checker.diags.items[-1], xs, others)
+    if memo is not None:
+        memo.kinds = kept
 
 
 def _compact(rules) -> str:

@@ -62,6 +62,8 @@ class RangeMemo:
         self.pieces: dict = {}      # what the language server keeps by piece (ide/passes.py)
         self.piece_list: list = []  # the last analysis's pieces, in order
         self.where: dict = {}       # id(statement) -> its piece (of those that assign)
+        self.moved = None           # the variables whose intervals moved, when only theirs did
+        self.values: dict = {}      # what each assignment gave, by what it read (_assigned_where)
 
 
 _ANY = object()     # (a statement whose assignments do not depend on its mode)
@@ -239,6 +241,65 @@ def components(graph: dict) -> list:
     return out
 
 
+# the values of an assignment kept (_assigned_where), for as many states of what it reads
+_KEPT_VALUES = 4
+_MISSING = object()
+
+
+def _state(info) -> tuple:
+    """What an assignment's value can read of a variable."""
+    if info is _MISSING:
+        return ()
+    return (info.lo, info.hi, info.kind, info.size)
+
+
+class _Value:
+    """What the intervals read of an assignment's value."""
+    __slots__ = ("kind", "lo", "hi")
+
+    def __init__(self, kind, lo, hi):
+        self.kind, self.lo, self.hi = kind, lo, hi
+
+
+class _Reads:
+    """The variables as an assignment's evaluation sees them, noting the
+    state of each one it reads (the first time: before the conditions that
+    hold where it runs narrow them); `read` None when it looked at all."""
+    __slots__ = ("_table", "read")
+
+    def __init__(self, table: dict):
+        self._table, self.read = table, {}
+
+    def get(self, name, default=None):
+        found = self._table.get(name, _MISSING)
+        read = self.read
+        if read is not None and name not in read:
+            read[name] = _state(found)
+        return default if found is _MISSING else found
+
+    def __getitem__(self, name):
+        found = self.get(name, _MISSING)
+        if found is _MISSING:
+            raise KeyError(name)
+        return found
+
+    def __contains__(self, name):
+        return self.get(name, _MISSING) is not _MISSING
+
+    def _all(self):
+        self.read = None
+        return self._table
+
+    def __iter__(self):
+        return iter(self._all())
+
+    def __len__(self):
+        return len(self._all())
+
+    def __getattr__(self, attr):        # items(), keys(), values(), ...
+        return getattr(self._all(), attr)
+
+
 class Ranges:
     """The checker's variables' intervals (a part of Checker; the
     expressions are exprs.py's, the assignments variables.py's)."""
@@ -263,6 +324,7 @@ class Ranges:
         was checked with it compares by identity)."""
         keep = self.range_memo is not None
         memo = self.range_memo if keep else RangeMemo()
+        memo.moved = None
         if not self.vars:
             memo.solved = None
             return
@@ -270,8 +332,11 @@ class Ranges:
         env = (self.geo, tuple(self.consts.items()), frozenset(self.actions))
         if memo.env != env:
             memo.results, memo.ranges, memo.statements, memo.solved = {}, {}, {}, None
-            memo.pieces, memo.where = {}, {}
+            memo.pieces, memo.where, memo.values = {}, {}, {}
         memo.env = env
+        self._values = memo.values
+        if len(memo.values) > 4 * len(self.vars) + 1000:        # (assignments gone)
+            memo.values.clear()
         pristine = self.vars                # as declared
         names = tuple(pristine)
         same_names = names == memo.names
@@ -343,6 +408,9 @@ class Ranges:
         else:
             memo.ranges = {name: (info.lo, info.hi) for name, info in variables.items()}
         memo.solved = variables
+        # (when the variables are the last analysis's VarInfo objects but
+        # these: what the language server revalidates by, ide/recheck.py)
+        memo.moved = moved if fast else None
 
     @staticmethod
     def _give(result: dict, variables: dict, pristine: dict, last, old_ranges: dict,
@@ -441,7 +509,41 @@ class Ranges:
 
     _contexts = None        # id(Assign) -> (conditions that hold where it runs, spoiled)
 
+    _values = None      # id(Assign) -> (it, [(what it read, its value)]): see _assigned_where
+
     def _assigned_where(self, call, info):
+        """_evaluated_where's value, kept: an assignment's value depends on
+        the variables it reads (noted while it is evaluated, _Reads) and on
+        its target's interval (and on the constants, geometry and named
+        actions, which the memo is kept with: RangeMemo.env); a fixpoint
+        asks the same again and again, and the language server's next
+        analysis too."""
+        memo = self._values
+        if memo is None:
+            return self._evaluated_where(call, info)
+        table, target = self.vars, _state(info)
+        known = memo.get(id(call))
+        if known is not None and known[0] is call:
+            for read, state, value in known[1]:
+                if state == target and all(_state(table.get(n, _MISSING)) == s
+                                           for n, s in read.items()):
+                    return value
+        reads = _Reads(table)
+        self.vars = reads
+        try:
+            found = self._evaluated_where(call, info)
+        finally:
+            self.vars = table
+        if reads.read is None:          # (it looked at every variable)
+            return found
+        value = None if found is None else _Value(found.kind, found.lo, found.hi)
+        if known is None or known[0] is not call:
+            known = memo[id(call)] = (call, [])
+        known[1].insert(0, (reads.read, target, value))
+        del known[1][_KEPT_VALUES:]
+        return value
+
+    def _evaluated_where(self, call, info):
         """The value an assignment gives (variables.py's `_assigned`), with
         the variables narrowed to what the conditions that hold where it
         runs leave them (its `if` branches, a rule's guard in its first

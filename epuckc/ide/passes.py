@@ -41,7 +41,7 @@ _START = operator.itemgetter(0, 1)     # a Span's (line, column)
 # language server's own, and what the checker is given.
 _NOT_DECLARED = frozenset({"program", "diags", "base_dir", "target", "memo", "range_memo",
                            "race_memo", "pieces", "piece_of", "_known", "_env_now", "_maybe",
-                           "_compared", "_declared_same"})
+                           "_compared", "_declared_same", "_env_before", "_moved"})
 
 
 def _copy(value):
@@ -90,30 +90,32 @@ class PiecePasses:
             return super()._assignments_by_variable(memo, same_names)
         old = memo.pieces           # id(piece) -> (piece, variable -> entries, id(stmt) -> place)
         known, where = memo.statements, memo.where
-        new, fresh = {}, []
-        first_fresh = None
-        for at, piece in enumerate(self.pieces):
-            hit = old.get(id(piece))
-            if hit is None or hit[0] is not piece:
-                by_name, order = {}, {}
-                for i, stmt in enumerate(piece.statements):
-                    found = statement_assignments(self, known, stmt)[2]
-                    if found:
-                        order[id(stmt)] = i
-                        where[id(stmt)] = piece
-                        for name, entry in found:
-                            by_name.setdefault(name, []).append(entry)
-                hit = (piece, by_name, order)
-                if first_fresh is None:
-                    first_fresh = at
-                fresh.append(hit)
-            new[id(piece)] = hit
-        gone, first_gone = [], None
-        for at, piece in enumerate(memo.piece_list if old else ()):
-            if id(piece) not in new:
-                if first_gone is None:
-                    first_gone = at
-                gone.append(old[id(piece)])
+        pieces, last = self.pieces, memo.piece_list if old else []
+        # (the old pieces are kept alive by `old`: an id in both is the same piece)
+        now = set(map(id, pieces))
+        fresh_at = list(itertools.compress(range(len(pieces)), map(
+            operator.not_, map(old.__contains__, map(id, pieces)))))
+        gone_at = list(itertools.compress(range(len(last)), map(
+            operator.not_, map(now.__contains__, map(id, last)))))
+        new = dict(old) if len(gone_at) < len(old) else {}
+        gone = []
+        for at in gone_at:
+            gone.append(new.pop(id(last[at]), None) or old[id(last[at])])
+        fresh = []
+        for at in fresh_at:
+            piece = pieces[at]
+            by_name, order = {}, {}
+            for i, stmt in enumerate(piece.statements):
+                found = statement_assignments(self, known, stmt)[2]
+                if found:
+                    order[id(stmt)] = i
+                    where[id(stmt)] = piece
+                    for name, entry in found:
+                        by_name.setdefault(name, []).append(entry)
+            hit = new[id(piece)] = (piece, by_name, order)
+            fresh.append(hit)
+        first_fresh = fresh_at[0] if fresh_at else None
+        first_gone = gone_at[0] if gone_at else None
         memo.pieces, memo.piece_list = new, self.pieces
         if len(known) > 2 * len(self.program.statements) + 100:
             live = {id(s) for s in self.program.statements}
@@ -130,7 +132,9 @@ class PiecePasses:
         # the variables the replaced pieces assign: made again where the
         # new pieces assign them differently (the same entries in the same
         # order, in the same place of the file, leave the list as it was)
-        in_place = first_gone == first_fresh and len(gone) == len(fresh)
+        in_place = first_gone == first_fresh and len(gone) == len(fresh) and (
+            not fresh_at or fresh_at[-1] - fresh_at[0] == len(fresh_at) - 1) and (
+            not gone_at or gone_at[-1] - gone_at[0] == len(gone_at) - 1)
         touched = set().union(*(h[1].keys() for h in gone), *(h[1].keys() for h in fresh))
         changed = set()
         for name in touched:

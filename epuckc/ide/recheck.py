@@ -56,15 +56,14 @@ class _Block:
     modes they enter). Only rules whose diagnostics are all their own (no
     diagnostic said once for the file) make a block, so replaying it is
     what replaying each would do."""
-    __slots__ = ("piece", "env", "geo", "deps", "resolved", "maybe", "own", "facts", "in_modes",
-                 "entered")
+    __slots__ = ("piece", "env", "geo", "hits", "_deps", "read", "resolved", "maybe", "own",
+                 "facts", "in_modes", "entered")
 
     def __init__(self, piece, env, geo, hits):
-        self.piece, self.env, self.geo = piece, env, geo
-        # every name its rules looked up, once (what makes it valid again
-        # when a declaration changed, see _Watched)
-        self.deps = list({(attr, name, id(found)): (attr, name, found)
-                          for h in hits for attr, name, found in h[2]}.values())
+        self.piece, self.env, self.geo, self.hits, self._deps = piece, env, geo, hits, None
+        # the variables its rules looked up (None: one looked at all of them)
+        read = [h[8] for h in hits]
+        self.read = None if None in read else frozenset().union(*read)
         self.resolved = [h[3] for h in hits if h[3] is not None]
         self.maybe = by_event(self.resolved)        # (see _never_fire)
         self.in_modes = [r for r in self.resolved if r.mode is not None]
@@ -75,6 +74,16 @@ class _Block:
             for f, values in h[5]:
                 facts.setdefault(f, set()).update(values)
         self.facts = tuple(facts.items())
+
+
+    @property
+    def deps(self) -> list:
+        """Every name its rules looked up, once (what makes it valid again
+        when a declaration changed, see _Watched), found when first asked."""
+        if self._deps is None:
+            self._deps = list({(attr, name, id(found)): (attr, name, found)
+                               for h in self.hits for attr, name, found in h[2]}.values())
+        return self._deps
 
 
 def by_event(resolved: list) -> dict:
@@ -102,6 +111,8 @@ class IncrementalChecker(PiecePasses, Checker):
         self._env_now = None
         self._maybe: list = []      # the rules _never_fire looks at (_rules)
         self._compared: dict = {}   # (table, name, id(found)) -> (found, still the same)
+        self._env_before = None     # the last analysis's declarations
+        self._moved = None          # the variables whose intervals alone changed since, if so
 
     def _env(self):
         """Everything a rule or a named action can depend on besides itself:
@@ -134,7 +145,15 @@ class IncrementalChecker(PiecePasses, Checker):
     def _resolve_actions(self, out: CheckedProgram):
         env = self._env()
         memo = self.memo
+        self._env_before = memo.env
         if memo.env != env:
+            # (the declarations of the last analysis, some variables' intervals
+            # moved: those, ranges.py says which; else any may have changed)
+            if not (self._declared_same and self.range_memo.moved is not None
+                    and memo.env is not None and env[:-1] == memo.env[:-1]):
+                self._moved = None
+            else:
+                self._moved = self.range_memo.moved
             memo.env, memo.actions = env, None
         self._env_now = memo.env    # the same object as long as nothing changes
         if memo.actions is None:
@@ -191,7 +210,7 @@ class IncrementalChecker(PiecePasses, Checker):
             return super()._rules(out)
         memo = self.memo
         old, blocks = memo.blocks, {}
-        env = self._env_now
+        env, before, moved = self._env_now, self._env_before, self._moved
         items, resolved = self.diags.items, out.rules
         maybe = self._maybe = []            # (dicts of by_event)
         in_modes = self._in_modes = []      # (lists of rules)
@@ -204,10 +223,11 @@ class IncrementalChecker(PiecePasses, Checker):
             first = len(resolved)
             block = old.get(id(piece))
             same = block is not None and block.piece is piece
-            if same and block.env is not env and self._still_valid(block.geo, block.deps):
-                block.env = env             # (each of its rules too: see _rule)
-                for rule in run:
-                    self.memo.rules[id(rule)][6] = env
+            if same and block.env is not env and (
+                    (moved is not None and block.env is before and block.read is not None
+                     and block.read.isdisjoint(moved))       # (only intervals it does not read moved)
+                    or self._still_valid(block.geo, block.deps)):
+                block.env = env             # (its rules' own, when they are checked again: _rule)
             if not same or block.env is not env:
                 for rule in run:
                     r = self._rule(rule)
@@ -282,7 +302,11 @@ class IncrementalChecker(PiecePasses, Checker):
         if hit is None or hit[0] is not rule:
             hit = None
         elif hit[6] is not self._env_now:
-            if self._still_valid(hit[1], hit[2]):
+            moved = self._moved
+            if moved is not None and hit[6] is self._env_before and hit[8] is not None \
+                    and hit[8].isdisjoint(moved):
+                hit[6] = self._env_now      # (only intervals it does not read moved)
+            elif self._still_valid(hit[1], hit[2]):
                 hit[6] = self._env_now
             else:
                 hit = None
@@ -292,10 +316,22 @@ class IncrementalChecker(PiecePasses, Checker):
             ident = rule.span.line // VLINE
             own = [d for d in cap.diags if ident and _within(d, ident)]
             shared = [d for d in cap.diags if not (ident and _within(d, ident))]
-            hit = [rule, self.geo, watch.deps, resolved, shared, cap.facts, self._env_now, own]
+            hit = [rule, self.geo, watch.deps, resolved, shared, cap.facts, self._env_now, own,
+                   _variables_read(watch.deps)]
             self.memo.rules[id(rule)] = hit
         self._replay(hit[4], hit[5], hit[7])
         return hit[3]
+
+
+def _variables_read(deps) -> Optional[frozenset]:
+    """The variables a rule looked up (None: it looked at all of them)."""
+    names = set()
+    for attr, name, _ in deps:
+        if attr == "vars":
+            if name is _ALL:
+                return None
+            names.add(name)
+    return frozenset(names)
 
 
 def _within(d: Diagnostic, ident: int) -> bool:
