@@ -25,6 +25,7 @@ evaluated again: an edit costs the components it reaches, not the program.
 """
 from __future__ import annotations
 
+import heapq
 import itertools
 
 from ..diagnostics import Collector
@@ -56,6 +57,7 @@ class RangeMemo:
         self.decls: dict = {}       # variable -> (kind, initial value)
         self.graph = None           # variable -> the variables it depends on
         self.order: list = []       # its components: (members, members' set, what they read)
+        self.readers: dict = {}     # variable -> the places in `order` of the components reading it
         self.results: dict = {}     # members -> (inputs, {name: (lo, hi)})
         self.ranges: dict = {}      # variable -> (lo, hi)
         self.solved = None          # variable -> its VarInfo, the last analysis's
@@ -328,8 +330,10 @@ class Ranges:
         if not self.vars:
             memo.solved = None
             return
-        # (the named actions: what an assignment in a branch counts as spoiling)
-        env = (self.geo, tuple(self.consts.items()), frozenset(self.actions))
+        # (the named actions: what an assignment in a branch counts as spoiling;
+        # the constant arrays: what an element read gives)
+        env = (self.geo, tuple(self.consts.items()), tuple(self.const_arrays.items()),
+               frozenset(self.actions))
         if memo.env != env:
             memo.results, memo.ranges, memo.statements, memo.solved = {}, {}, {}, None
             memo.pieces, memo.where, memo.values = {}, {}, {}
@@ -364,42 +368,48 @@ class Ranges:
                 dirty.add(name)
                 graph[name] = _needs(name, entries, pristine)
         memo.names, memo.assigns, memo.decls = names, assigns, decls
-        if graph is not old_graph and graph != old_graph:
-            memo.graph, memo.order = graph, []
-            for members in components(graph):
+        regraphed = graph is not old_graph and graph != old_graph
+        if regraphed:
+            memo.graph, memo.order, memo.readers = graph, [], {}
+            for at, members in enumerate(components(graph)):
                 inside = frozenset(members)
-                memo.order.append((members, inside, inside.union(*(graph[m] for m in members))))
-        results, old_results, old_ranges = {}, memo.results, memo.ranges
+                reads = inside.union(*(graph[m] for m in members))
+                memo.order.append((members, inside, reads))
+                for name in reads:
+                    memo.readers.setdefault(name, []).append(at)
+        old_results, old_ranges = memo.results, memo.ranges
         last = memo.solved if fast else None
         variables = self.vars = dict(last) if fast else pristine
         moved = set()               # variables whose interval is not the last analysis's
-        for members, inside, reads in memo.order:
-            old = old_results.get(members)
-            if old is not None and not (dirty & reads) and not (moved & reads):
-                results[members] = old
-                if not fast:
-                    self._give(old[1], variables, pristine, None, old_ranges, moved)
-                continue
-            entries = [e for m in members for e in assigns[m]]
-            if not entries:         # its members keep their declared intervals
-                for m in members:
-                    info = variables[m] = pristine[m]
-                    if old_ranges.get(m) != (info.lo, info.hi):
-                        moved.add(m)
-                continue
-            if len(members) > 1:                                # in file order
-                entries.sort(key=place)
-            inputs = _inputs(self, entries, members, reads - inside) if keep else None
-            if old is not None and old[0] == inputs:
-                result = old[1]
-            else:
-                for m in members:           # (solved from the declared intervals)
-                    variables[m] = _copy(pristine[m])
-                self._contexts = {id(e[0]): (e[6], e[7]) for e in entries if e[6]}
-                result = self._solve([e[0] for e in entries],
-                                     {id(e[0]) for e in entries if e[1]})
-            results[members] = (inputs, result)
-            self._give(result, variables, pristine, last, old_ranges, moved)
+        solving = (assigns, place, keep, variables, pristine, last, old_ranges)
+        if fast and not regraphed:
+            # only the components that read what changed, in dependency order
+            results, todo = old_results, []
+            for name in dirty:
+                todo += memo.readers.get(name, ())
+            heapq.heapify(todo)
+            done = -1
+            while todo:
+                at = heapq.heappop(todo)
+                if at == done:
+                    continue
+                done = at
+                for name in self._component(memo.order[at], results, results.get, solving):
+                    moved.add(name)
+                    for reader in memo.readers.get(name, ()):
+                        if reader > at:
+                            heapq.heappush(todo, reader)
+        else:
+            results = {}
+            for members, inside, reads in memo.order:
+                old = old_results.get(members)
+                if old is not None and not (dirty & reads) and not (moved & reads):
+                    results[members] = old
+                    if not fast:
+                        moved.update(self._give(old[1], variables, pristine, None, old_ranges))
+                    continue
+                moved.update(self._component((members, inside, reads), results,
+                                             old_results.get, solving))
         memo.results = results
         if fast:
             for name in moved:
@@ -412,12 +422,41 @@ class Ranges:
         # these: what the language server revalidates by, ide/recheck.py)
         memo.moved = moved if fast else None
 
+    def _component(self, component: tuple, results: dict, old_result, solving: tuple) -> list:
+        """Solve one component again (when its inputs' text differs from the
+        last result's) and give its members their intervals; the members
+        whose intervals moved."""
+        members, inside, reads = component
+        assigns, place, keep, variables, pristine, last, old_ranges = solving
+        entries = [e for m in members for e in assigns[m]]
+        if not entries:         # its members keep their declared intervals
+            results.pop(members, None)
+            out = []
+            for m in members:
+                info = variables[m] = pristine[m]
+                if old_ranges.get(m) != (info.lo, info.hi):
+                    out.append(m)
+            return out
+        if len(members) > 1:                                # in file order
+            entries.sort(key=place)
+        inputs = _inputs(self, entries, members, reads - inside) if keep else None
+        old = old_result(members)
+        if old is not None and old[0] == inputs:
+            result = old[1]
+        else:
+            for m in members:           # (solved from the declared intervals)
+                variables[m] = _copy(pristine[m])
+            self._contexts = {id(e[0]): (e[6], e[7]) for e in entries if e[6]}
+            result = self._solve([e[0] for e in entries], {id(e[0]) for e in entries if e[1]})
+        results[members] = (inputs, result)
+        return self._give(result, variables, pristine, last, old_ranges)
+
     @staticmethod
-    def _give(result: dict, variables: dict, pristine: dict, last, old_ranges: dict,
-              moved: set) -> None:
+    def _give(result: dict, variables: dict, pristine: dict, last, old_ranges: dict) -> list:
         """The variables of a component their intervals: the last analysis's
         VarInfo (`last`) where it has them, the declared one where they are
-        declared, else a new one."""
+        declared, else a new one; those whose intervals moved."""
+        moved = []
         for m, bounds in result.items():
             info = variables[m]
             if (info.lo, info.hi) != bounds:
@@ -427,7 +466,8 @@ class Ranges:
                 if before is not None and before is not info and (before.lo, before.hi) == bounds:
                     variables[m] = before
             if old_ranges.get(m) != bounds:
-                moved.add(m)
+                moved.append(m)
+        return moved
 
     def _assignments_by_variable(self, memo: RangeMemo, same_names: bool) -> tuple:
         """(variable -> its assignments' entries in file order, the variables

@@ -157,13 +157,14 @@ class PiecePasses:
         # (what _unused reads: the declarations, the names used, whether
         # there are rules)
         declared = self.memo.declared
-        key = (frozenset(self.used_actions), frozenset(self.const_used),
-               frozenset(self.vars_used), frozenset(self.vars_assigned),
+        key = (self.used_actions, self.const_used, self.vars_used, self.vars_assigned,
                any(p.rules for p in self.pieces))
         said = self.memo.unused
+        # (sets compare with the frozen copies kept, at C speed)
         if said is None or said[0] is not declared or said[1] != key:
             start = len(self.diags.items)
             super()._unused()
+            key = tuple(frozenset(k) if k.__class__ is set else k for k in key)
             said = self.memo.unused = (declared, key, self.diags.items[start:])
         else:
             self.diags.items.extend(said[2])
@@ -172,9 +173,10 @@ class PiecePasses:
         if self.pieces is None:
             return super()._no_warnings_beside_errors()
         items = self.diags.items
+        if ERROR not in map(_SEVERITY, items):
+            return
         severities = list(map(_SEVERITY, items))
-        errors = severities.count(ERROR)
-        if not errors or errors == len(items):
+        if severities.count(ERROR) == len(items):
             return
         holders = {}            # entry id -> its statements' spans, in order
 
