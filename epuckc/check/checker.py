@@ -92,15 +92,22 @@ class Checker(Names, Externs, RobotSettings, Values, Exprs, Variables, Ranges, C
         # "never used") are drawn only from a complete program: a statement
         # or call dropped by an error may be the very one that was missing,
         # and a warning caused by an error is noise (a cascade).
-        complete = not self.diags.has_errors
+        complete = not self._has_errors()
         self._never_fire(out, complete)
         if complete:
             self._unused()
         out.devices = frozenset(self.devices_used)
         self._modes_program(out, complete)
-        races.check_program(self, out, self.rule_groups)
+        self._races(out)
         self._no_warnings_beside_errors()
         return out
+
+    def _has_errors(self) -> bool:
+        return self.diags.has_errors
+
+    def _races(self, out: CheckedProgram):
+        """W009 (races.py), by the runs of rules (rule_groups) when kept."""
+        races.check_program(self, out, self.rule_groups)
 
     def _modes_program(self, out: CheckedProgram, complete: bool):
         """modes.check_program (the language server gives it its rules in

@@ -148,7 +148,8 @@ def _path_of(uri: str) -> Optional[Path]:
 
 
 
-_LINE = operator.attrgetter("line")
+def _SORT_KEY(d):
+    return d.sort_key()
 
 
 def _primary_line(d) -> int:
@@ -160,18 +161,21 @@ class Conversions:
     from one analysis to the next: a diagnostic's form is made again only
     when it is another object (the analysis keeps the object while its
     statements start on the same lines, showing.py) or when a line its
-    places are on was edited: the edit's lines, between the text's common
+    places are on was edited (the edit's lines, between the text's common
     beginning and end, and every line after them when it added or removed
-    lines. Those are found by bisection in the last list (sorted by place,
-    with the tallest span's height) and among the diagnostics with notes;
-    the list published is then the last forms, looked up at C speed, and
-    the new ones. A text with `\r` (lines counted otherwise than the
-    checker counts them) or another encoding converts every diagnostic."""
+    lines: found by bisection in the sorted list, with the tallest span's
+    height, and among the diagnostics with notes). When the analysis's
+    list is the last one spliced (`Analysis.delta`: those taken out and put
+    in), the published list is spliced the same way; else each diagnostic's
+    form is looked up by its object. A text with `\r` (lines counted
+    otherwise than the checker counts them) or another encoding converts
+    every diagnostic."""
 
     def __init__(self):
         self.text = None
         self.encoding = None
         self.shown: list = []       # the last analysis's diagnostics (real lines, sorted)
+        self.published: list = []   # their LSP forms, in the same order
         self.forms: dict = {}       # id(d) -> (d, its LSP form)
         self.height = 0             # the most lines a primary span covers, less one
         self.noted: dict = {}       # id(d) -> d, of those with notes that have places
@@ -179,48 +183,112 @@ class Conversions:
     def all(self, analysis: Analysis, lines: "Lines", convert) -> list:
         """The LSP form of each of `analysis.diagnostics`; `convert(d)`
         makes one."""
-        diagnostics, text = analysis.diagnostics, analysis.text
+        diagnostics, text, delta = analysis.diagnostics, analysis.text, analysis.delta
         if lines.has_cr or lines.encoding != self.encoding or self.text is None:
             self.forms, self.noted, self.height = {}, {}, 0
+            delta = None
         elif self.text is not text:
-            self._forget_edited(self.text, text)
+            edited = self._edited(self.text, text)
+            if delta is not None and delta[0] is self.shown and edited[2]:
+                spliced = self._splice(diagnostics, text, delta, edited, convert)
+                if spliced is not None:
+                    return spliced
+            self._forget(*edited)
+        elif delta is not None and delta[0] is self.shown:
+            spliced = self._splice(diagnostics, text, delta, None, convert)
+            if spliced is not None:
+                return spliced
         forms = self.forms
         out = list(map(forms.get, map(id, diagnostics)))
         made = list(itertools.compress(range(len(out)), map(operator.is_, out,
                                                              itertools.repeat(None))))
         for i in made:
-            d = diagnostics[i]
-            form = forms[id(d)] = (d, convert(d))
-            out[i] = form
-            height = d.span.end_line - d.span.line
-            if height > self.height:
-                self.height = height
-            if any(n.span is not None for n in d.notes):
-                self.noted[id(d)] = d
+            out[i] = self._make(diagnostics[i], convert)
         if len(forms) > len(diagnostics) + 16:      # (those gone)
             live = set(map(id, diagnostics))
             for key in forms.keys() - live:
                 del forms[key]
                 self.noted.pop(key, None)
         self.text, self.encoding, self.shown = text, lines.encoding, diagnostics
-        return list(map(operator.itemgetter(1), out))
+        self.published = list(map(operator.itemgetter(1), out))
+        return list(self.published)
 
-    def _forget_edited(self, old: str, text: str) -> None:
-        """Drop the forms of the diagnostics with a place on a line the
-        edit from `old` to `text` changed (or moved)."""
+    def _make(self, d, convert) -> tuple:
+        form = self.forms[id(d)] = (d, convert(d))
+        height = d.span.end_line - d.span.line
+        if height > self.height:
+            self.height = height
+        if any(n.span is not None for n in d.notes):
+            self.noted[id(d)] = d
+        return form
+
+    def _splice(self, diagnostics: list, text: str, delta: tuple, edited, convert):
+        """The last published list with the analysis's splice done to it
+        (and the forms on edited lines made again); None if a diagnostic is
+        not where the splice says."""
+        before, removed, inserted = delta
+        gone = [_find(before, d) for d in removed]
+        came = [_find(diagnostics, d) for d in inserted]
+        if None in gone or None in came:
+            return None
+        out = list(self.published)
+        for at in sorted(gone, reverse=True):
+            del out[at]
+        for d in removed:
+            self.forms.pop(id(d), None)
+            self.noted.pop(id(d), None)
+        for at in sorted(came):
+            out.insert(at, self._make(diagnostics[at], convert)[1])
+        if edited is not None:          # (no line moved: the splice is the checker's)
+            first, last, _ = edited
+            for at in self._touching(diagnostics, first, last):
+                out[at] = self._make(diagnostics[at], convert)[1]
+        self.text, self.shown, self.published = text, diagnostics, out
+        return list(out)
+
+    @staticmethod
+    def _edited(old: str, text: str) -> tuple:
+        """(first line, last line, whether no line was added or removed)
+        of the edit from `old` to `text`, lines from 1 as spans count them."""
         p = _common_prefix(old, text)
         s = _common_suffix(old, text, min(len(old), len(text)) - p)
-        first = old.count("\n", 0, p) + 1                  # (lines from 1, as spans count)
-        moved = old.count("\n", p, len(old) - s) != text.count("\n", p, len(text) - s)
-        last = float("inf") if moved else text.count("\n", 0, len(text) - s) + 1
-        shown, forms = self.shown, self.forms
+        first = old.count("\n", 0, p) + 1
+        same = old.count("\n", p, len(old) - s) == text.count("\n", p, len(text) - s)
+        last = text.count("\n", 0, len(text) - s) + 1 if same else float("inf")
+        return first, last, same
+
+    def _touching(self, shown: list, first: int, last) -> list:
+        """The places in `shown` of the diagnostics with a place on lines
+        first..last."""
         lo = bisect.bisect_left(shown, first - self.height, key=_primary_line)
-        hi = len(shown) if moved else bisect.bisect_right(shown, last, key=_primary_line)
-        for d in shown[lo:hi]:
-            if d.span.end_line >= first and d.span.line <= last:
-                forms.pop(id(d), None)
-        for key, d in list(self.noted.items()):
+        hi = len(shown) if last == float("inf") else bisect.bisect_right(shown, last,
+                                                                           key=_primary_line)
+        found = {at for at in range(lo, hi) if shown[at].span.end_line >= first
+                 and shown[at].span.line <= last}
+        for d in list(self.noted.values()):
             if any(n.span is not None and n.span.end_line >= first and n.span.line <= last
                    for n in d.notes):
-                forms.pop(key, None)
-                del self.noted[key]
+                at = _find(shown, d)
+                if at is not None:
+                    found.add(at)
+        return sorted(found)
+
+    def _forget(self, first: int, last, same: bool) -> None:
+        """Drop the forms of the last list's diagnostics with a place on
+        the edited lines (and after them, when lines moved)."""
+        for at in self._touching(self.shown, first, last):
+            d = self.shown[at]
+            self.forms.pop(id(d), None)
+            self.noted.pop(id(d), None)
+
+
+def _find(shown: list, d):
+    """The place of `d` in a sorted list of diagnostics (by its key, then
+    by identity among those that sort alike); None if it is not there."""
+    key = d.sort_key()
+    at = bisect.bisect_left(shown, key, key=_SORT_KEY)
+    while at < len(shown) and shown[at] is not d:
+        if shown[at].sort_key() != key:
+            return None
+        at += 1
+    return at if at < len(shown) else None

@@ -82,6 +82,8 @@ class Analysis:
     checker: Checker
     checked: CheckedProgram
     diagnostics: list = None      # Diagnostic, real positions, sorted
+    # (the last analysis's diagnostics, those taken out, those put in: showing.py)
+    delta: tuple = None
 
     @property
     def source(self) -> SourceFile:
@@ -193,17 +195,17 @@ class Analyzer:
         if split is None:
             return self._whole(text)
         starts, lines, entries = split
-        program, diags = self._pieces.place(entries, *self._window)
+        program, diags, marks = self._pieces.place(entries, *self._window)
         items = diags.items
         checker = IncrementalChecker(program, diags, self._memo, pieces=self._pieces.pieces,
-                                     piece_of=self._pieces.of.get, **self.options)
+                                     piece_of=self._pieces.of.get, marks=marks, **self.options)
         checked = checker.check()
         memo = self._memo.rules
         if len(memo) > 2 * len(program.statements) + 100:
             live = {id(s) for s in program.statements}
             self._memo.rules = {k: v for k, v in memo.items() if k in live}
         analysis = self._finish(text, starts, lines, entries, program, checker, checked, items,
-                                self._changed)
+                                self._changed, checker.segments, checker.dropped)
         analysis._line_starts = self._line_starts     # (the split's: the same text's)
         return analysis
 
@@ -316,8 +318,9 @@ class Analyzer:
         return self._finish(text, [0], [1], [entry], program, checker, checked, diags.items)
 
     def _finish(self, text, starts, lines, entries, program, checker, checked,
-                items, changed=None) -> Analysis:
+                items, changed=None, segments=None, dropped=()) -> Analysis:
         analysis = Analysis(self.name, text, starts, lines, entries, program, checker, checked)
         analysis._starts = self._line_of
-        analysis.diagnostics = self._shown.show(analysis, items, changed)
+        analysis.diagnostics = self._shown.show(analysis, items, changed, segments, dropped)
+        analysis.delta = self._shown.delta
         return analysis

@@ -41,7 +41,8 @@ _START = operator.itemgetter(0, 1)     # a Span's (line, column)
 # language server's own, and what the checker is given.
 _NOT_DECLARED = frozenset({"program", "diags", "base_dir", "target", "memo", "range_memo",
                            "race_memo", "pieces", "piece_of", "_known", "_env_now", "_maybe",
-                           "_compared", "_declared_same", "_env_before", "_moved"})
+                           "_compared", "_declared_same", "_env_before", "_moved", "_marks",
+                           "segments", "dropped"})
 
 
 def _copy(value):
@@ -75,9 +76,11 @@ class PiecePasses:
         if hit is not None and hit[0] == key:
             for name, value in hit[1].items():
                 setattr(self, name, _copy(value))
+            self._mark(hit[2])
             self.diags.items.extend(hit[2])
             self._declared_same = True
             return hit[3]
+        self._mark()
         start = len(self.diags.items)
         robot_given = super()._declarations()
         state = {name: _copy(value) for name, value in vars(self).items()
@@ -162,18 +165,64 @@ class PiecePasses:
         said = self.memo.unused
         # (sets compare with the frozen copies kept, at C speed)
         if said is None or said[0] is not declared or said[1] != key:
+            self._mark()
             start = len(self.diags.items)
             super()._unused()
             key = tuple(frozenset(k) if k.__class__ is set else k for k in key)
             said = self.memo.unused = (declared, key, self.diags.items[start:])
         else:
+            self._mark(said[2])
             self.diags.items.extend(said[2])
+
+    # ---- the diagnostics in segments (for showing.py) ----
+
+    def _mark(self, source=None) -> None:
+        """A step's diagnostics start here; `source`: the list it puts there
+        whole (the same object as last time while the step is replayed)."""
+        self._marks.append((len(self.diags.items), source))
+
+    def _segments(self) -> list:
+        """The diagnostics so far as the steps' runs: the list a step put
+        whole, else a new list of what it said."""
+        items, marks, out = self.diags.items, self._marks, []
+        ends = [m[0] for m in marks[1:]] + [len(items)]
+        for (start, source), end in zip(marks, ends):
+            if end > start:
+                out.append(source if source is not None and len(source) == end - start
+                           else items[start:end])
+        return out
+
+    def _has_errors(self) -> bool:
+        if self.pieces is None:
+            return super()._has_errors()
+        # (by segment: a list the last analysis had says what it said then)
+        flags, kept = self.memo.errors, {}
+        found = False
+        for segment in self._segments():
+            flag = flags.get(id(segment))
+            if flag is None or flag[0] is not segment:
+                flag = (segment, ERROR in map(_SEVERITY, segment))
+            kept[id(segment)] = flag
+            found = found or flag[1]
+        self.memo.errors = kept
+        return found
+
+    def _never_fire(self, out, complete: bool):
+        if self.pieces is not None:
+            self._mark()
+        return super()._never_fire(out, complete)
+
+    def _races(self, out):
+        if self.pieces is not None:
+            self._mark()
+        return super()._races(out)
 
     def _no_warnings_beside_errors(self):
         if self.pieces is None:
             return super()._no_warnings_beside_errors()
+        self.segments, self.dropped = self._segments(), ()
         items = self.diags.items
-        if ERROR not in map(_SEVERITY, items):
+        if not self._has_errors():
             return
         severities = list(map(_SEVERITY, items))
         if severities.count(ERROR) == len(items):
@@ -214,6 +263,7 @@ class PiecePasses:
                     n.span is not None and holder(n.span) in broken for n in d.notes)):
                 keep[i] = False
         if not all(keep):
+            self.dropped = {id(d) for d, k in zip(items, keep) if not k}
             items[:] = list(itertools.compress(items, keep))   # in place: callers hold the list
 
     def _piece_of(self, ident: int):

@@ -28,12 +28,13 @@ import operator
 from ..diagnostics import Collector
 from ..syntax import ast
 from ..syntax.parser import ModePlacer
-from .statements import _ONCE
+from .statements import _ONCE as _SAID_ONCE
 
 # A piece ends after an entry whose id is a multiple of this.
 PIECE = 32
 
 _STATEMENTS, _DIAGS = operator.attrgetter("statements"), operator.attrgetter("diags")
+_ONCE = operator.attrgetter("once")
 
 
 class _Named:
@@ -145,22 +146,32 @@ class Pieces:
         return self._program(pieces)
 
     def _program(self, pieces: list) -> tuple:
+        """(the program, a Collector of the statements' diagnostics, where
+        each piece's start in them: (place, the piece's list) for the
+        checker's segments)."""
         program = ast.Program(self.name)
         program.statements = list(itertools.chain.from_iterable(map(_STATEMENTS, pieces)))
         diags = Collector(_Named(self.name))
         items = diags.items = list(itertools.chain.from_iterable(map(_DIAGS, pieces)))
-        if any(p.once for p in pieces):
+        marks, at = [], 0
+        for piece in pieces:
+            if piece.diags:
+                marks.append((at, piece.diags))
+                at += len(piece.diags)
+        if any(map(_ONCE, pieces)):
+            marks = [(0, None)]
             # a name that is not ASCII (E008) is said once per file
             said, kept = set(), []
             for d in items:
-                if d.code in _ONCE:
+                if d.code in _SAID_ONCE:
                     if (d.code, d.message) in said:
                         continue
                     said.add((d.code, d.message))
                 kept.append(d)
             items[:] = kept
         if pieces and pieces[-1].mode_out:      # modes not closed at the end of the file
+            marks.append((len(items), None))
             placer = ModePlacer(program, diags)
             placer.modes = list(pieces[-1].mode_out)
             placer.finish()
-        return program, diags
+        return program, diags, marks

@@ -39,6 +39,7 @@ class _Memo:
         self.declared = None    # (what declaring read, the state it left, its diagnostics, robot given)
         self.counts = FactCounts()  # the facts of the blocks of rules replayed, counted
         self.unused = None      # (what _unused read, what it said)
+        self.errors: dict = {}  # id(a list of diagnostics) -> (it, has an error) (passes.py)
 
 
 # A block of rules is a piece's (ide/pieces.py), which ends after an entry
@@ -100,11 +101,16 @@ class IncrementalChecker(PiecePasses, Checker):
     """The checker, with named actions and rules replayed from `memo` when
     nothing they can see has changed."""
 
-    def __init__(self, program, diags, memo: _Memo, pieces=None, piece_of=None, **options):
+    def __init__(self, program, diags, memo: _Memo, pieces=None, piece_of=None, marks=(),
+                 **options):
         super().__init__(program, diags, **options)
         self.memo = memo
         self.pieces = pieces        # the document's pieces (ide/pieces.py), in order
         self.piece_of = piece_of    # entry id -> its piece
+        # where each step's diagnostics start, and the list it replayed whole
+        # (None: made now); the parse's are the pieces' (passes.segments)
+        self._marks = list(marks)
+        self.segments = self.dropped = None
         self.range_memo = memo.ranges
         self.race_memo = memo.races
         self._known: Optional[set] = None
@@ -143,6 +149,7 @@ class IncrementalChecker(PiecePasses, Checker):
             getattr(self, f).update(values)
 
     def _resolve_actions(self, out: CheckedProgram):
+        self._mark()
         env = self._env()
         memo = self.memo
         self._env_before = memo.env
@@ -229,6 +236,7 @@ class IncrementalChecker(PiecePasses, Checker):
                     or self._still_valid(block.geo, block.deps)):
                 block.env = env             # (its rules' own, when they are checked again: _rule)
             if not same or block.env is not env:
+                self._mark()
                 for rule in run:
                     r = self._rule(rule)
                     if r is not None:
@@ -242,6 +250,7 @@ class IncrementalChecker(PiecePasses, Checker):
                     groups.append((None, checked))
                     continue
             else:
+                self._mark(block.own)
                 items.extend(block.own)
                 resolved.extend(block.resolved)
                 replayed.append(block)
@@ -261,6 +270,7 @@ class IncrementalChecker(PiecePasses, Checker):
     def _modes_program(self, out: CheckedProgram, complete: bool):
         if self.pieces is None:
             return super()._modes_program(out, complete)
+        self._mark()
 
         def entered():          # (by block, kept: its rules' bodies are the same)
             found, actions = set(), self.memo.actions

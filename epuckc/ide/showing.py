@@ -76,26 +76,36 @@ def real_diagnostic(analysis, d: Diagnostic) -> Diagnostic:
 
 class Shown:
     """What the last analysis showed: each diagnostic in real lines (kept
-    by the checker's object), the sorted list, which diagnostics name
-    which statement."""
+    by the checker's object), the sorted list, the checker's segments it
+    came from, which diagnostics name which statement; and what changed in
+    the list since the analysis before (`delta`, for lsp.py)."""
 
     def __init__(self):
         self.real: dict = {}        # id(d) -> (d, its statements, their lines, (key, real d))
         self.shown = None           # the last sorted list (None: sort again)
+        self.segments: list = []    # the checker's runs of diagnostics they came from
+        self.dropped: set = set()   # ids of those of the segments the checker dropped
         self.ties = False           # two of them sort alike
         self.naming: dict = {}      # statement id -> {id(d) of the diagnostics naming it}
+        # (the list before, the diagnostics taken out, those put in; None: any)
+        self.delta = None
 
     def reset(self):
         self.shown = None
 
-    def show(self, analysis, items: list, changed=None) -> list:
+    def show(self, analysis, items: list, changed=None, segments=None, dropped=()) -> list:
         """The diagnostics `items` (the checker's, virtual lines) in real
         lines, sorted. `changed`: the ids of the statements the edit
         replaced or added, when it moved no other statement to another line
-        (None: any may have moved)."""
-        if changed is not None and self.shown is not None and not self.ties:
-            spliced = self._splice(analysis, items, changed)
+        (None: any may have moved); `segments`: `items` as the checker's
+        runs (each the last one's object while the same) before it dropped
+        those of `dropped` (ids)."""
+        before = self.shown
+        if changed is not None and segments is not None and before is not None \
+                and not self.ties:
+            spliced = self._splice(analysis, segments, set(dropped), changed)
             if spliced is not None:
+                self.segments, self.dropped = segments, set(dropped)
                 return spliced
         cache, kept = self.real, {}
         get = analysis._starts.get
@@ -114,11 +124,13 @@ class Shown:
         keys = list(map(_FIRST, shown))
         self.ties = any(map(operator.eq, keys, itertools.islice(keys, 1, None)))
         self.shown = list(map(_SECOND, shown))
+        self.segments, self.dropped = segments or [], set(dropped)
+        self.delta = None
         naming = self.naming = {}
         for key, hit in kept.items():
             for ident in hit[1]:
                 naming.setdefault(ident, set()).add(key)
-        return list(self.shown)
+        return self.shown
 
     @staticmethod
     def _hit(analysis, d: Diagnostic) -> tuple:
@@ -126,46 +138,88 @@ class Shown:
         real = real_diagnostic(analysis, d) if found else d
         return (d, found, tuple(map(analysis._starts.get, found)), (real.sort_key(), real))
 
-    def _splice(self, analysis, items: list, changed: set):
+    def _splice(self, analysis, segments: list, dropped: set, changed: set):
         """The last sorted list with the diagnostics that went taken out and
         the new ones put in (see the module's doc), or None when the list
-        must be sorted again."""
+        must be sorted again. What went and came is found from the segments
+        that are not the last analysis's objects."""
         cache = self.real
-        new_ids = set(map(id, items))
-        if len(new_ids) != len(items):
+        kept_segments = set(map(id, self.segments)) & set(map(id, segments))
+        came = [d for seg in segments if id(seg) not in kept_segments for d in seg]
+        went = [d for seg in self.segments if id(seg) not in kept_segments for d in seg]
+        came_ids = set(map(id, came))
+        if len(came_ids) != len(came):
             return None
-        gone = cache.keys() - new_ids
-        # kept ones that name a statement the edit replaced: looked at again
-        again = set()
-        for ident in changed:
-            again.update(self.naming.get(ident, ()))
-        again &= new_ids
-        added = new_ids - cache.keys()
+        went_ids = set(map(id, went))
+        gone = {i for i in went_ids - came_ids if i not in self.dropped}
+        added_ids = {i for i in came_ids - went_ids if i not in dropped}
+        # (a new one the checker drops beside an error, or an old one dropped
+        # that went: nothing to do; one of the last analysis's dropped now,
+        # or no more: sort again)
+        for i in dropped - self.dropped:
+            if i in went_ids or i not in came_ids:
+                return None
+        for i in self.dropped - dropped:
+            if i in came_ids or i not in went_ids:
+                return None
+        present = {id(d): d for d in came}
         hits = []
-        for d in itertools.compress(items, map((added | again).__contains__, map(id, items))):
-            hit = cache.get(id(d))
+        for i in added_ids:
+            hit = cache.get(i)
+            d = present[i]
             if hit is None or hit[0] is not d or tuple(map(analysis._starts.get, hit[1])) \
                     != hit[2]:
                 hit = self._hit(analysis, d)
             hits.append(hit)
+        # kept ones that name a statement the edit replaced: looked at again
+        # (made again if those statements start on other lines)
+        again = set()
+        for ident in changed:
+            again.update(self.naming.get(ident, ()))
+        again -= gone
+        again.difference_update(dropped, added_ids)
+        moved = []
+        for i in again:
+            hit = cache[i]
+            if tuple(map(analysis._starts.get, hit[1])) != hit[2]:
+                moved.append(i)
+                hits.append(self._hit(analysis, hit[0]))
         out = list(self.shown)
-        taken = {id(cache[i][3][1]) for i in gone | again}
-        if taken:
-            out = list(itertools.compress(out, map(operator.not_, map(taken.__contains__,
-                                                                       map(id, out)))))
+        removed = [cache[i][3][1] for i in itertools.chain(gone, moved) if i in cache]
+        for real in removed:
+            at = self._find(out, real)
+            if at is None:
+                return None
+            del out[at]
+        inserted = []
+        hits.sort(key=lambda h: h[3][0])
         for hit in hits:
             key, real = hit[3]
             at = bisect.bisect_right(out, key, key=_SORT_KEY)
             if (at and out[at - 1].sort_key() == key) or (at < len(out)
                                                            and out[at].sort_key() == key):
-                self._forget(gone)
+                self._forget(gone & cache.keys())
                 self._remember(hits)
                 return None     # two sort alike: their order is the checker's
             out.insert(at, real)
-        self._forget(gone)
+            inserted.append(real)
+        self._forget(gone & cache.keys())
         self._remember(hits)
+        self.delta = (self.shown, removed, inserted)
         self.shown = out
-        return list(out)
+        return out
+
+    @staticmethod
+    def _find(out: list, real: Diagnostic):
+        """The place of `real` in the sorted list (found by its key, then by
+        identity among those that sort alike)."""
+        key = real.sort_key()
+        at = bisect.bisect_left(out, key, key=_SORT_KEY)
+        while at < len(out) and out[at] is not real:
+            if out[at].sort_key() != key:
+                return None
+            at += 1
+        return at if at < len(out) else None
 
     def _forget(self, gone) -> None:
         cache, naming = self.real, self.naming
