@@ -188,7 +188,8 @@ class Conversions:
             self.forms, self.noted, self.height = {}, {}, 0
             delta = None
         elif self.text is not text:
-            edited = self._edited(self.text, text)
+            edited = self._edited(self.text, text, analysis if delta is not None
+                                  and delta[0] is self.shown else None)
             if delta is not None and delta[0] is self.shown and edited[2]:
                 spliced = self._splice(diagnostics, text, delta, edited, convert)
                 if spliced is not None:
@@ -247,15 +248,23 @@ class Conversions:
         return list(out)
 
     @staticmethod
-    def _edited(old: str, text: str) -> tuple:
+    def _edited(old: str, text: str, analysis=None) -> tuple:
         """(first line, last line, whether no line was added or removed)
-        of the edit from `old` to `text`, lines from 1 as spans count them."""
-        p = _common_prefix(old, text)
-        s = _common_suffix(old, text, min(len(old), len(text)) - p)
-        first = old.count("\n", 0, p) + 1
+        of the edit from `old` to `text`, lines from 1 as spans count them;
+        `analysis`: the analysis of `text` right after that of `old` (its
+        split knows the edit and the lines)."""
+        if analysis is not None and analysis.edit is not None:
+            p, s = analysis.edit
+            starts = analysis.line_starts
+            first = bisect.bisect_right(starts, p)
+            last = bisect.bisect_right(starts, len(text) - s)
+        else:
+            p = _common_prefix(old, text)
+            s = _common_suffix(old, text, min(len(old), len(text)) - p)
+            first = old.count("\n", 0, p) + 1
+            last = text.count("\n", 0, len(text) - s) + 1
         same = old.count("\n", p, len(old) - s) == text.count("\n", p, len(text) - s)
-        last = text.count("\n", 0, len(text) - s) + 1 if same else float("inf")
-        return first, last, same
+        return first, last if same else float("inf"), same
 
     def _touching(self, shown: list, first: int, last) -> list:
         """The places in `shown` of the diagnostics with a place on lines

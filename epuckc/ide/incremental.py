@@ -58,7 +58,7 @@ from ..diagnostics import Collector, Diagnostic
 from ..syntax import ast
 from ..syntax.lexer import MAX_LEXICAL_ERRORS
 from ..syntax.parser import parse
-from .pieces import Pieces
+from .pieces import FirstLines, Pieces
 from .recheck import IncrementalChecker, _Memo
 from .showing import Shown, real_words
 from .statements import (_CR_ENDS_LINES, _MARGIN, VLINE, Entry, _boundaries, _common_prefix,
@@ -70,20 +70,27 @@ _ID = operator.attrgetter("id")
 
 @dataclass
 class Analysis:
-    """One version of a document: its statements in order (`starts`: offset
-    where each begins; `lines`: its real first line; `entries`: its parse),
-    the AST (virtual lines), the checker and its diagnostics (real lines)."""
+    """One version of a document: where its statements are (`layout`: each
+    one's offset, first line and parse, pieces.Layout), the AST (virtual
+    lines), the checker and its diagnostics (real lines)."""
     name: str
     text: str
-    starts: list
-    lines: list
-    entries: list
+    layout: object
     program: ast.Program
     checker: Checker
     checked: CheckedProgram
     diagnostics: list = None      # Diagnostic, real positions, sorted
     # (the last analysis's diagnostics, those taken out, those put in: showing.py)
     delta: tuple = None
+    edit: tuple = None          # (the text's common beginning and end with the last one's)
+
+    @property
+    def starts(self) -> list:
+        """Where each statement starts (a list made when asked)."""
+        return [self.layout.start(i) for i in range(self.layout.count)]
+
+    def start_of(self, i: int) -> int:
+        return self.layout.start(i)
 
     @property
     def source(self) -> SourceFile:
@@ -97,15 +104,11 @@ class Analysis:
         ident = line // VLINE
         if ident == 0:
             return line
-        if self._starts is None:
-            self._starts = dict(zip(map(_ID, self.entries), self.lines))
         return self._starts[ident] + line % VLINE - 1
 
     def real_words(self, d: Diagnostic) -> Diagnostic:
         """A diagnostic whose words name lines (`(line 12)`, `the rules of
         lines 14, 15`: W009 names rules so) with those lines made real."""
-        if self._starts is None:
-            self._starts = dict(zip(map(_ID, self.entries), self.lines))
         return real_words(d, self._starts)
 
     def real(self, span: Span) -> Span:
@@ -115,18 +118,27 @@ class Analysis:
         return Span(self.real_line(span.line), span.column,
                     self.real_line(span.end_line), span.end_column)
 
+    def statements_on(self, vline: int) -> list:
+        """The statements that may hold a (virtual) line: those of its
+        statement (entry), found by their piece (pieces.py) without a walk
+        over the program; every statement for real lines."""
+        if vline >= VLINE and self._pieces is not None:
+            piece = self._piece_of(vline // VLINE)
+            if piece is not None and piece in self._pieces:
+                return [s for s in piece.statements if s.span.line // VLINE == vline // VLINE]
+        return self.program.statements
+
     def index_at(self, offset: int) -> int:
         """The statement that holds a character offset."""
-        return max(0, bisect.bisect_right(self.starts, offset) - 1)
+        return max(0, self.layout.bisect_right(offset) - 1)
 
     def virtual(self, line: int, column: int) -> tuple:
         """(virtual line, column) of a real position, for comparing with
         the AST's spans."""
-        i = self.index_at(self.offset(line, column))
-        ident = self.entries[i].id
-        if ident == 0:
+        _, _, first, entry, _ = self.layout.row(self.index_at(self.offset(line, column)))
+        if entry.id == 0:
             return line, column
-        return ident * VLINE + line - self.lines[i] + 1, column
+        return entry.id * VLINE + line - first + 1, column
 
     @property
     def line_starts(self) -> list:
@@ -155,8 +167,10 @@ class Analysis:
 
     def __post_init__(self):
         self._source = None
-        self._starts = None
+        self._starts = None         # statement id -> its first line (pieces.FirstLines)
         self._line_starts = None
+        self._pieces = None         # (the analyser's pieces and their index, statements_on)
+        self._piece_of = None
 
 
 class Analyzer:
@@ -170,10 +184,10 @@ class Analyzer:
         self._next_id = 1
         self._memo = _Memo()
         self._pieces = Pieces(name)     # the statements in pieces, placed (pieces.py)
-        self._window = None         # (k, new, old): entries k.. replaced `old` old ones (_chunks)
+        self._window = None         # (k, j, the rows of k..j, by, lines): see Pieces.place
         self._line_starts = None    # of the last text split (_chunks)
-        self._line_of: dict = {}    # statement id -> its first line (_chunks)
         self._changed = None        # the ids of the statements an edit replaced (_chunks)
+        self._edit = None           # (common prefix, common suffix) with the last text (_chunks)
         self._shown = Shown()       # the diagnostics in real lines (showing.py)
 
     def analyse(self, text: str) -> Analysis:
@@ -191,67 +205,76 @@ class Analyzer:
                     gc.collect()
 
     def _analyse(self, text: str) -> Analysis:
-        split = self._chunks(text)
-        if split is None:
+        if not self._chunks(text):
             return self._whole(text)
-        starts, lines, entries = split
-        program, diags, marks = self._pieces.place(entries, *self._window)
+        program, diags, marks = self._pieces.place(*self._window)
         items = diags.items
         checker = IncrementalChecker(program, diags, self._memo, pieces=self._pieces.pieces,
                                      piece_of=self._pieces.of.get, marks=marks, **self.options)
         checked = checker.check()
         memo = self._memo.rules
-        if len(memo) > 2 * len(program.statements) + 100:
+        if len(memo) > 2 * program.count + 100:
             live = {id(s) for s in program.statements}
             self._memo.rules = {k: v for k, v in memo.items() if k in live}
-        analysis = self._finish(text, starts, lines, entries, program, checker, checked, items,
-                                self._changed, checker.segments, checker.dropped)
+        layout = self._pieces.layout
+        analysis = self._finish(text, layout, FirstLines(layout, self._pieces.of.get), program,
+                                checker, checked, items, self._changed, checker.segments,
+                                checker.dropped)
         analysis._line_starts = self._line_starts     # (the split's: the same text's)
+        analysis._pieces, analysis._piece_of = self._pieces.pieces, self._pieces.of.get
+        analysis.edit = self._edit
         return analysis
 
-    def _chunks(self, text: str) -> Optional[tuple]:
-        """The statements of `text`: (starts, lines, entries). Only the
-        part of the text that differs from the previous version is split
-        again; statements before it are kept as they were, statements after
-        it are moved (their entries, in virtual lines, do not change)."""
-        prev = self._prev
+    def _chunks(self, text: str) -> bool:
+        """Split `text` into statements, again only where it differs from
+        the previous version: from the last statement start the edit cannot
+        move to a statement start after it that was one before; statements
+        before are kept as they were, statements after it are moved as
+        pieces (their entries, in virtual lines, do not change). What
+        replaces what is left in `_window` for Pieces.place; False when the
+        text has too many bad characters to be split so."""
+        prev, layout = self._prev, self._pieces.layout
+        n = layout.count
         if prev is None:
-            old, o_starts, o_kws, o_lines, o_entries, o_keys, bad = "", [0], [None], [1], [], [], 0
+            old, bad = "", 0
             p = s = 0
         else:
-            old, o_starts, o_kws, o_lines, o_entries, o_keys, bad = prev
+            old, bad = prev
             p = _common_prefix(old, text)
             s = _common_suffix(old, text, min(len(old), len(text)) - p)
         # the last statement start that the edit cannot move
-        k = max(0, bisect.bisect_right(o_starts, p - _MARGIN) - 1) if o_entries else 0
+        k = max(0, layout.bisect_right(p - _MARGIN) - 1) if n else 0
         delta = len(text) - len(old)
         suffix_from = len(text) - s
         # split again from there, until a statement start in the unchanged
         # end of the text that was a statement start before
-        middle = [o_starts[k]] if k > 0 else [0]
-        middle_kws = [o_kws[k]] if k > 0 else [None]
-        j = len(o_entries)      # the first old statement kept after the edit
+        first = layout.row(k) if k > 0 else (0, None)
+        middle, middle_kws = [first[0]], [first[1]]
+        j = n                   # the first old statement kept after the edit
         starts_of_lines = line_starts(text) if prev is None or self._line_starts is None \
             else patched_line_starts(self._line_starts, len(old), text, p, s)
-        for at, kw in _boundaries(text, o_starts[k], starts_of_lines):
+        for at, kw in _boundaries(text, middle[0], starts_of_lines):
             line_start = starts_of_lines[bisect.bisect_right(starts_of_lines, at) - 1]
-            if at >= suffix_from and o_entries and line_start > suffix_from:
-                i = bisect.bisect_left(o_starts, at - delta)
-                if i < len(o_starts) and o_starts[i] == at - delta:
+            if at >= suffix_from and n and line_start > suffix_from:
+                i = layout.bisect_left(at - delta)
+                if i < n and layout.start(i) == at - delta:
                     j = i
                     break
             middle.append(at)
             middle_kws.append(kw)
         # the old statements that the middle replaces: their parses may serve again
         available: dict = {}
-        for i in range(k, j):
-            available.setdefault(o_keys[i], []).append((o_entries[i], o_lines[i]))
-            bad -= o_entries[i].bad_runs
+        replaced = set()
+        for _, _, line, entry, key in layout.rows(k, j):
+            available.setdefault(key, []).append((entry, line))
+            bad -= entry.bad_runs
+            replaced.add(entry.id)
         relocated = False       # (an old statement in the middle, on another line)
-        mid_lines, mid_entries, mid_keys = [], [], []
-        ends = middle[1:] + [o_starts[j] + delta if j < len(o_entries) else len(text)]
-        followings = middle_kws[1:] + [o_kws[j] if j < len(o_entries) else None]
-        for start, end, following in zip(middle, ends, followings):
+        after = layout.row(j) if j < n else None
+        ends = middle[1:] + [after[0] + delta if after else len(text)]
+        followings = middle_kws[1:] + [after[1] if after else None]
+        rows = []
+        for start, kw, end, following in zip(middle, middle_kws, ends, followings):
             line = bisect.bisect_right(starts_of_lines, start)
             column = start - starts_of_lines[line - 1] + 1
             key = (text[start:end], column, following)
@@ -266,44 +289,22 @@ class Analyzer:
             bad += entry.bad_runs
             if entry.lines >= VLINE:
                 bad = MAX_LEXICAL_ERRORS
-            mid_lines.append(line)
-            mid_entries.append(entry)
-            mid_keys.append(key)
-        shift = 0
-        if j < len(o_entries):
-            # as many lines more (or fewer) as the edit added
-            shift = bisect.bisect_right(starts_of_lines, o_starts[j] + delta) - o_lines[j]
-            tail_starts = list(map(delta.__add__, o_starts[j:])) if delta else o_starts[j:]
-            tail_lines = list(map(shift.__add__, o_lines[j:])) if shift else o_lines[j:]
-        else:
-            tail_starts, tail_lines = [], []
-        starts = o_starts[:k] + middle + tail_starts
-        keywords = o_kws[:k] + middle_kws + o_kws[j:]
-        lines = o_lines[:k] + mid_lines + tail_lines
-        entries = o_entries[:k] + mid_entries + o_entries[j:]
-        keys = o_keys[:k] + mid_keys + o_keys[j:]
+            rows.append((start, kw, line, entry, key))
+        # as many lines more (or fewer) as the edit added
+        shift = bisect.bisect_right(starts_of_lines, after[0] + delta) - after[2] if after else 0
         if bad >= MAX_LEXICAL_ERRORS:
             self._prev = None
             self._pieces.reset()
-            return None
-        self._window = (k, len(mid_entries), j - k)
-        # the statements' first lines (kept: only the middle's change when no
-        # line moved; a copy, as the last analysis holds the dict)
-        if prev is None or shift or relocated:
-            self._line_of = dict(zip(map(_ID, entries), lines))
-            self._changed = None
-        else:
-            line_of = self._line_of = dict(self._line_of)
-            changed = self._changed = set()
-            for entry in o_entries[k:j]:
-                line_of.pop(entry.id, None)
-                changed.add(entry.id)
-            for entry, line in zip(mid_entries, mid_lines):
-                line_of[entry.id] = line
-                changed.add(entry.id)
-        self._prev = (text, starts, keywords, lines, entries, keys, bad)
+            return False
+        self._window = (k, j, rows, delta, shift)
+        self._edit = (p, s) if prev is not None else None
+        # the statements the edit replaced or added, when no other moved to
+        # another line (showing.py looks at what names them again)
+        self._changed = None if prev is None or shift or relocated else \
+            replaced.union(r[3].id for r in rows)
+        self._prev = (text, bad)
         self._line_starts = starts_of_lines
-        return starts, lines, entries
+        return True
 
     def _whole(self, text: str) -> Analysis:
         """The whole file at once, in real lines (no reuse)."""
@@ -313,14 +314,30 @@ class Analyzer:
         checker = Checker(program, diags, **self.options)
         checked = checker.check()
         entry = Entry(0, program.statements, [], 0, source.line_count)
-        self._line_of = {0: 1}
         self._shown.reset()
-        return self._finish(text, [0], [1], [entry], program, checker, checked, diags.items)
+        return self._finish(text, _Whole(entry), {0: 1}, program, checker, checked, diags.items)
 
-    def _finish(self, text, starts, lines, entries, program, checker, checked,
-                items, changed=None, segments=None, dropped=()) -> Analysis:
-        analysis = Analysis(self.name, text, starts, lines, entries, program, checker, checked)
-        analysis._starts = self._line_of
+    def _finish(self, text, layout, first_lines, program, checker, checked, items,
+                changed=None, segments=None, dropped=()) -> Analysis:
+        analysis = Analysis(self.name, text, layout, program, checker, checked)
+        analysis._starts = first_lines
         analysis.diagnostics = self._shown.show(analysis, items, changed, segments, dropped)
         analysis.delta = self._shown.delta
         return analysis
+
+
+class _Whole:
+    """The layout of a file analysed whole: one entry, in real lines."""
+    count = 1
+
+    def __init__(self, entry):
+        self.entry = entry
+
+    def start(self, i: int) -> int:
+        return 0
+
+    def row(self, i: int) -> tuple:
+        return 0, None, 1, self.entry, None
+
+    def bisect_right(self, offset: int) -> int:
+        return 1 if offset >= 0 else 0

@@ -120,7 +120,7 @@ class PiecePasses:
         first_fresh = fresh_at[0] if fresh_at else None
         first_gone = gone_at[0] if gone_at else None
         memo.pieces, memo.piece_list = new, self.pieces
-        if len(known) > 2 * len(self.program.statements) + 100:
+        if len(known) > 2 * self.program.count + 100:
             live = {id(s) for s in self.program.statements}
             memo.statements = {k: v for k, v in known.items() if k in live}
             memo.where = {k: v for k, v in where.items() if k in live}
@@ -192,13 +192,13 @@ class PiecePasses:
                            else items[start:end])
         return out
 
-    def _has_errors(self) -> bool:
+    def _has_errors(self, segments=None) -> bool:
         if self.pieces is None:
             return super()._has_errors()
         # (by segment: a list the last analysis had says what it said then)
         flags, kept = self.memo.errors, {}
         found = False
-        for segment in self._segments():
+        for segment in segments if segments is not None else self._segments():
             flag = flags.get(id(segment))
             if flag is None or flag[0] is not segment:
                 flag = (segment, ERROR in map(_SEVERITY, segment))
@@ -222,7 +222,7 @@ class PiecePasses:
             return super()._no_warnings_beside_errors()
         self.segments, self.dropped = self._segments(), ()
         items = self.diags.items
-        if not self._has_errors():
+        if not self._has_errors(self.segments):
             return
         severities = list(map(_SEVERITY, items))
         if severities.count(ERROR) == len(items):

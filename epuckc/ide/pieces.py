@@ -24,6 +24,7 @@ from __future__ import annotations
 import bisect
 import itertools
 import operator
+from typing import Optional
 
 from ..diagnostics import Collector
 from ..syntax import ast
@@ -49,11 +50,21 @@ class Piece:
     those open after it; `diags`: its entries' diagnostics and those of
     placing its statements, in order; `placed`: ModePlacer's memory of its
     statements."""
-    __slots__ = ("entries", "mode_in", "mode_out", "statements", "diags", "placed", "once",
-                 "rules", "decls", "externs")
+    __slots__ = ("entries", "offsets", "kws", "lines", "keys", "index", "mode_in", "mode_out",
+                 "statements", "diags", "placed", "once", "rules", "decls", "externs")
 
-    def __init__(self, entries: list, mode_in: tuple, placed: dict, name: str):
-        self.entries, self.mode_in = entries, mode_in
+    def __init__(self, rows: list, mode_in: tuple, placed: dict, name: str):
+        """`rows`: each entry's (start, keyword, first line, entry, key) in
+        the text (kept relative to the first one's: a piece after an edit
+        moves as a whole, Layout)."""
+        base, line = rows[0][0], rows[0][2]
+        self.offsets = [r[0] - base for r in rows]
+        self.kws = [r[1] for r in rows]
+        self.lines = [r[2] - line for r in rows]
+        entries = self.entries = [r[3] for r in rows]
+        self.keys = [r[4] for r in rows]
+        self.index = {e.id: x for x, e in enumerate(entries)}
+        self.mode_in = mode_in
         program = ast.Program(name)
         diags = Collector(_Named(name))
         placer = ModePlacer(program, diags, placed)
@@ -73,61 +84,192 @@ class Piece:
         self.externs = tuple(s for s in self.decls if s.__class__ is ast.ExternDef)
 
 
+class _Program(ast.Program):
+    """The program of the pieces' statements, made into one list only when
+    something asks for it (hover, a check of the declarations): an edit's
+    analysis does not."""
+    __slots__ = ("_pieces", "_statements")
+
+    def __init__(self, name: str, pieces: list):
+        self.file, self._pieces, self._statements = name, pieces, None
+
+    @property
+    def statements(self) -> list:
+        if self._statements is None:
+            self._statements = list(itertools.chain.from_iterable(map(_STATEMENTS,
+                                                                      self._pieces)))
+        return self._statements
+
+    @property
+    def count(self) -> int:
+        """How many statements (without making their list)."""
+        if self._statements is not None:
+            return len(self._statements)
+        return sum(map(len, map(_STATEMENTS, self._pieces)))
+
+
 def _same_modes(a: tuple, b: tuple) -> bool:
     return len(a) == len(b) and all(x is y for x, y in zip(a, b))
 
 
+class Layout:
+    """Where each entry (statement) of one version of the text is, kept by
+    piece: each piece's entries' offsets and lines relative to its first
+    one, and each piece's first entry's index, offset and line. An edit
+    makes new pieces where it is, and moves the pieces after it as wholes:
+    what a version keeps is a few lists as long as the pieces, not as the
+    statements."""
+    __slots__ = ("pieces", "firsts", "bases", "lines", "count", "_where")
+
+    def __init__(self, pieces: list, firsts: list, bases: list, lines: list):
+        self.pieces, self.firsts, self.bases, self.lines = pieces, firsts, bases, lines
+        self.count = firsts[-1] + len(pieces[-1].entries) if pieces else 0
+        self._where = None
+
+    def locate(self, i: int) -> tuple:
+        """(the place of the piece of entry `i`, the entry's place in it)."""
+        p = bisect.bisect_right(self.firsts, i) - 1
+        return p, i - self.firsts[p]
+
+    def start(self, i: int) -> int:
+        p, x = self.locate(i)
+        return self.bases[p] + self.pieces[p].offsets[x]
+
+    def line(self, i: int) -> int:
+        p, x = self.locate(i)
+        return self.lines[p] + self.pieces[p].lines[x]
+
+    def row(self, i: int) -> tuple:
+        """(start, keyword, first line, entry, key) of entry `i`."""
+        p, x = self.locate(i)
+        piece = self.pieces[p]
+        return (self.bases[p] + piece.offsets[x], piece.kws[x], self.lines[p] + piece.lines[x],
+                piece.entries[x], piece.keys[x])
+
+    def rows(self, i: int, j: int, by: int = 0, shift: int = 0):
+        """The rows of entries i..j, their starts moved by `by` characters
+        and their lines by `shift`."""
+        while i < j:
+            p, x = self.locate(i)
+            piece, base, line = self.pieces[p], self.bases[p] + by, self.lines[p] + shift
+            for x in range(x, min(len(piece.entries), x + j - i)):
+                yield (base + piece.offsets[x], piece.kws[x], line + piece.lines[x],
+                       piece.entries[x], piece.keys[x])
+                i += 1
+
+    def bisect_right(self, offset: int) -> int:
+        """bisect.bisect_right over the entries' starts."""
+        p = bisect.bisect_right(self.bases, offset) - 1
+        if p < 0:
+            return 0
+        return self.firsts[p] + bisect.bisect_right(self.pieces[p].offsets, offset - self.bases[p])
+
+    def bisect_left(self, offset: int) -> int:
+        """bisect.bisect_left over the entries' starts."""
+        p = bisect.bisect_right(self.bases, offset) - 1
+        if p < 0:
+            return 0
+        return self.firsts[p] + bisect.bisect_left(self.pieces[p].offsets, offset - self.bases[p])
+
+    def line_of(self, ident: int, of) -> Optional[int]:
+        """The first line of the entry of id `ident` (`of`: id -> a piece
+        made of it, Pieces.of), or None."""
+        piece = of(ident)
+        if self._where is None:
+            self._where = {id(p): at for at, p in enumerate(self.pieces)}
+        at = self._where.get(id(piece)) if piece is not None else None
+        if at is None:          # (a version before the last one: look for it)
+            for at, piece in enumerate(self.pieces):
+                if ident in piece.index:
+                    break
+            else:
+                return None
+        x = piece.index.get(ident)
+        return None if x is None else self.lines[at] + piece.lines[x]
+
+
+class FirstLines:
+    """statement id -> its first line, of one version (the mapping showing.py
+    and Analysis read), found by piece."""
+    __slots__ = ("layout", "of")
+
+    def __init__(self, layout: Layout, of):
+        self.layout, self.of = layout, of
+
+    def get(self, ident, default=None):
+        found = self.layout.line_of(ident, self.of)
+        return default if found is None else found
+
+    def __getitem__(self, ident):
+        found = self.layout.line_of(ident, self.of)
+        if found is None:
+            raise KeyError(ident)
+        return found
+
+
 class Pieces:
     """A document's pieces (see the module's doc), from one analysis to the
-    next."""
+    next, and their Layout."""
 
     def __init__(self, name: str):
         self.name = name
-        self.pieces: list = []
-        self.starts: list = []      # the index of each piece's first entry
-        self.of: dict = {}          # entry id -> the last piece made of it
+        self.reset()
 
     def reset(self):
-        self.pieces, self.starts, self.of = [], [], {}
+        self.pieces, self.of = [], {}   # (of: entry id -> the last piece made of it)
+        self.layout = Layout([], [], [], [])
 
-    def place(self, entries: list, k: int, n_new: int, n_old: int) -> tuple:
-        """The pieces of `entries`, whose entries k .. k + n_new replaced the
-        n_old entries from k of the last analysis; then the program (its
-        statements) and a Collector of the statements' diagnostics, in the
-        order a whole file's parse gives them."""
-        old, starts = self.pieces, self.starts
-        shift = n_new - n_old
-        a = max(0, bisect.bisect_right(starts, k) - 1) if old else 0
-        pieces, new_starts = old[:a], starts[:a]
-        # the pieces the window touches, cut again (an old one whose entries
-        # are the same objects is kept: an undo); a new run is a list
-        i, n, end, t = (starts[a] if old else 0), len(entries), k + n_new, len(old)
+    def place(self, k: int, j: int, middle: list, by: int, shift: int) -> tuple:
+        """The pieces after an edit whose rows `middle` (see Piece) replaced
+        the last version's entries k..j, the entries after them moved by
+        `by` characters and `shift` lines; then the program (its
+        statements), a Collector of the statements' diagnostics, in the
+        order a whole file's parse gives them, and where each piece's are."""
+        layout = self.layout
+        old, firsts = layout.pieces, layout.firsts
+        count = layout.count - (j - k) + len(middle)
+        d = len(middle) - (j - k)
+        a = max(0, bisect.bisect_right(firsts, k) - 1) if old else 0
+        pieces, new_firsts = old[:a], firsts[:a]
+        bases, lines = layout.bases[:a], layout.lines[:a]
+        # the rows from the first piece the window touches, in order
+        i = firsts[a] if old else 0
+        rows = itertools.chain(layout.rows(i, k), middle, layout.rows(j, layout.count, by, shift))
+        end, t = k + len(middle), len(old)
         first = {id(p.entries[0]): p for p in old[a:a + 3]}
-        while i < n:
-            j = i
-            while j < n - 1 and entries[j].id % PIECE:
-                j += 1
-            j += 1
-            run = entries[i:j]
-            piece = first.get(id(run[0]))
-            if piece is not None and len(piece.entries) == len(run) \
-                    and all(x is y for x, y in zip(piece.entries, run)):
-                run = piece
-            pieces.append(run)
-            new_starts.append(i)
-            i = j
+        run = []
+        for row in rows:
+            run.append(row)
+            if row[3].id % PIECE and i + len(run) < count:
+                continue
+            # a run ends: a new piece, or an old one whose entries are
+            # the same objects (an undo)
+            piece = first.get(id(run[0][3]))
+            if piece is None or len(piece.entries) != len(run) \
+                    or any(x is not r[3] for x, r in zip(piece.entries, run)):
+                piece = run
+            pieces.append(piece)
+            new_firsts.append(i)
+            bases.append(run[0][0])
+            lines.append(run[0][2])
+            i += len(run)
+            run = []
             if i >= end:        # where an old piece starts after the window: the rest is kept
-                t = bisect.bisect_left(starts, i - shift)
-                if t < len(starts) and starts[t] == i - shift and i - shift >= k + n_old:
+                t = bisect.bisect_left(firsts, i - d)
+                if t < len(firsts) and firsts[t] == i - d and i - d >= j:
                     pieces += old[t:]
-                    new_starts += [s + shift for s in starts[t:]] if shift else starts[t:]
+                    new_firsts += [x + d for x in firsts[t:]] if d else firsts[t:]
+                    bases += [x + by for x in layout.bases[t:]] if by else layout.bases[t:]
+                    lines += [x + shift for x in layout.lines[t:]] if shift \
+                        else layout.lines[t:]
                     break
                 t = len(old)
         # placed in order: a new run, or a piece after modes that changed
         modes: tuple = ()
         memory = None
         for at, piece in enumerate(pieces):
-            if piece.__class__ is list or not _same_modes(piece.mode_in, modes):
+            if piece.__class__ is list or (piece.mode_in is not modes
+                                           and not _same_modes(piece.mode_in, modes)):
                 if piece.__class__ is list:
                     if memory is None:      # (what the statements came to last time)
                         memory = {}
@@ -135,13 +277,17 @@ class Pieces:
                             memory.update(gone.placed)
                     piece = Piece(piece, modes, memory, self.name)
                 else:
-                    piece = Piece(piece.entries, modes, piece.placed, self.name)
+                    piece = Piece(list(zip([bases[at] + o for o in piece.offsets], piece.kws,
+                                           [lines[at] + x for x in piece.lines],
+                                           piece.entries, piece.keys)),
+                                  modes, piece.placed, self.name)
                 pieces[at] = piece
                 for entry in piece.entries:
                     self.of[entry.id] = piece
             modes = piece.mode_out
-        self.pieces, self.starts = pieces, new_starts
-        if len(self.of) > 2 * len(entries) + 100:
+        self.pieces = pieces
+        self.layout = Layout(pieces, new_firsts, bases, lines)
+        if len(self.of) > 2 * count + 100:
             self.of = {entry.id: piece for piece in pieces for entry in piece.entries}
         return self._program(pieces)
 
@@ -149,8 +295,7 @@ class Pieces:
         """(the program, a Collector of the statements' diagnostics, where
         each piece's start in them: (place, the piece's list) for the
         checker's segments)."""
-        program = ast.Program(self.name)
-        program.statements = list(itertools.chain.from_iterable(map(_STATEMENTS, pieces)))
+        program = _Program(self.name, pieces)
         diags = Collector(_Named(self.name))
         items = diags.items = list(itertools.chain.from_iterable(map(_DIAGS, pieces)))
         marks, at = [], 0
