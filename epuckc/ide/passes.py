@@ -31,7 +31,8 @@ from ..check.ranges import statement_assignments
 from ..diagnostics import ERROR
 from .statements import VLINE
 
-_DECLS, _EXTERNS = operator.attrgetter("decls"), operator.attrgetter("externs")
+_DECLS, _EXTERNS, _RULES = (operator.attrgetter("decls"), operator.attrgetter("externs"),
+                            operator.attrgetter("rules"))
 _SEVERITY, _SPAN, _NOTES = (operator.attrgetter("severity"), operator.attrgetter("span"),
                             operator.attrgetter("notes"))
 _LINE = operator.itemgetter(0)
@@ -42,7 +43,8 @@ _START = operator.itemgetter(0, 1)     # a Span's (line, column)
 _NOT_DECLARED = frozenset({"program", "diags", "base_dir", "target", "memo", "range_memo",
                            "race_memo", "pieces", "piece_of", "_known", "_env_now", "_maybe",
                            "_compared", "_declared_same", "_env_before", "_moved", "_marks",
-                           "segments", "dropped"})
+                           "segments", "dropped", "_error_flags", "_errors_upto",
+                           "_errors_found"})
 
 
 def _copy(value):
@@ -161,7 +163,7 @@ class PiecePasses:
         # there are rules)
         declared = self.memo.declared
         key = (self.used_actions, self.const_used, self.vars_used, self.vars_assigned,
-               any(p.rules for p in self.pieces))
+               any(map(_RULES, self.pieces)))
         said = self.memo.unused
         # (sets compare with the frozen copies kept, at C speed)
         if said is None or said[0] is not declared or said[1] != key:
@@ -192,20 +194,33 @@ class PiecePasses:
                            else items[start:end])
         return out
 
-    def _has_errors(self, segments=None) -> bool:
+    def _has_errors(self) -> bool:
         if self.pieces is None:
             return super()._has_errors()
-        # (by segment: a list the last analysis had says what it said then)
-        flags, kept = self.memo.errors, {}
-        found = False
-        for segment in segments if segments is not None else self._segments():
-            flag = flags.get(id(segment))
-            if flag is None or flag[0] is not segment:
-                flag = (segment, ERROR in map(_SEVERITY, segment))
-            kept[id(segment)] = flag
-            found = found or flag[1]
-        self.memo.errors = kept
-        return found
+        # (by the steps' runs since the last time asked; a list a step put
+        # whole says what it said last time: memo.errors)
+        items, marks = self.diags.items, self._marks
+        flags, kept = self.memo.errors, self._error_flags
+        at = self._errors_upto
+        for i in range(at, len(marks)):
+            start, source = marks[i]
+            end = marks[i + 1][0] if i + 1 < len(marks) else len(items)
+            if end <= start:
+                continue
+            if source is not None and len(source) == end - start:
+                flag = flags.get(id(source))
+                if flag is None or flag[0] is not source:
+                    flag = (source, ERROR in map(_SEVERITY, source))
+                kept[id(source)] = flag
+                found = flag[1]
+            else:
+                found = ERROR in map(_SEVERITY, itertools.islice(items, start, end))
+            if found and i + 1 < len(marks):
+                self._errors_found = True
+            elif found:
+                return True         # (in the run still under way: asked again next time)
+        self._errors_upto = max(at, len(marks) - 1)
+        return self._errors_found
 
     def _never_fire(self, out, complete: bool):
         if self.pieces is not None:
@@ -221,8 +236,9 @@ class PiecePasses:
         if self.pieces is None:
             return super()._no_warnings_beside_errors()
         self.segments, self.dropped = self._segments(), ()
+        self.memo.errors = self._error_flags
         items = self.diags.items
-        if not self._has_errors(self.segments):
+        if not self._has_errors():
             return
         severities = list(map(_SEVERITY, items))
         if severities.count(ERROR) == len(items):

@@ -10,6 +10,7 @@ their own memos here (`_Memo`).
 """
 from __future__ import annotations
 
+import itertools
 from typing import Optional
 
 from ..check import conditions as cond, modes
@@ -111,6 +112,8 @@ class IncrementalChecker(PiecePasses, Checker):
         # (None: made now); the parse's are the pieces' (passes.segments)
         self._marks = list(marks)
         self.segments = self.dropped = None
+        # (passes._has_errors: the runs looked at, and whether one has an error)
+        self._error_flags, self._errors_upto, self._errors_found = {}, 0, False
         self.range_memo = memo.ranges
         self.race_memo = memo.races
         self._known: Optional[set] = None
@@ -281,7 +284,7 @@ class IncrementalChecker(PiecePasses, Checker):
                 found |= block.entered[1]
             return found | modes.entered_by(self, [r.body for r in self._loose])
         modes.check_program(self, out, complete,
-                            [r for rules in self._in_modes for r in rules], entered)
+                            list(itertools.chain.from_iterable(self._in_modes)), entered)
 
     def _block(self, piece, env) -> Optional[_Block]:
         """The rules of `piece`, just checked or replayed, as a block, if each
