@@ -296,7 +296,7 @@ class _Rules:
             facts = {id(r): RuleFacts(checker, r, named) for r in every_rule}
         self.facts = facts
         self.rules = every_rule         # (any rule may write a variable a guard reads)
-        self.index = {id(r): i for i, r in enumerate(every_rule)}
+        self._index = None
         self.condition = {id(r): facts[id(r)].condition for r in rules}
         self.memo_names, self.memo_boxes, self.memo_alone = {}, {}, {}
         self.memo_timing: dict = {}
@@ -306,6 +306,13 @@ class _Rules:
         self._walk = None
         self.entry_stops = entry_stops(checker, every_rule, facts) if stops is None else stops
         self.by_timing_only = False     # a big group was compared by timing alone
+
+    @property
+    def index(self) -> dict:
+        """id(rule) -> its place among every rule (made when first asked)."""
+        if self._index is None:
+            self._index = {id(r): i for i, r in enumerate(self.rules)}
+        return self._index
 
     def writes(self, rule) -> frozenset:
         """The variables the rule's action (named actions spliced) assigns."""

@@ -58,7 +58,7 @@ from ..diagnostics import Collector, Diagnostic
 from ..syntax import ast
 from ..syntax.lexer import MAX_LEXICAL_ERRORS
 from ..syntax.parser import parse
-from .pieces import FirstLines, Pieces
+from .pieces import FirstLines, LineCache, Pieces
 from .recheck import IncrementalChecker, _Memo
 from .showing import Shown, real_words
 from .statements import (_CR_ENDS_LINES, _MARGIN, VLINE, Entry, _boundaries, _common_prefix,
@@ -188,6 +188,7 @@ class Analyzer:
         self._line_starts = None    # of the last text split (_chunks)
         self._changed = None        # the ids of the statements an edit replaced (_chunks)
         self._edit = None           # (common prefix, common suffix) with the last text (_chunks)
+        self._lines = LineCache()   # statements' first lines found (pieces.py)
         self._shown = Shown()       # the diagnostics in real lines (showing.py)
 
     def analyse(self, text: str) -> Analysis:
@@ -217,7 +218,8 @@ class Analyzer:
             live = {id(s) for s in program.statements}
             self._memo.rules = {k: v for k, v in memo.items() if k in live}
         layout = self._pieces.layout
-        analysis = self._finish(text, layout, FirstLines(layout, self._pieces.of.get), program,
+        analysis = self._finish(text, layout, FirstLines(layout, self._pieces.of.get,
+                                                         self._lines), program,
                                 checker, checked, items, self._changed, checker.segments,
                                 checker.dropped)
         analysis._line_starts = self._line_starts     # (the split's: the same text's)
@@ -302,6 +304,12 @@ class Analyzer:
         # another line (showing.py looks at what names them again)
         self._changed = None if prev is None or shift or relocated else \
             replaced.union(r[3].id for r in rows)
+        if self._changed is None:       # (lines moved: the first lines found again)
+            self._lines = LineCache()
+        else:
+            self._lines.generation += 1
+            for ident in replaced:
+                self._lines.lines.pop(ident, None)
         self._prev = (text, bad)
         self._line_starts = starts_of_lines
         return True

@@ -188,20 +188,41 @@ class Layout:
         return None if x is None else self.lines[at] + piece.lines[x]
 
 
+class LineCache:
+    """The first lines found (statement id -> line), shared by the versions
+    an edit moved no line of: an edit of one line pops the statements it
+    replaced and counts one generation more (a version of an older
+    generation looks its lines up in its own layout); one that moves lines
+    starts a new cache."""
+    __slots__ = ("lines", "generation")
+
+    def __init__(self):
+        self.lines: dict = {}
+        self.generation = 0
+
+
 class FirstLines:
     """statement id -> its first line, of one version (the mapping showing.py
-    and Analysis read), found by piece."""
-    __slots__ = ("layout", "of")
+    and Analysis read), found by piece and kept in the LineCache."""
+    __slots__ = ("layout", "of", "cache", "generation")
 
-    def __init__(self, layout: Layout, of):
-        self.layout, self.of = layout, of
+    def __init__(self, layout: Layout, of, cache: LineCache):
+        self.layout, self.of, self.cache, self.generation = layout, of, cache, cache.generation
 
     def get(self, ident, default=None):
-        found = self.layout.line_of(ident, self.of)
+        cache = self.cache
+        if cache.generation == self.generation:
+            found = cache.lines.get(ident)
+            if found is None:
+                found = self.layout.line_of(ident, self.of)
+                if found is not None:
+                    cache.lines[ident] = found
+        else:
+            found = self.layout.line_of(ident, self.of)
         return default if found is None else found
 
     def __getitem__(self, ident):
-        found = self.layout.line_of(ident, self.of)
+        found = self.get(ident)
         if found is None:
             raise KeyError(ident)
         return found

@@ -129,7 +129,11 @@ class Shown:
         naming = self.naming = {}
         for key, hit in kept.items():
             for ident in hit[1]:
-                naming.setdefault(ident, set()).add(key)
+                found = naming.get(ident)
+                if found is None:
+                    naming[ident] = {key}
+                else:
+                    found.add(key)
         return self.shown
 
     @staticmethod
@@ -237,4 +241,8 @@ class Shown:
             key = id(hit[0])
             cache[key] = hit
             for ident in hit[1]:
-                naming.setdefault(ident, set()).add(key)
+                found = naming.get(ident)
+                if found is None:
+                    naming[ident] = {key}
+                else:
+                    found.add(key)
