@@ -26,11 +26,11 @@ sys.path.insert(0, str(REPO / "bench"))
 import lsp_bench as lb  # noqa: E402
 
 from epuckc.check import checker as checker_module  # noqa: E402
-from epuckc.ide import incremental, recheck  # noqa: E402
+from epuckc.ide import documents, incremental, recheck  # noqa: E402
 from epuckc.ide.lsp import Document, EpuckServer  # noqa: E402
 
-STEPS = ("_declare", "_robot", "_var_ranges", "_resolve_actions", "_rules", "_rule", "_never_fire",
-         "_unused", "_no_warnings_beside_errors")
+STEPS = ("_declarations", "_declare", "_robot", "_var_ranges", "_resolve_actions", "_rules",
+         "_rule", "_never_fire", "_unused", "_no_warnings_beside_errors", "_modes_program")
 
 
 def main(argv=None) -> int:
@@ -54,17 +54,18 @@ def main(argv=None) -> int:
 
     for name in STEPS:
         timed(recheck.IncrementalChecker, name, name)
-    timed(checker_module.modes, "check_program", "modes (W010, W011)")
     timed(checker_module.races, "check_program", "races (W009)")
     timed(incremental.Analyzer, "_chunks", "split and parse (_chunks)")
+    timed(incremental.Pieces, "place", "pieces placed (pieces.py)")
     timed(incremental.Analyzer, "_finish", "real lines (_finish)")
+    timed(documents.Conversions, "all", "the server's LSP forms (documents.py)")
     timed(incremental.Analyzer, "_analyse", "= analysis")
     timed(recheck.IncrementalChecker, "check", "= check")
     text = lb.expression_program(args.rules)
     server = EpuckServer()
     doc = Document("file:///bench/bench.epk", text, 1, server)
     analysis = doc.analyse()        # opened and published
-    [server.diagnostic(doc, analysis, d) for d in analysis.diagnostics]
+    lb.published(server, doc, analysis)
     edits = {"error": lb.error_edits, "number": lb.edits,
              "interval": lb.interval_edits}[args.kind](text, random.Random(1), args.edits)
     spent.clear()

@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import bisect
+import itertools
 from typing import NamedTuple
 from pathlib import Path
 
@@ -37,11 +38,15 @@ class SourceFile:
         if "\r" in text:
             text = text.replace("\r\n", "\n").replace("\r", "\n")
         self.text = text
-        self._line_starts = [0]
-        newline = text.find("\n")
-        while newline >= 0:
-            self._line_starts.append(newline + 1)
-            newline = text.find("\n", newline + 1)
+        self._starts = None         # where lines start: found the first time they are asked
+
+    @property
+    def _line_starts(self) -> list:
+        if self._starts is None:
+            # (at C speed: the lengths of the lines, each with its `\n`, summed)
+            lines = self.text.split("\n")
+            self._starts = [0] + list(itertools.accumulate(map((1).__add__, map(len, lines[:-1]))))
+        return self._starts
 
     @classmethod
     def from_path(cls, path: Path, shown_name: str | None = None) -> tuple["SourceFile", object]:

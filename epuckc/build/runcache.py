@@ -39,24 +39,11 @@ from pathlib import Path
 from typing import Optional
 
 from .. import __version__
+from ..base.fingerprint import PACKAGE as _PACKAGE, stat_lines
 from ..base.resources import cache_dir, grammar_path, runtime_dir, templates_dir
 
 FORMAT = 2
-_PACKAGE = Path(__file__).resolve().parent.parent     # epuckc/, every stage's folder
-
-
-def _stat_lines(folder: Path, suffixes: tuple, recursive: bool) -> list:
-    """`relative path, size, mtime` of the files with these suffixes."""
-    lines = []
-    walker = os.walk(folder) if recursive else [(str(folder), [], os.listdir(folder))]
-    for base, dirs, files in walker:
-        dirs[:] = sorted(d for d in dirs if d not in ("build", "__pycache__"))
-        for name in sorted(files):
-            if name.endswith(suffixes):
-                path = os.path.join(base, name)
-                st = os.stat(path)
-                lines.append(f"{os.path.relpath(path, folder)} {st.st_size} {st.st_mtime_ns}")
-    return lines
+_stat_lines = stat_lines     # (base/fingerprint.py: shared with `check`'s cache)
 
 
 def input_key(path: Path, data: bytes, shown_name: str, max_actions,

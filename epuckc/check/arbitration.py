@@ -287,16 +287,16 @@ def entry_stops(checker, every_rule, facts: dict) -> bool:
 
 class _Rules:
     """What the pair checks need of each rule, computed once (`facts`:
-    id(rule) -> RuleFacts, computed here when not given); the walk's order
-    only when a pair asks for it."""
+    id(rule) -> RuleFacts, computed here when not given; `stops`: entry_stops
+    when known); the walk's order only when a pair asks for it."""
 
-    def __init__(self, checker, rules, every_rule, facts: dict = None):
+    def __init__(self, checker, rules, every_rule, facts: dict = None, stops=None):
         if facts is None:
             named: dict = {}
             facts = {id(r): RuleFacts(checker, r, named) for r in every_rule}
         self.facts = facts
         self.rules = every_rule         # (any rule may write a variable a guard reads)
-        self.index = {id(r): i for i, r in enumerate(every_rule)}
+        self._index = None
         self.condition = {id(r): facts[id(r)].condition for r in rules}
         self.memo_names, self.memo_boxes, self.memo_alone = {}, {}, {}
         self.memo_timing: dict = {}
@@ -304,8 +304,15 @@ class _Rules:
         self.base.update((name, (r.lo, r.hi)) for name, r in STANDARD_READINGS.items())
         self.variables = set(checker.vars)
         self._walk = None
-        self.entry_stops = entry_stops(checker, every_rule, facts)
+        self.entry_stops = entry_stops(checker, every_rule, facts) if stops is None else stops
         self.by_timing_only = False     # a big group was compared by timing alone
+
+    @property
+    def index(self) -> dict:
+        """id(rule) -> its place among every rule (made when first asked)."""
+        if self._index is None:
+            self._index = {id(r): i for i, r in enumerate(self.rules)}
+        return self._index
 
     def writes(self, rule) -> frozenset:
         """The variables the rule's action (named actions spliced) assigns."""
@@ -480,6 +487,7 @@ def _racing_blocks(group: list, info: list, facts: _Rules, timing: dict) -> list
     where = {key: i for i, key in reversed(list(enumerate(keys)))}   # first index of each
     order = sorted(kinds, key=where.__getitem__)
     blocks = []
+    index: dict = {}            # id(rule) -> its place in the group, when asked
     for x, kx in enumerate(order):
         for ky in order[x:]:
             a, b = first[kx], first[ky]
@@ -489,14 +497,17 @@ def _racing_blocks(group: list, info: list, facts: _Rules, timing: dict) -> list
                 continue
             ia, ib = where[kx], where[ky]
             if kx == ky:
+                if not index:
+                    index.update((id(r), i) for i, r in enumerate(group))
                 b = kinds[kx][1]
-                ib = group.index(b)
+                ib = index[id(b)]       # (by identity: rules compare by value, slowly)
             ab = _pair_races(a, b, info[ia], info[ib], facts, timing)
             ba = ab if kx == ky else _pair_races(b, a, info[ib], info[ia], facts, timing)
             if ab and ba:
                 blocks.append((a, b, kinds[kx], kinds[ky]))
             elif ab or ba:      # it depends on which comes first: pair by pair
-                index = {id(r): i for i, r in enumerate(group)}
+                if not index:
+                    index.update((id(r), i) for i, r in enumerate(group))
                 for x in kinds[kx]:
                     for y in kinds[ky]:
                         if (ab if index[id(x)] < index[id(y)] else ba):

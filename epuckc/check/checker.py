@@ -39,6 +39,10 @@ class Checker(Names, Externs, RobotSettings, Values, Exprs, Variables, Ranges, C
     calls.py, rules.py), the whole-program analyses in modes.py and
     arbitration.py."""
 
+    # the rules as runs (owner, resolved rules), each the same while its owner
+    # is: what W009 keeps by run (the language server's, ide/recheck.py)
+    rule_groups = None
+
     def __init__(self, program: ast.Program, diags: Collector,
                  base_dir: Optional[Path] = None, target: str = "host"):
         self.program = program
@@ -74,11 +78,9 @@ class Checker(Names, Externs, RobotSettings, Values, Exprs, Variables, Ranges, C
     # -- entry point --
 
     def check(self) -> CheckedProgram:
-        self._declare()
-        robot_blocks = self.program.of_type(ast.RobotBlock)
-        self._robot(robot_blocks)
+        robot_given = self._declarations()
         self._var_ranges()
-        out = CheckedProgram(self.program.file, self.geo, robot_given=bool(robot_blocks))
+        out = CheckedProgram(self.program.file, self.geo, robot_given=robot_given)
         out.externs = self.externs
         out.variables = self.vars
         out.const_arrays = {name: tuple(e.value for e in values)
@@ -90,15 +92,36 @@ class Checker(Names, Externs, RobotSettings, Values, Exprs, Variables, Ranges, C
         # "never used") are drawn only from a complete program: a statement
         # or call dropped by an error may be the very one that was missing,
         # and a warning caused by an error is noise (a cascade).
-        complete = not self.diags.has_errors
+        complete = not self._has_errors()
         self._never_fire(out, complete)
         if complete:
             self._unused()
         out.devices = frozenset(self.devices_used)
-        modes.check_program(self, out, complete)
-        races.check_program(self, out)
+        self._modes_program(out, complete)
+        self._races(out)
         self._no_warnings_beside_errors()
         return out
+
+    def _has_errors(self) -> bool:
+        return self.diags.has_errors
+
+    def _races(self, out: CheckedProgram):
+        """W009 (races.py), by the runs of rules (rule_groups) when kept."""
+        races.check_program(self, out, self.rule_groups)
+
+    def _modes_program(self, out: CheckedProgram, complete: bool):
+        """modes.check_program (the language server gives it its rules in
+        modes and the modes they enter, kept by blocks of rules)."""
+        modes.check_program(self, out, complete)
+
+    def _declarations(self) -> bool:
+        """Every declaration and the robot block (the language server
+        replays them while the statements that declare are the same);
+        whether the program describes the robot."""
+        self._declare()
+        robot_blocks = self.program.of_type(ast.RobotBlock)
+        self._robot(robot_blocks)
+        return bool(robot_blocks)
 
     def _rules(self, out: CheckedProgram):
         """Resolve every rule, in the file's order (the language server

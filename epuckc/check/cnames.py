@@ -259,6 +259,14 @@ def _extract_from_runtime_headers() -> CNames:
 
 
 @lru_cache(maxsize=1)
+def names_key() -> str:
+    """What the names an extern may not take are extracted from (the C
+    compiler and the runtime's headers), as a string: what a result that
+    used them depends on (check/cache.py)."""
+    return _cache_key(_compiler())
+
+
+@lru_cache(maxsize=1)
 def visible_names() -> CNames:
     """The names, from the cache when the headers and compiler are the
     same as when they were extracted."""

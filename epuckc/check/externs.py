@@ -3,6 +3,8 @@ parameter types, the C file beside the rule file."""
 from __future__ import annotations
 
 import os
+from pathlib import Path
+from typing import Optional
 
 from ..diagnostics import Note
 from ..stdlib.table import EXTERN_TYPES, Param
@@ -72,17 +74,23 @@ class Externs:
 
     def _extern_file(self, stmt: ast.ExternDef):
         looked = self.base_dir / stmt.file
-        try:
-            os.stat(looked)
-            problem = None if looked.is_file() else "is not a file"
-        except FileNotFoundError:
-            problem = "does not exist"
-        except OSError as exc:      # a name longer than NAME_MAX, a loop of links, ...
-            problem = f"cannot be used: {exc.strerror or exc}"
-        except ValueError:          # a NUL byte
-            problem = "cannot be used: it contains a NUL character"
+        problem = extern_file_problem(looked)
         if problem is not None:
             self.diags.error("E040", stmt.file_span,
                              f"the C file {_code(_clip(stmt.file, 60))} {problem}",
                              help=f"epuckc looked for `{_clip(str(looked), 100)}`: the path is "
                                   "relative to the folder of the rule file")
+
+
+def extern_file_problem(looked: Path) -> Optional[str]:
+    """What is wrong with an extern's C file (E040), or None: all the
+    checker asks of the file system (check/cache.py asks it again)."""
+    try:
+        os.stat(looked)
+        return None if looked.is_file() else "is not a file"
+    except FileNotFoundError:
+        return "does not exist"
+    except OSError as exc:      # a name longer than NAME_MAX, a loop of links, ...
+        return f"cannot be used: {exc.strerror or exc}"
+    except ValueError:          # a NUL byte
+        return "cannot be used: it contains a NUL character"

@@ -5,10 +5,8 @@ import gc
 from pathlib import Path
 from typing import Optional
 
-from .checker import check
 from .program import CheckedProgram
 from ..diagnostics import ERROR, Collector, Diagnostic, Report
-from ..syntax.parser import parse
 from ..base.records import record
 from ..base.source import SourceFile, Span
 
@@ -17,6 +15,7 @@ from ..base.source import SourceFile, Span
 class FrontEndResult:
     source: Optional[SourceFile]
     checked: Optional[CheckedProgram]      # None when there are errors
+    program: object = None                 # the ast.Program (None if the file is not text)
 
 
 class InputError(Exception):
@@ -45,13 +44,17 @@ def read_error(name: str, exc: OSError) -> InputError:
 
 
 def check_file(path: Path, report: Report, shown_name: Optional[str] = None,
-               text: Optional[str] = None, target: str = "host") -> FrontEndResult:
+               text: Optional[str] = None, target: str = "host",
+               data: Optional[bytes] = None) -> FrontEndResult:
     """Parse and check one rule file, adding its diagnostics to `report`.
     `text` replaces the file's contents (an editor's unsaved buffer);
+    `data` is the file's bytes when they were read already (check/cache.py);
     `target` the robot it is for (devices it lacks are E070)."""
     name = shown_name if shown_name is not None else str(path)
     if text is not None:
         source, problem = SourceFile(name, text), None
+    elif data is not None:
+        source, problem = SourceFile.from_bytes(data, name)
     else:
         try:
             source, problem = SourceFile.from_path(path, name)
@@ -67,6 +70,10 @@ def check_file(path: Path, report: Report, shown_name: Optional[str] = None,
                     help="save the file as UTF-8 text; rule files are plain text (.epk)")
         report.extend(diags.items)
         return FrontEndResult(source, None)
+    # (the parser and checker are imported here: `check` of files that are
+    # all in its cache, check/cache.py, runs without them)
+    from .checker import check
+    from ..syntax.parser import parse
     # The AST has no reference cycles, and the cyclic garbage collector,
     # run again and again over a growing heap of nodes, doubled the time
     # of large files; it is paused while they are built.
@@ -81,4 +88,4 @@ def check_file(path: Path, report: Report, shown_name: Optional[str] = None,
         if collecting:
             gc.enable()
     report.extend(diags.items)
-    return FrontEndResult(source, None if diags.has_errors else checked)
+    return FrontEndResult(source, None if diags.has_errors else checked, program)

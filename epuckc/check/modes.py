@@ -96,28 +96,38 @@ def _steps_after_enter(checker, steps) -> Optional[object]:
     return None
 
 
-def check_program(checker, out, complete: bool = True) -> None:
-    """Whole-program checks: modes never entered [W010] (a conclusion from an
-    absence: only when the program is `complete`, free of errors); `cancel`
-    of a rule of another mode [E045]; steps of a mode's sequence after its
-    `enter` [W011]."""
-    diags = checker.diags
-    rule_mode = {}                      # rule name -> its mode (None: outside modes)
-    for name, node in checker.rule_names.items():
-        rule_mode[name] = node.mode.name if node.mode else None
+def entered_by(checker, bodies) -> set:
+    """The modes that the bodies' `enter` calls may enter."""
     entered = set()
-    for body in (list(checker._resolved_actions.values()) + [r.body for r in out.rules]
-                 if checker.modes else ()):
+    for body in bodies:
         for step in body:
             for call in may_run(checker, step):
                 if call.kind == "enter":
                     entered.add(call.name)
+    return entered
+
+
+def check_program(checker, out, complete: bool = True, in_modes=None, entered=None) -> None:
+    """Whole-program checks: modes never entered [W010] (a conclusion from an
+    absence: only when the program is `complete`, free of errors); `cancel`
+    of a rule of another mode [E045]; steps of a mode's sequence after its
+    `enter` [W011]. `in_modes`: the rules of out.rules that have a mode,
+    `entered`: a callable giving the modes the rules enter (the language
+    server keeps both by blocks of rules); by default found here."""
+    diags = checker.diags
+    rule_mode = {}                      # rule name -> its mode (None: outside modes)
+    for name, node in checker.rule_names.items():
+        rule_mode[name] = node.mode.name if node.mode else None
+    if checker.modes:
+        by_rules = entered_by(checker, [r.body for r in out.rules]) if entered is None \
+            else entered()
+        entered = by_rules | entered_by(checker, checker._resolved_actions.values())
     for name, node in checker.modes.items():
         if complete and name != checker.initial_mode and name not in entered:
             diags.warning("W010", node.name.span, f"mode {_code(name)} is never entered",
                           help=f"its rules can never fire: add `enter {name}` to an action, or "
                                f"mark it `initial mode {name} {{` to start in it")
-    for rule in out.rules:
+    for rule in out.rules if in_modes is None else in_modes:
         if rule.mode is None:
             continue
         for call in (c for step in flat_steps(checker, rule.body)

@@ -3,6 +3,8 @@ motors in the same poll (found by arbitration.py), each named, with the
 fix that fits it; in a big program, by kinds of rules, every rule listed."""
 from __future__ import annotations
 
+import itertools
+
 from ..diagnostics import Note
 from .arbitration import (describe, head_text, _is_enter, _code, _Rules, _racing_pairs, EXPAND_RULES,
                           _events_that_never_occur, _early, RuleFacts)
@@ -15,82 +17,164 @@ MAX_REPORTS = 10
 class RaceMemo:
     """W009 kept between two analyses of one document (the language
     server's, ide/incremental.py): each rule's facts (while the named
-    actions are the same), and the last pair analysis with what it was
-    computed from (each rule's facts' key, the intervals the motor rules'
-    conditions read, which events never occur, whether an entry stops).
-    An edit that leaves those the same (a rule that commands no motor and
-    writes the same variables, a changed number in an action) reuses the
-    pairs; any other computes them again."""
+    actions are the same), what each group of rules (a piece of the
+    document, ide/pieces.py) gives the pair analysis, and the last pair
+    analysis with what it was computed from: the motor rules' facts' keys
+    in order, the intervals their conditions read, which events never
+    occur, whether an entry stops, and, if the pairs asked in what order
+    rules write variables, the order of the rules that write and those
+    that command the motors. An edit that leaves those the same (a rule
+    that commands no motor, a changed number in an action, a rule taken
+    out that writes nothing a motor rule reads) reuses the pairs; any
+    other computes them again."""
     def __init__(self):
         self.env = None
         self.named: dict = {}       # named action -> whether it commands the motors
         self.rules: dict = {}       # id(ResolvedRule) -> (rule, RuleFacts)
-        self.pairs = None           # (key, pairs, blocks, by_timing_only), rules as indices
+        self.groups: dict = {}      # id(group's owner) -> _Group
+        self.read = None            # (the motor rules' keys, the names their conditions read)
+        self.pairs = None           # (key, walked, order, pairs, blocks, by_timing_only)
         self.said = ()              # (what the last warnings were made from, them, the rules)
+        self.kinds: dict = {}       # id(first rule of a kind) -> (it, key, its warning, rules)
 
 
-def _facts(checker, rules, memo: RaceMemo, never) -> tuple:
-    """(id(rule) -> RuleFacts of every rule, from `memo` where the rule is
-    the same object and the named actions are the same; their keys in
-    order; the places of the rules that command the motors, but those
-    whose event never occurs)."""
+class _Group:
+    """What W009 reads of a run of consecutive rules, computed once while
+    the run is the same (its `owner` kept alive): each rule's facts, what
+    tells whether an entry stops the motors, and, by the events that never
+    occur, its motor rules (their keys, the names their conditions read)
+    and the order of its rules that write or command the motors."""
+    __slots__ = ("owner", "rules", "facts", "id_facts", "moves_outside", "enters",
+                 "entry_moves", "stops", "by_never")
+
+    def __init__(self, owner, rules, checker, memo: RaceMemo):
+        known, named = memo.rules, memo.named
+        facts = []
+        for r in rules:
+            hit = known.get(id(r))
+            if hit is None or hit[0] is not r:
+                hit = known[id(r)] = (r, RuleFacts(checker, r, named))
+            facts.append(hit[1])
+        self.owner, self.rules, self.facts = owner, rules, facts
+        self.id_facts = [(id(r), f) for r, f in zip(rules, facts)]
+        self.moves_outside = any(f.moves_outside for f in facts)
+        self.enters = any(f.enters for f in facts)
+        self.entry_moves = {r.mode for r, f in zip(rules, facts) if f.entry_moves}
+        # (its rules that stop: whether one is not an `on enter`, and the others)
+        stops = [r for r, f in zip(rules, facts) if f.stops]
+        self.stops = (any(not _is_enter(r) for r in stops), [r for r in stops if _is_enter(r)])
+        self.by_never: dict = {}
+
+    def motor(self, never: frozenset) -> tuple:
+        """(the motor rules but those whose event never occurs, their keys,
+        the names their conditions read, (is motor, key) of each rule that
+        writes or commands the motors, their ids)."""
+        found = self.by_never.get(never)
+        if found is None:
+            rules, keys, names, order, ids = [], [], set(), [], []
+            for r, f in zip(self.rules, self.facts):
+                motor = f.motor and not (r.event.kind == "standard" and r.event.name in never)
+                if motor:
+                    rules.append(r)
+                    keys.append(f.key)
+                    names.update(f.names)
+                if motor or f.writes:
+                    order.append((motor, f.key))
+                    ids.append(id(r))
+            found = self.by_never[never] = (rules, tuple(keys), frozenset(names), tuple(order),
+                                            tuple(ids))
+        return found
+
+
+def _groups(checker, rules, groups, memo: RaceMemo) -> list:
+    """The _Group of each (owner, rules) of `groups` (None: all the rules,
+    one group), from `memo` where the owner is the same."""
     env = tuple(checker._resolved_actions.items())
     if memo.env != env:
-        memo.env, memo.named, memo.rules = env, {}, {}
-    known, named = memo.rules, memo.named
-    out, keys, motor = {}, [], []
-    for i, r in enumerate(rules):
-        hit = known.get(id(r))
-        if hit is None or hit[0] is not r:
-            hit = known[id(r)] = (r, RuleFacts(checker, r, named))
-        f = out[id(r)] = hit[1]
-        keys.append(f.key)
-        if f.motor and not (r.event.kind == "standard" and r.event.name in never):
-            motor.append(i)
-    if len(known) > 2 * len(out) + 100:
-        memo.rules = {k: v for k, v in known.items() if k in out}
-    return out, keys, motor
+        memo.env, memo.named, memo.rules, memo.groups = env, {}, {}, {}
+    old, out, kept = memo.groups, [], {}
+    for owner, run in groups if groups is not None else ((None, rules),):
+        group = old.get(id(owner)) if owner is not None else None
+        if group is None or group.owner is not owner:
+            group = _Group(owner, run, checker, memo)
+        if owner is not None:
+            kept[id(owner)] = group
+        out.append(group)
+    memo.groups = kept
+    if len(memo.rules) > 2 * len(rules) + 100:
+        live = {i for g in out for i, _ in g.id_facts}
+        memo.rules = {k: v for k, v in memo.rules.items() if k in live}
+    return out
 
 
-def check_program(checker, out) -> None:
+def _entry_stops(checker, groups: list) -> bool:
+    """arbitration.entry_stops, from the groups' parts."""
+    if any(e.kind == "action" for e in checker.externs.values()):
+        return False
+    if any(g.moves_outside for g in groups):
+        return False
+    if not any(g.enters for g in groups):
+        return True
+    if any(g.stops[0] for g in groups):
+        return False
+    entry_moves = set().union(*(g.entry_moves for g in groups))
+    return not any(r.mode in entry_moves for g in groups for r in g.stops[1])
+
+
+def check_program(checker, out, groups=None) -> None:
+    """W009 over `out.rules`; `groups`: them as (owner, rules) runs, in
+    order, each the same while its owner is (the language server's)."""
     memo = getattr(checker, "race_memo", None) or RaceMemo()
-    never = _events_that_never_occur(checker)
+    never = frozenset(_events_that_never_occur(checker))
     rules = out.rules
-    facts, keys, motor = _facts(checker, rules, memo, never)
-    if len(motor) < 2:
+    found_groups = _groups(checker, rules, groups, memo)
+    motors = [g.motor(never) for g in found_groups]
+    motor_rules = list(itertools.chain.from_iterable(m[0] for m in motors))
+    if len(motor_rules) < 2:
         return
-    motor_rules = [rules[i] for i in motor]
-    found = _Rules(checker, motor_rules, rules, facts)
-    read = set().union(*(facts[id(r)].names for r in motor_rules))
-    key = (frozenset(never), found.entry_stops, tuple(motor), tuple(keys),
-           tuple((n, checker.vars[n].lo, checker.vars[n].hi) for n in sorted(read)
-                 if n in checker.vars))
-    if memo.pairs is not None and memo.pairs[0] == key:
-        _, pairs, blocks, found.by_timing_only = memo.pairs
-        pairs = [(rules[a], rules[b]) for a, b in pairs]
-        blocks = [_block(rules, *block) for block in blocks]
-    else:
+    motor_keys = tuple(itertools.chain.from_iterable(m[1] for m in motors))
+    if memo.read is None or memo.read[0] != motor_keys:
+        memo.read = (motor_keys, sorted(frozenset().union(*(m[2] for m in motors))))
+    stops = _entry_stops(checker, found_groups)
+    key = (never, stops, motor_keys, tuple(map(checker.vars.get, memo.read[1])))
+    found = None
+
+    def every_rule():
+        return _Rules(checker, motor_rules, rules,
+                      dict(itertools.chain.from_iterable(g.id_facts for g in found_groups)),
+                      stops=stops)
+    last = memo.pairs
+    if last is None or last[0] != key or (last[1] and last[2] != tuple(
+            itertools.chain.from_iterable(m[3] for m in motors))):
+        found = every_rule()
         pairs, blocks = _pairs(motor_rules, found)
-        at = found.index
-        memo.pairs = (key, [(at[id(a)], at[id(b)]) for a, b in pairs],
-                      [_block(at, *block) for block in blocks], found.by_timing_only)
+        at = {id(r): i for i, r in enumerate(motor_rules)}
+        walked = found._walk is not None        # (the pairs read the order of the writes)
+        order = tuple(itertools.chain.from_iterable(m[3] for m in motors)) if walked else None
+        last = memo.pairs = (key, walked, order, [(at[id(a)], at[id(b)]) for a, b in pairs],
+                             [_block(at, *block) for block in blocks], found.by_timing_only)
+    by_timing_only = last[5]
     # what the warnings say depends on the rules they name (and, for the
-    # pairs' help, on every rule): the same objects say the same
-    # (by their ids: memo.said keeps the rules alive)
-    said_from = (found.by_timing_only, tuple(map(id, rules)) if pairs else (),
-                 tuple((id(a), id(b)) for a, b in pairs),
-                 tuple((id(a), id(b), tuple(map(id, xs)), tuple(map(id, ys)))
-                       for a, b, xs, ys in blocks))
+    # pairs' help, on the rules that write): the same pairs of the same
+    # objects say the same (by their ids: memo.said keeps the rules alive)
+    said_from = (last, tuple(map(id, motor_rules)),
+                 tuple(itertools.chain.from_iterable(m[4] for m in motors)) if last[3] else ())
     diags = checker.diags
-    if memo.said and memo.said[0] == said_from:
+    if memo.said and memo.said[0][0] is last and memo.said[0][1:] == said_from[1:]:
         diags.items.extend(memo.said[1])
         return
+    if found is None:
+        pairs = [(motor_rules[a], motor_rules[b]) for a, b in last[3]]
+        blocks = [_block(motor_rules, *block) for block in last[4]]
+        # (the blocks' warnings need only the motor rules' order; the pairs' all)
+        found = every_rule() if pairs else _MotorOrder(motor_rules)
+        found.by_timing_only = by_timing_only
     first = len(diags.items)
-    _report(checker, pairs, blocks, found)
+    _report(checker, pairs, blocks, found, memo)
     said = diags.items[first:]
     if memo.said and said == list(memo.said[1]):
         diags.items[first:] = memo.said[1]  # the same objects: what caches them keeps them
-    memo.said = (said_from, tuple(diags.items[first:]), rules, blocks)
+    memo.said = (said_from, tuple(diags.items[first:]), rules, motor_rules)
 
 
 def _block(to, a, b, xs, ys) -> tuple:
@@ -120,9 +204,16 @@ def _pairs(motor_rules, facts: _Rules) -> tuple:
     return pairs, blocks
 
 
-def _report(checker, pairs, blocks, facts: _Rules) -> None:
+class _MotorOrder:
+    """What the warnings of big groups read of _Rules: the rules' order."""
+    def __init__(self, rules: list):
+        self.index = {id(r): i for i, r in enumerate(rules)}
+        self.by_timing_only = False
+
+
+def _report(checker, pairs, blocks, facts: _Rules, memo=None) -> None:
     if blocks:              # a big program: the pairs by kinds of rules
-        _report_blocks(checker, blocks, facts)
+        _report_blocks(checker, blocks, facts, memo)
     pairs.sort(key=lambda p: (facts.index[id(p[0])], facts.index[id(p[1])]))
     for loser, winner in pairs[:MAX_REPORTS]:
         if facts.key(winner) < facts.key(loser):
@@ -148,10 +239,12 @@ def _report(checker, pairs, blocks, facts: _Rules) -> None:
                  "exclude each other")
 
 
-def _report_blocks(checker, blocks, facts: _Rules) -> None:
+def _report_blocks(checker, blocks, facts: _Rules, memo=None) -> None:
     """W009 for a big group: one warning a kind of rules (rules alike in
     timing and condition), naming every rule it races with (lines as
-    ranges)."""
+    ranges). With `memo` (RaceMemo), a kind's warning is the last one while
+    its rules and those it races with are the same objects."""
+    last, kept = (memo.kinds if memo is not None else {}), {}
     kinds: dict = {}        # id(first rule of a kind) -> [rule, its kind, others, among itself]
     for a, b, xs, ys in blocks:
         entry = kinds.setdefault(id(a), [a, xs, [], False])
@@ -160,6 +253,12 @@ def _report_blocks(checker, blocks, facts: _Rules) -> None:
         else:
             entry[2].extend(ys)
     for a, xs, others, itself in sorted(kinds.values(), key=lambda e: facts.index[id(e[0])]):
+        key = (tuple(map(id, xs)), tuple(map(id, others)), itself, facts.by_timing_only)
+        said = last.get(id(a))
+        if said is not None and said[0] is a and said[1] == key:
+            checker.diags.items.append(said[2])
+            kept[id(a)] = said
+            continue
         who = describe(a) if len(xs) == 1 else \
             f"the {len(xs)} rules like {_code(head_text(a))} ({_compact(xs)})"
         races = (["each other"] if itself else []) + ([_compact(others)] if others else [])
@@ -172,6 +271,9 @@ def _report_blocks(checker, blocks, facts: _Rules) -> None:
                      f" (this program has so many rules of priority {a.priority} that command "
                      f"the motors that they were compared by their timing only, not by their "
                      f"conditions)" if facts.by_timing_only else ""))
+        kept[id(a)] = (a, key, checker.diags.items[-1], xs, others)
+    if memo is not None:
+        memo.kinds = kept
 
 
 def _compact(rules) -> str:

@@ -21,18 +21,24 @@ The result of a component depends only on its assignments, its members'
 declarations and the final intervals it reads (plus the constants and the
 geometry, which every value may use). With a memo (the language server's,
 ide/incremental.py), a component whose inputs are unchanged is not
-evaluated again: an edit costs the components it reaches, not the program.
+evaluated again, and after an edit only the components that read what
+changed are visited (by the graph's readers, in dependency order): an edit
+costs the components it reaches, not the program. Within a fixpoint, and
+from one analysis to the next, what an assignment gives is kept by the
+state of what it read (_assigned_where). What an assignment is, what it
+reads and the graph's components are dependencies.py's.
 """
 from __future__ import annotations
 
+import heapq
 import itertools
 
 from ..diagnostics import Collector
 from ..stdlib.units import INT16_MAX, INT16_MIN
-from ..syntax import ast
 from . import conditions
+from .dependencies import _needs, components, statement_assignments  # noqa: F401 (the language server's)
 from .messages import _shown
-from .program import BOOL
+from .program import BOOL, VarInfo
 
 # passes of a component's assignments before the growing bounds are widened
 RANGE_PASSES = 4
@@ -56,76 +62,25 @@ class RangeMemo:
         self.decls: dict = {}       # variable -> (kind, initial value)
         self.graph = None           # variable -> the variables it depends on
         self.order: list = []       # its components: (members, members' set, what they read)
+        self.readers: dict = {}     # variable -> the places in `order` of the components reading it
         self.results: dict = {}     # members -> (inputs, {name: (lo, hi)})
         self.ranges: dict = {}      # variable -> (lo, hi)
+        self.solved = None          # variable -> its VarInfo, the last analysis's
+        self.pieces: dict = {}      # what the language server keeps by piece (ide/passes.py)
+        self.piece_list: list = []  # the last analysis's pieces, in order
+        self.where: dict = {}       # id(statement) -> its piece (of those that assign)
+        self.moved = None           # the variables whose intervals moved, when only theirs did
+        self.values: dict = {}      # what each assignment gave, by what it read (_assigned_where)
 
 
-_ANY = object()     # (a statement whose assignments do not depend on its mode)
 _SAID_ONCE = ("_const_reported", "_const_diagnostics", "device_reported")
 
 
-def _runs_once(stmt) -> bool:
-    """A rule that runs at most once (its assignments are joined once each)."""
-    return isinstance(stmt, ast.Rule) and not stmt.repeat and stmt.mode is None \
-        and stmt.trigger != "every"
-
-
-def _names_read(value) -> frozenset:
-    """The names an expression reads: variables, constants and readings (a
-    loop: expressions may be deep)."""
-    found, todo = set(), [value]
-    while todo:
-        node = todo.pop()
-        cls = node.__class__
-        if cls is ast.ConstRef:
-            found.add(node.name.name)
-        elif cls is ast.BinOp:
-            todo += (node.left, node.right)
-        elif cls is ast.UnaryOp:
-            todo.append(node.operand)
-        elif cls is ast.Paren:
-            todo.append(node.expr)
-        elif cls is ast.FuncCall:
-            todo += [a.value for a in node.args or () if hasattr(a, "value")]
-    return frozenset(found)
-
-
-def _assignments(calls, context: tuple, actions, spoiled=frozenset()) -> list:
-    """(Assign, context, spoiled) for each assignment of a step's `calls`,
-    those inside `if` branches too: `context` the (condition, held) pairs
-    that hold where it runs (its branch's condition held, the ones before
-    it did not), `spoiled` the variables a call before it in those branches
-    may have assigned since (True: any, after a named action)."""
-    out = []
-    spoiled = spoiled if spoiled is True else set(spoiled)
-    for call in calls:
-        cls = call.__class__
-        if cls is ast.Assign:
-            out.append((call, context, spoiled if spoiled is True else frozenset(spoiled)))
-            if spoiled is not True:
-                spoiled.add(call.target.name)
-        elif cls is ast.IfAction:
-            failed = ()
-            for branch in call.branches:
-                here = context + failed + ((branch.condition, True),)
-                for k, step in enumerate(branch.body.steps):
-                    out += _assignments(step.calls, here if k == 0 else (), actions,
-                                        spoiled if k == 0 else frozenset())
-                failed += ((branch.condition, False),)
-            if call.otherwise is not None:
-                for k, step in enumerate(call.otherwise.steps):
-                    out += _assignments(step.calls, context + failed if k == 0 else (),
-                                        actions, spoiled if k == 0 else frozenset())
-            if spoiled is not True:
-                for inner in ast.calls_within((call,)):
-                    if inner.__class__ is ast.Assign:
-                        spoiled.add(inner.target.name)
-                    elif inner.__class__ is ast.Call and inner.name.name in actions:
-                        spoiled = True
-                        break
-        elif cls is ast.Call and call.name.name in actions:
-            spoiled = True
-    return out
+def _copy(info: VarInfo, bounds=None) -> VarInfo:
+    """A VarInfo of its own (with the interval `bounds`)."""
+    lo, hi = bounds if bounds is not None else (info.lo, info.hi)
+    return VarInfo(info.name, info.kind, info.init, lo, hi, info.index, info.node, info.size,
+                   info.inits)
 
 
 def _inputs(checker, entries: list, members: tuple, outside) -> tuple:
@@ -143,51 +98,63 @@ def _inputs(checker, entries: list, members: tuple, outside) -> tuple:
                   for n in sorted(outside)))
 
 
-def components(graph: dict) -> list:
-    """The strongly connected components of `graph` (node -> the nodes it
-    depends on), each a tuple in the order of `graph`, dependencies first.
-    Tarjan's algorithm with an explicit stack."""
-    order = {n: i for i, n in enumerate(graph)}
-    index, low, on_stack, stack, out = {}, {}, set(), [], []
-    counter = 0
-    for root in graph:
-        if root in index:
-            continue
-        work = [(root, iter(graph[root]))]
-        index[root] = low[root] = counter
-        counter += 1
-        stack.append(root)
-        on_stack.add(root)
-        while work:
-            node, edges = work[-1]
-            pushed = False
-            for nxt in edges:
-                if nxt not in index:
-                    index[nxt] = low[nxt] = counter
-                    counter += 1
-                    stack.append(nxt)
-                    on_stack.add(nxt)
-                    work.append((nxt, iter(graph[nxt])))
-                    pushed = True
-                    break
-                if nxt in on_stack:
-                    low[node] = min(low[node], index[nxt])
-            if pushed:
-                continue
-            work.pop()
-            if work:
-                parent = work[-1][0]
-                low[parent] = min(low[parent], low[node])
-            if low[node] == index[node]:
-                members = []
-                while True:
-                    m = stack.pop()
-                    on_stack.discard(m)
-                    members.append(m)
-                    if m == node:
-                        break
-                out.append(tuple(sorted(members, key=order.__getitem__)))
-    return out
+# the values of an assignment kept (_assigned_where), for as many states of what it reads
+_KEPT_VALUES = 4
+_MISSING = object()
+
+
+def _state(info) -> tuple:
+    """What an assignment's value can read of a variable."""
+    if info is _MISSING:
+        return ()
+    return (info.lo, info.hi, info.kind, info.size)
+
+
+class _Value:
+    """What the intervals read of an assignment's value."""
+    __slots__ = ("kind", "lo", "hi")
+
+    def __init__(self, kind, lo, hi):
+        self.kind, self.lo, self.hi = kind, lo, hi
+
+
+class _Reads:
+    """The variables as an assignment's evaluation sees them, noting the
+    state of each one it reads (the first time: before the conditions that
+    hold where it runs narrow them); `read` None when it looked at all."""
+    __slots__ = ("_table", "read")
+
+    def __init__(self, table: dict):
+        self._table, self.read = table, {}
+
+    def get(self, name, default=None):
+        found = self._table.get(name, _MISSING)
+        read = self.read
+        if read is not None and name not in read:
+            read[name] = _state(found)
+        return default if found is _MISSING else found
+
+    def __getitem__(self, name):
+        found = self.get(name, _MISSING)
+        if found is _MISSING:
+            raise KeyError(name)
+        return found
+
+    def __contains__(self, name):
+        return self.get(name, _MISSING) is not _MISSING
+
+    def _all(self):
+        self.read = None
+        return self._table
+
+    def __iter__(self):
+        return iter(self._all())
+
+    def __len__(self):
+        return len(self._all())
+
+    def __getattr__(self, attr):        # items(), keys(), values(), ...
+        return getattr(self._all(), attr)
 
 
 class Ranges:
@@ -196,111 +163,188 @@ class Ranges:
 
     range_memo = None       # a RangeMemo where the language server keeps one
 
+    # (the language server: whether the declarations are the last analysis's,
+    # their variables the same objects, ide/passes.py)
+    _declared_same = False
+
     def _var_ranges(self):
         """Each variable's interval, component by component. With the
         language server's memo, a component is evaluated again only when
         its assignments or its members' declarations changed (a variable's
         assignments are the same objects, in the same order, when no
         statement assigning it was parsed again), or when an interval it
-        reads moved; and then only if its inputs' text differs."""
-        if not self.vars:
-            return
+        reads moved; and then only if its inputs' text differs.
+
+        A VarInfo is never changed here: a variable's interval is a new one
+        (the declared one is kept as it is, and the language server keeps
+        the last analysis's while its interval does not move, so that what
+        was checked with it compares by identity)."""
         keep = self.range_memo is not None
         memo = self.range_memo if keep else RangeMemo()
-        # (the named actions: what an assignment in a branch counts as spoiling)
-        env = (self.geo, tuple(self.consts.items()), frozenset(self.actions))
+        memo.moved = None
+        if not self.vars:
+            memo.solved = None
+            return
+        # (the named actions: what an assignment in a branch counts as spoiling;
+        # the constant arrays: what an element read gives)
+        env = (self.geo, tuple(self.consts.items()), tuple(self.const_arrays.items()),
+               frozenset(self.actions))
         if memo.env != env:
-            memo.results, memo.ranges, memo.statements = {}, {}, {}
+            memo.results, memo.ranges, memo.statements, memo.solved = {}, {}, {}, None
+            memo.pieces, memo.where, memo.values = {}, {}, {}
         memo.env = env
-        variables = self.vars
-        assigns: dict = {name: [] for name in variables}
+        self._values = memo.values
+        if len(memo.values) > 4 * len(self.vars) + 1000:        # (assignments gone)
+            memo.values.clear()
+        pristine = self.vars                # as declared
+        names = tuple(pristine)
+        same_names = names == memo.names
+        assigns, changed, place = self._assignments_by_variable(memo, same_names)
+        fast = same_names and changed is not None and self._declared_same \
+            and memo.solved is not None
+        old_assigns, old_decls, old_graph = memo.assigns, memo.decls, memo.graph
+        if fast:            # (the declarations are the same objects: only what changed)
+            graph, decls = old_graph, old_decls
+            dirty = {n for n in changed if assigns[n] != old_assigns.get(n)}
+            for name in dirty:
+                needs = _needs(name, assigns[name], pristine)
+                if needs != graph[name]:
+                    if graph is old_graph:
+                        graph = dict(old_graph)
+                    graph[name] = needs
+        else:
+            graph, decls, dirty = {}, {}, set()
+            for name, entries in assigns.items():
+                info = pristine[name]
+                decl = decls[name] = (info.kind, info.init)
+                if same_names and entries == old_assigns.get(name) and decl == old_decls.get(name):
+                    graph[name] = old_graph[name]
+                    continue
+                dirty.add(name)
+                graph[name] = _needs(name, entries, pristine)
+        memo.names, memo.assigns, memo.decls = names, assigns, decls
+        regraphed = graph is not old_graph and graph != old_graph
+        if regraphed:
+            memo.graph, memo.order, memo.readers = graph, [], {}
+            for at, members in enumerate(components(graph)):
+                inside = frozenset(members)
+                reads = inside.union(*(graph[m] for m in members))
+                memo.order.append((members, inside, reads))
+                for name in reads:
+                    memo.readers.setdefault(name, []).append(at)
+        old_results, old_ranges = memo.results, memo.ranges
+        last = memo.solved if fast else None
+        variables = self.vars = dict(last) if fast else pristine
+        moved = set()               # variables whose interval is not the last analysis's
+        solving = (assigns, place, keep, variables, pristine, last, old_ranges)
+        if fast and not regraphed:
+            # only the components that read what changed, in dependency order
+            results, todo = old_results, []
+            for name in dirty:
+                todo += memo.readers.get(name, ())
+            heapq.heapify(todo)
+            done = -1
+            while todo:
+                at = heapq.heappop(todo)
+                if at == done:
+                    continue
+                done = at
+                for name in self._component(memo.order[at], results, results.get, solving):
+                    moved.add(name)
+                    for reader in memo.readers.get(name, ()):
+                        if reader > at:
+                            heapq.heappush(todo, reader)
+        else:
+            results = {}
+            for members, inside, reads in memo.order:
+                old = old_results.get(members)
+                if old is not None and not (dirty & reads) and not (moved & reads):
+                    results[members] = old
+                    if not fast:
+                        moved.update(self._give(old[1], variables, pristine, None, old_ranges))
+                    continue
+                moved.update(self._component((members, inside, reads), results,
+                                             old_results.get, solving))
+        memo.results = results
+        if fast:
+            for name in moved:
+                info = variables[name]
+                old_ranges[name] = (info.lo, info.hi)
+        else:
+            memo.ranges = {name: (info.lo, info.hi) for name, info in variables.items()}
+        memo.solved = variables
+        # (when the variables are the last analysis's VarInfo objects but
+        # these: what the language server revalidates by, ide/recheck.py)
+        memo.moved = moved if fast else None
+
+    def _component(self, component: tuple, results: dict, old_result, solving: tuple) -> list:
+        """Solve one component again (when its inputs' text differs from the
+        last result's) and give its members their intervals; the members
+        whose intervals moved."""
+        members, inside, reads = component
+        assigns, place, keep, variables, pristine, last, old_ranges = solving
+        entries = [e for m in members for e in assigns[m]]
+        if not entries:         # its members keep their declared intervals
+            results.pop(members, None)
+            out = []
+            for m in members:
+                info = variables[m] = pristine[m]
+                if old_ranges.get(m) != (info.lo, info.hi):
+                    out.append(m)
+            return out
+        if len(members) > 1:                                # in file order
+            entries.sort(key=place)
+        inputs = _inputs(self, entries, members, reads - inside) if keep else None
+        old = old_result(members)
+        if old is not None and old[0] == inputs:
+            result = old[1]
+        else:
+            for m in members:           # (solved from the declared intervals)
+                variables[m] = _copy(pristine[m])
+            self._contexts = {id(e[0]): (e[6], e[7]) for e in entries if e[6]}
+            result = self._solve([e[0] for e in entries], {id(e[0]) for e in entries if e[1]})
+        results[members] = (inputs, result)
+        return self._give(result, variables, pristine, last, old_ranges)
+
+    @staticmethod
+    def _give(result: dict, variables: dict, pristine: dict, last, old_ranges: dict) -> list:
+        """The variables of a component their intervals: the last analysis's
+        VarInfo (`last`) where it has them, the declared one where they are
+        declared, else a new one; those whose intervals moved."""
+        moved = []
+        for m, bounds in result.items():
+            info = variables[m]
+            if (info.lo, info.hi) != bounds:
+                info = variables[m] = _copy(pristine[m], bounds)
+            if last is not None:
+                before = last.get(m)
+                if before is not None and before is not info and (before.lo, before.hi) == bounds:
+                    variables[m] = before
+            if old_ranges.get(m) != bounds:
+                moved.append(m)
+        return moved
+
+    def _assignments_by_variable(self, memo: RangeMemo, same_names: bool) -> tuple:
+        """(variable -> its assignments' entries in file order, the variables
+        whose assignments may differ from the memo's (None: any), the key
+        that puts entries in file order). The language server's does it by
+        pieces of the document (ide/passes.py)."""
+        assigns: dict = {name: [] for name in self.vars}
         known, seen = memo.statements, {}
         for stmt in self.program.statements:
-            # hit: (statement, its mode when it is a rule with assignments, else
-            # _ANY, ((target, entry), ...))
-            hit = known.get(id(stmt))
-            if hit is None or hit[0] is not stmt or (hit[1] is not _ANY and hit[1] is not stmt.mode):
-                body = stmt.body if isinstance(stmt, (ast.Rule, ast.ActionDef)) else None
-                runs_once = _runs_once(stmt)
-                # an entry: [the Assign, runs once, the names it reads (its
-                # conditions' too), its text (later), its statement's id, its
-                # place in the statement, the conditions that hold where it
-                # runs, the variables assigned before it since]
-                guard = stmt.guard if isinstance(stmt, ast.Rule) else None
-                calls = []
-                for k, step in enumerate(() if body is None else body.steps):
-                    # (an `if`'s assignments may run, where its conditions held)
-                    start = ((guard, True),) if guard is not None and k == 0 else ()
-                    calls += _assignments(step.calls, start, self.actions)
-                hit = (stmt, stmt.mode if calls and isinstance(stmt, ast.Rule) else _ANY, tuple(
-                    (c.target.name, [c, runs_once, _names_read(c.value).union(
-                        *(_names_read(cond) for cond, _ in context)), None, id(stmt), j,
-                        context, spoiled])
-                    for j, (c, context, spoiled) in enumerate(calls)))
-            seen[id(stmt)] = hit
+            hit = seen[id(stmt)] = statement_assignments(self, known, stmt)
             for name, entry in hit[2]:
                 found = assigns.get(name)
                 if found is not None:
                     found.append(entry)
         memo.statements = seen
-        self._contexts = {id(e[0]): (e[6], e[7]) for entries in assigns.values()
-                          for e in entries if e[6]}
-        if not any(assigns.values()):
-            return
-        names = tuple(variables)
-        same_names = names == memo.names
-        old_assigns, old_decls, old_graph = memo.assigns, memo.decls, memo.graph
-        graph, decls, dirty = {}, {}, set()
-        keys = variables.keys()
-        for name, entries in assigns.items():
-            info = variables[name]
-            decl = decls[name] = (info.kind, info.init)
-            if same_names and entries == old_assigns.get(name) and decl == old_decls.get(name):
-                graph[name] = old_graph[name]
-                continue
-            dirty.add(name)
-            needs = set()
-            for entry in entries:
-                needs |= entry[2] & keys
-                if entry[0].op != "=":
-                    needs.add(name)
-            graph[name] = sorted(needs)
-        memo.names, memo.assigns, memo.decls = names, assigns, decls
-        if graph != old_graph:
-            memo.graph, memo.order = graph, []
-            for members in components(graph):
-                inside = frozenset(members)
-                memo.order.append((members, inside, inside.union(*(graph[m] for m in members))))
-        results, old_results, old_ranges = {}, memo.results, memo.ranges
-        moved = set()               # variables whose interval is not the last analysis's
-        statement_place = None
-        for members, inside, reads in memo.order:
-            old = old_results.get(members)
-            if old is not None and not (dirty & reads) and not (moved & reads):
-                result = old[1]
-                results[members] = old
-            else:
-                entries = [e for m in members for e in assigns[m]]
-                if not entries:
-                    continue
-                if len(members) > 1:                                # in file order
-                    if statement_place is None:
-                        statement_place = dict(zip(seen, itertools.count()))
-                    entries.sort(key=lambda e: (statement_place[e[4]], e[5]))
-                inputs = _inputs(self, entries, members, reads - inside) if keep else None
-                if old is not None and old[0] == inputs:
-                    result = old[1]
-                else:
-                    result = self._solve([e[0] for e in entries],
-                                         {id(e[0]) for e in entries if e[1]})
-                results[members] = (inputs, result)
-            for m, bounds in result.items():
-                info = variables[m]
-                info.lo, info.hi = bounds
-                if old_ranges.get(m) != bounds:
-                    moved.add(m)
-        memo.results = results
-        memo.ranges = {name: (info.lo, info.hi) for name, info in variables.items()}
+        place: dict = {}
+
+        def in_file_order(entry):
+            if not place:
+                place.update(zip(seen, itertools.count()))
+            return place[entry[4]], entry[5]
+        return assigns, None, in_file_order
 
     def _solve(self, calls: list, once: set) -> dict:
         """A component's intervals: its assignments (in file order) joined
@@ -360,7 +404,41 @@ class Ranges:
 
     _contexts = None        # id(Assign) -> (conditions that hold where it runs, spoiled)
 
+    _values = None      # id(Assign) -> (it, [(what it read, its value)]): see _assigned_where
+
     def _assigned_where(self, call, info):
+        """_evaluated_where's value, kept: an assignment's value depends on
+        the variables it reads (noted while it is evaluated, _Reads) and on
+        its target's interval (and on the constants, geometry and named
+        actions, which the memo is kept with: RangeMemo.env); a fixpoint
+        asks the same again and again, and the language server's next
+        analysis too."""
+        memo = self._values
+        if memo is None:
+            return self._evaluated_where(call, info)
+        table, target = self.vars, _state(info)
+        known = memo.get(id(call))
+        if known is not None and known[0] is call:
+            for read, state, value in known[1]:
+                if state == target and all(_state(table.get(n, _MISSING)) == s
+                                           for n, s in read.items()):
+                    return value
+        reads = _Reads(table)
+        self.vars = reads
+        try:
+            found = self._evaluated_where(call, info)
+        finally:
+            self.vars = table
+        if reads.read is None:          # (it looked at every variable)
+            return found
+        value = None if found is None else _Value(found.kind, found.lo, found.hi)
+        if known is None or known[0] is not call:
+            known = memo[id(call)] = (call, [])
+        known[1].insert(0, (reads.read, target, value))
+        del known[1][_KEPT_VALUES:]
+        return value
+
+    def _evaluated_where(self, call, info):
         """The value an assignment gives (variables.py's `_assigned`), with
         the variables narrowed to what the conditions that hold where it
         runs leave them (its `if` branches, a rule's guard in its first

@@ -171,9 +171,10 @@ class Rules:
             return None
         return ResolvedEvent("standard", event, {}, tuple(sorted(conditions)), node=call)
 
-    def _may_never_fire(self, out: CheckedProgram):
-        """The rules _never_fire looks at (at least those that may_never_fire;
-        the language server keeps them by blocks of rules)."""
+    def _may_never_fire(self, out: CheckedProgram, events: set):
+        """The rules _never_fire looks at: at least those that may_never_fire
+        whose event is one of `events` (the language server keeps them by
+        blocks of rules, and by event)."""
         return out.rules
 
     def _never_fire(self, out: CheckedProgram, complete: bool):
@@ -183,7 +184,10 @@ class Rules:
                             "add `start_sensor` to an action, e.g. `on immediate do start_sensor`")}
         no_motion = complete and not (self.called & MOTION_ACTIONS) \
             and not any(e.kind == "action" for e in self.externs.values())
-        for rule in self._may_never_fire(out):
+        # (the events of the rules that can be warned about)
+        events = {"immediate"} | ({"stop_motor"} if no_motion else set()) | {
+            event for event, (action, *_) in needs.items() if action not in self.called and complete}
+        for rule in self._may_never_fire(out, events):
             event, node = rule.event, rule.node
             if event.kind != "standard":
                 continue

@@ -124,6 +124,10 @@ def _check_parser(sub):
     p.add_argument("--target", choices=("host", "dspic", "epuck2"), default="host",
                    help="the robot it is for: a device the target lacks is an error (E070); "
                         "host (the simulation) has every device")
+    p.add_argument("--no-cache", action="store_true",
+                   help="check every file again (by default a file is checked again only when "
+                        "it, its extern C files or epuckc changed; the results are kept in "
+                        "epuckc's cache folder, $EPUCKC_CACHE_DIR); EPUCKC_NO_CACHE does the same")
     p.set_defaults(run=cmd_check)
 
 

@@ -53,9 +53,12 @@ def _failed(report: Report, werror: bool) -> bool:
 
 def cmd_check(args) -> int:
     """Every file is checked; one that cannot be read is reported as a
-    diagnostic (E005, in every format) and the others are still checked."""
+    diagnostic (E005, in every format) and the others are still checked.
+    A file checked before is checked again only if something its result
+    depends on changed (check/cache.py)."""
     from ..diagnostics import Report
-    from ..check.frontend import InputError, check_file
+    from ..check.cache import check_cached
+    from ..check.frontend import InputError
     report = Report()
     unreadable = False
     others = 0          # world files with errors, checked as world files
@@ -68,7 +71,8 @@ def cmd_check(args) -> int:
             others += _check_other_file(Path(name), shown)
             continue
         try:
-            check_file(Path(name), report, shown_name=shown, target=args.target)
+            check_cached(Path(name), report, shown, target=args.target,
+                         use=not args.no_cache)
         except InputError as exc:
             unreadable = True
             report.diagnostics.append(exc.diagnostic(shown))

@@ -8,6 +8,7 @@ imports only base/.
 """
 from __future__ import annotations
 
+import operator
 from typing import Iterable, Optional
 
 from ..base.records import field, record
@@ -15,6 +16,7 @@ from ..base.source import SourceFile, Span
 
 ERROR = "error"
 WARNING = "warning"
+_SEVERITY = operator.attrgetter("severity")
 
 
 @record(frozen=True)
@@ -98,7 +100,7 @@ class Collector:
 
     @property
     def has_errors(self) -> bool:
-        return any(d.severity == ERROR for d in self.items)
+        return ERROR in map(_SEVERITY, self.items)       # (at C speed)
 
 
 # ---- renderings -------------------------------------------------------------

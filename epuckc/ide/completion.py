@@ -174,7 +174,7 @@ def completions(analysis: Analysis, line: int, column: int) -> list:
     from ..base.source import SourceFile
     from ..syntax.lexer import iter_tokens
     offset = analysis.offset(line, column)
-    start = analysis.starts[analysis.index_at(offset)] if analysis.starts else 0
+    start = analysis.start_of(analysis.index_at(offset)) if analysis.layout.count else 0
     prefix = analysis.text[start:offset]
     source = SourceFile("", prefix)
     tokens = list(iter_tokens(source, Collector(source)))

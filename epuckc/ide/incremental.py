@@ -46,10 +46,8 @@ from __future__ import annotations
 
 import bisect
 import gc
-import itertools
 import operator
-import re
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Optional
 
@@ -59,41 +57,40 @@ from ..check.program import CheckedProgram
 from ..diagnostics import Collector, Diagnostic
 from ..syntax import ast
 from ..syntax.lexer import MAX_LEXICAL_ERRORS
-from ..syntax.parser import ModePlacer, parse
+from ..syntax.parser import parse
+from .pieces import FirstLines, LineCache, Pieces
 from .recheck import IncrementalChecker, _Memo
-from .statements import (_CR_ENDS_LINES, _MARGIN, _ONCE, VLINE, Entry, _boundaries, _common_prefix,
-                         _common_suffix, _parse_chunk, line_starts,
-                         patched_line_starts)
+from .showing import Shown, real_words
+from .statements import (_CR_ENDS_LINES, _MARGIN, VLINE, Entry, _boundaries, _common_prefix,
+                         _common_suffix, _parse_chunk, line_starts, patched_line_starts)
 
-# words that name lines in a diagnostic's text, and those of them that are virtual
 _ID = operator.attrgetter("id")
-_STATEMENTS, _DIAGS = operator.attrgetter("statements"), operator.attrgetter("diags")
-_FIRST, _SECOND = operator.itemgetter(0), operator.itemgetter(1)
-_LINE_WORDS = re.compile(r"\b(lines?) (\d+(?:, \d+)*)")
-_VIRTUAL_LINE = re.compile(r"\blines? (?:\d+, )*?\d{7,}")
 
 # ---- the analysis of one version of a document ----------------------------------
 
-class _Named:
-    """What a Collector needs of its source: the name shown."""
-    def __init__(self, name):
-        self.name = name
-
-
 @dataclass
 class Analysis:
-    """One version of a document: its statements in order (`starts`: offset
-    where each begins; `lines`: its real first line; `entries`: its parse),
-    the AST (virtual lines), the checker and its diagnostics (real lines)."""
+    """One version of a document: where its statements are (`layout`: each
+    one's offset, first line and parse, pieces.Layout), the AST (virtual
+    lines), the checker and its diagnostics (real lines)."""
     name: str
     text: str
-    starts: list
-    lines: list
-    entries: list
+    layout: object
     program: ast.Program
     checker: Checker
     checked: CheckedProgram
     diagnostics: list = None      # Diagnostic, real positions, sorted
+    # (the last analysis's diagnostics, those taken out, those put in: showing.py)
+    delta: tuple = None
+    edit: tuple = None          # (the text's common beginning and end with the last one's)
+
+    @property
+    def starts(self) -> list:
+        """Where each statement starts (a list made when asked)."""
+        return [self.layout.start(i) for i in range(self.layout.count)]
+
+    def start_of(self, i: int) -> int:
+        return self.layout.start(i)
 
     @property
     def source(self) -> SourceFile:
@@ -107,28 +104,12 @@ class Analysis:
         ident = line // VLINE
         if ident == 0:
             return line
-        if self._starts is None:
-            self._starts = dict(zip(map(_ID, self.entries), self.lines))
         return self._starts[ident] + line % VLINE - 1
 
     def real_words(self, d: Diagnostic) -> Diagnostic:
         """A diagnostic whose words name lines (`(line 12)`, `the rules of
         lines 14, 15`: W009 names rules so) with those lines made real."""
-        if self._starts is None:
-            self._starts = dict(zip(map(_ID, self.entries), self.lines))
-        starts = self._starts
-
-        def lines(match):
-            # (in the order of the file, as the checker lists them: virtual
-            # lines follow statements' ids, not their places)
-            numbers = sorted(starts[n // VLINE] + n % VLINE - 1 if n >= VLINE else n
-                             for n in map(int, match.group(2).split(", ")))
-            return f"{match.group(1)} {', '.join(map(str, numbers))}"
-
-        def fix(text):
-            return _LINE_WORDS.sub(lines, text) if text else text
-        return replace(d, message=fix(d.message), help=fix(d.help),
-                       notes=tuple(replace(n, message=fix(n.message)) for n in d.notes))
+        return real_words(d, self._starts)
 
     def real(self, span: Span) -> Span:
         """A span of the AST (virtual lines) in the text's lines."""
@@ -137,18 +118,27 @@ class Analysis:
         return Span(self.real_line(span.line), span.column,
                     self.real_line(span.end_line), span.end_column)
 
+    def statements_on(self, vline: int) -> list:
+        """The statements that may hold a (virtual) line: those of its
+        statement (entry), found by their piece (pieces.py) without a walk
+        over the program; every statement for real lines."""
+        if vline >= VLINE and self._pieces is not None:
+            piece = self._piece_of(vline // VLINE)
+            if piece is not None and piece in self._pieces:
+                return [s for s in piece.statements if s.span.line // VLINE == vline // VLINE]
+        return self.program.statements
+
     def index_at(self, offset: int) -> int:
         """The statement that holds a character offset."""
-        return max(0, bisect.bisect_right(self.starts, offset) - 1)
+        return max(0, self.layout.bisect_right(offset) - 1)
 
     def virtual(self, line: int, column: int) -> tuple:
         """(virtual line, column) of a real position, for comparing with
         the AST's spans."""
-        i = self.index_at(self.offset(line, column))
-        ident = self.entries[i].id
-        if ident == 0:
+        _, _, first, entry, _ = self.layout.row(self.index_at(self.offset(line, column)))
+        if entry.id == 0:
             return line, column
-        return ident * VLINE + line - self.lines[i] + 1, column
+        return entry.id * VLINE + line - first + 1, column
 
     @property
     def line_starts(self) -> list:
@@ -177,21 +167,10 @@ class Analysis:
 
     def __post_init__(self):
         self._source = None
-        self._starts = None
+        self._starts = None         # statement id -> its first line (pieces.FirstLines)
         self._line_starts = None
-
-
-def _idents(d: Diagnostic) -> tuple:
-    """The statements (ids) whose virtual lines `d` has, in its spans or
-    in its words (W009 names rules by their lines)."""
-    found = {span.line // VLINE for span in (d.span, *(n.span for n in d.notes if n.span),
-                                              *(f.span for f in d.fixes))}
-    for text in (d.message, d.help or "", *(n.message for n in d.notes)):
-        if _VIRTUAL_LINE.search(text):
-            for match in _LINE_WORDS.finditer(text):
-                found.update(int(n) // VLINE for n in match.group(2).split(", "))
-    found.discard(0)
-    return tuple(sorted(found))
+        self._pieces = None         # (the analyser's pieces and their index, statements_on)
+        self._piece_of = None
 
 
 class Analyzer:
@@ -204,9 +183,13 @@ class Analyzer:
         self._prev: Optional[tuple] = None
         self._next_id = 1
         self._memo = _Memo()
-        self._placed: dict = {}     # what ModePlacer made of each statement, last time
+        self._pieces = Pieces(name)     # the statements in pieces, placed (pieces.py)
+        self._window = None         # (k, j, the rows of k..j, by, lines): see Pieces.place
         self._line_starts = None    # of the last text split (_chunks)
-        self._real: dict = {}   # id(Diagnostic) -> (it, statements, their lines, in real lines)
+        self._changed = None        # the ids of the statements an edit replaced (_chunks)
+        self._edit = None           # (common prefix, common suffix) with the last text (_chunks)
+        self._lines = LineCache()   # statements' first lines found (pieces.py)
+        self._shown = Shown()       # the diagnostics in real lines (showing.py)
 
     def analyse(self, text: str) -> Analysis:
         collecting = gc.isenabled()
@@ -223,103 +206,84 @@ class Analyzer:
                     gc.collect()
 
     def _analyse(self, text: str) -> Analysis:
-        split = self._chunks(text)
-        if split is None:
+        if not self._chunks(text):
             return self._whole(text)
-        starts, lines, entries = split
-        program, diags = self._place(entries)
+        program, diags, marks = self._pieces.place(*self._window)
         items = diags.items
-        checker = IncrementalChecker(program, diags, self._memo, **self.options)
+        checker = IncrementalChecker(program, diags, self._memo, pieces=self._pieces.pieces,
+                                     piece_of=self._pieces.of.get, marks=marks, **self.options)
         checked = checker.check()
         memo = self._memo.rules
-        if len(memo) > 2 * len(program.statements) + 100:
+        if len(memo) > 2 * program.count + 100:
             live = {id(s) for s in program.statements}
             self._memo.rules = {k: v for k, v in memo.items() if k in live}
-        analysis = self._finish(text, starts, lines, entries, program, checker, checked, items)
+        layout = self._pieces.layout
+        analysis = self._finish(text, layout, FirstLines(layout, self._pieces.of.get,
+                                                         self._lines), program,
+                                checker, checked, items, self._changed, checker.segments,
+                                checker.dropped)
         analysis._line_starts = self._line_starts     # (the split's: the same text's)
+        analysis._pieces, analysis._piece_of = self._pieces.pieces, self._pieces.of.get
+        analysis.edit = self._edit
         return analysis
 
-    def _place(self, entries) -> tuple:
-        """The program of the entries' statements (ModePlacer: mode blocks
-        span statements) and a Collector of their diagnostics, in the order
-        a whole file's parse gives them. The statements are placed all at
-        once; only if placing them says something (a mode's error, an
-        expression too deep) are they placed again entry by entry, so that
-        what it says comes between the entries' own diagnostics."""
-        for interleaved in (False, True):
-            program = ast.Program(self.name)
-            diags = Collector(_Named(self.name))
-            items = diags.items
-            placer = ModePlacer(program, diags, self._placed)
-            if not interleaved:
-                placer.extend(list(itertools.chain.from_iterable(map(_STATEMENTS, entries))))
-                if items:
-                    continue
-            said = set()
-            for entry in entries if interleaved else filter(_DIAGS, entries):
-                if interleaved and entry.statements:
-                    placer.extend(entry.statements)
-                if entry.once:
-                    for d in entry.diags:
-                        if d.code in _ONCE:
-                            if (d.code, d.message) in said:
-                                continue
-                            said.add((d.code, d.message))
-                        items.append(d)
-                elif entry.diags:
-                    items.extend(entry.diags)
-            placer.finish()
-            self._placed = placer.placed
-            return program, diags
-
-    def _chunks(self, text: str) -> Optional[tuple]:
-        """The statements of `text`: (starts, lines, entries). Only the
-        part of the text that differs from the previous version is split
-        again; statements before it are kept as they were, statements after
-        it are moved (their entries, in virtual lines, do not change)."""
-        prev = self._prev
+    def _chunks(self, text: str) -> bool:
+        """Split `text` into statements, again only where it differs from
+        the previous version: from the last statement start the edit cannot
+        move to a statement start after it that was one before; statements
+        before are kept as they were, statements after it are moved as
+        pieces (their entries, in virtual lines, do not change). What
+        replaces what is left in `_window` for Pieces.place; False when the
+        text has too many bad characters to be split so."""
+        prev, layout = self._prev, self._pieces.layout
+        n = layout.count
         if prev is None:
-            old, o_starts, o_kws, o_lines, o_entries, o_keys, bad = "", [0], [None], [1], [], [], 0
+            old, bad = "", 0
             p = s = 0
         else:
-            old, o_starts, o_kws, o_lines, o_entries, o_keys, bad = prev
+            old, bad = prev
             p = _common_prefix(old, text)
             s = _common_suffix(old, text, min(len(old), len(text)) - p)
         # the last statement start that the edit cannot move
-        k = max(0, bisect.bisect_right(o_starts, p - _MARGIN) - 1) if o_entries else 0
+        k = max(0, layout.bisect_right(p - _MARGIN) - 1) if n else 0
         delta = len(text) - len(old)
         suffix_from = len(text) - s
         # split again from there, until a statement start in the unchanged
         # end of the text that was a statement start before
-        middle = [o_starts[k]] if k > 0 else [0]
-        middle_kws = [o_kws[k]] if k > 0 else [None]
-        j = len(o_entries)      # the first old statement kept after the edit
+        first = layout.row(k) if k > 0 else (0, None)
+        middle, middle_kws = [first[0]], [first[1]]
+        j = n                   # the first old statement kept after the edit
         starts_of_lines = line_starts(text) if prev is None or self._line_starts is None \
             else patched_line_starts(self._line_starts, len(old), text, p, s)
-        for at, kw in _boundaries(text, o_starts[k], starts_of_lines):
+        for at, kw in _boundaries(text, middle[0], starts_of_lines):
             line_start = starts_of_lines[bisect.bisect_right(starts_of_lines, at) - 1]
-            if at >= suffix_from and o_entries and line_start > suffix_from:
-                i = bisect.bisect_left(o_starts, at - delta)
-                if i < len(o_starts) and o_starts[i] == at - delta:
+            if at >= suffix_from and n and line_start > suffix_from:
+                i = layout.bisect_left(at - delta)
+                if i < n and layout.start(i) == at - delta:
                     j = i
                     break
             middle.append(at)
             middle_kws.append(kw)
         # the old statements that the middle replaces: their parses may serve again
         available: dict = {}
-        for i in range(k, j):
-            available.setdefault(o_keys[i], []).append(o_entries[i])
-            bad -= o_entries[i].bad_runs
-        mid_lines, mid_entries, mid_keys = [], [], []
-        ends = middle[1:] + [o_starts[j] + delta if j < len(o_entries) else len(text)]
-        followings = middle_kws[1:] + [o_kws[j] if j < len(o_entries) else None]
-        for start, end, following in zip(middle, ends, followings):
+        replaced = set()
+        for _, _, line, entry, key in layout.rows(k, j):
+            available.setdefault(key, []).append((entry, line))
+            bad -= entry.bad_runs
+            replaced.add(entry.id)
+        relocated = False       # (an old statement in the middle, on another line)
+        after = layout.row(j) if j < n else None
+        ends = middle[1:] + [after[0] + delta if after else len(text)]
+        followings = middle_kws[1:] + [after[1] if after else None]
+        rows = []
+        for start, kw, end, following in zip(middle, middle_kws, ends, followings):
             line = bisect.bisect_right(starts_of_lines, start)
             column = start - starts_of_lines[line - 1] + 1
             key = (text[start:end], column, following)
             pool = available.get(key)
             if pool:
-                entry = pool.pop()
+                entry, was = pool.pop()
+                relocated = relocated or was != line
             else:
                 entry = _parse_chunk(self.name, " " * (column - 1) + key[0], following,
                                      self._next_id)
@@ -327,27 +291,28 @@ class Analyzer:
             bad += entry.bad_runs
             if entry.lines >= VLINE:
                 bad = MAX_LEXICAL_ERRORS
-            mid_lines.append(line)
-            mid_entries.append(entry)
-            mid_keys.append(key)
-        if j < len(o_entries):
-            # as many lines more (or fewer) as the edit added
-            shift = bisect.bisect_right(starts_of_lines, o_starts[j] + delta) - o_lines[j]
-            tail_starts = [x + delta for x in o_starts[j:]]
-            tail_lines = [x + shift for x in o_lines[j:]]
-        else:
-            tail_starts, tail_lines = [], []
-        starts = o_starts[:k] + middle + tail_starts
-        keywords = o_kws[:k] + middle_kws + o_kws[j:]
-        lines = o_lines[:k] + mid_lines + tail_lines
-        entries = o_entries[:k] + mid_entries + o_entries[j:]
-        keys = o_keys[:k] + mid_keys + o_keys[j:]
+            rows.append((start, kw, line, entry, key))
+        # as many lines more (or fewer) as the edit added
+        shift = bisect.bisect_right(starts_of_lines, after[0] + delta) - after[2] if after else 0
         if bad >= MAX_LEXICAL_ERRORS:
             self._prev = None
-            return None
-        self._prev = (text, starts, keywords, lines, entries, keys, bad)
+            self._pieces.reset()
+            return False
+        self._window = (k, j, rows, delta, shift)
+        self._edit = (p, s) if prev is not None else None
+        # the statements the edit replaced or added, when no other moved to
+        # another line (showing.py looks at what names them again)
+        self._changed = None if prev is None or shift or relocated else \
+            replaced.union(r[3].id for r in rows)
+        if self._changed is None:       # (lines moved: the first lines found again)
+            self._lines = LineCache()
+        else:
+            self._lines.generation += 1
+            for ident in replaced:
+                self._lines.lines.pop(ident, None)
+        self._prev = (text, bad)
         self._line_starts = starts_of_lines
-        return starts, lines, entries
+        return True
 
     def _whole(self, text: str) -> Analysis:
         """The whole file at once, in real lines (no reuse)."""
@@ -357,47 +322,30 @@ class Analyzer:
         checker = Checker(program, diags, **self.options)
         checked = checker.check()
         entry = Entry(0, program.statements, [], 0, source.line_count)
-        return self._finish(text, [0], [1], [entry], program, checker, checked, diags.items)
+        self._shown.reset()
+        return self._finish(text, _Whole(entry), {0: 1}, program, checker, checked, diags.items)
 
-    @staticmethod
-    def _real_diagnostic(analysis: Analysis, d: Diagnostic) -> Diagnostic:
-        """`d` in the text's lines (its spans, and the lines its words name)."""
-        real = analysis.real
-        if d.span.line >= VLINE or any(n.span and n.span.line >= VLINE for n in d.notes) \
-                or any(f.span.line >= VLINE for f in d.fixes):
-            d = replace(d, span=real(d.span),
-                        notes=tuple(replace(n, span=real(n.span)) if n.span else n
-                                    for n in d.notes),
-                        fixes=tuple(replace(f, span=real(f.span)) for f in d.fixes))
-        if _VIRTUAL_LINE.search(d.message) or any(_VIRTUAL_LINE.search(n.message)
-                                                  for n in d.notes):
-            d = analysis.real_words(d)
-        return d
-
-    def _finish(self, text, starts, lines, entries, program, checker, checked,
-                items) -> Analysis:
-        analysis = Analysis(self.name, text, starts, lines, entries, program, checker, checked)
-        # a diagnostic in real lines is kept while the statements it names
-        # start on the same lines (the same object: the server keeps what it
-        # made of it)
-        first_lines = analysis._starts = dict(zip(map(_ID, entries), lines))
-        cache, kept = self._real, {}
-        shown = []
-        get = first_lines.get
-        for d in items:
-            # hit: (d, its statements, their first lines, (sort key, d in real lines))
-            hit = cache.get(id(d))
-            if hit is None or hit[0] is not d or (
-                    get(hit[1][0]) != hit[2][0] if len(hit[1]) == 1
-                    else tuple(map(get, hit[1])) != hit[2]):
-                idents = _idents(d)
-                real = self._real_diagnostic(analysis, d) if idents else d
-                hit = (d, idents, tuple(map(get, idents)), (real.sort_key(), real))
-            kept[id(d)] = hit
-            shown.append(hit[3])
-        self._real = kept
-        shown.sort(key=_FIRST)
-        analysis.diagnostics = list(map(_SECOND, shown))
+    def _finish(self, text, layout, first_lines, program, checker, checked, items,
+                changed=None, segments=None, dropped=()) -> Analysis:
+        analysis = Analysis(self.name, text, layout, program, checker, checked)
+        analysis._starts = first_lines
+        analysis.diagnostics = self._shown.show(analysis, items, changed, segments, dropped)
+        analysis.delta = self._shown.delta
         return analysis
 
 
+class _Whole:
+    """The layout of a file analysed whole: one entry, in real lines."""
+    count = 1
+
+    def __init__(self, entry):
+        self.entry = entry
+
+    def start(self, i: int) -> int:
+        return 0
+
+    def row(self, i: int) -> tuple:
+        return 0, None, 1, self.entry, None
+
+    def bisect_right(self, offset: int) -> int:
+        return 1 if offset >= 0 else 0

@@ -1,7 +1,8 @@
 """`epuckc lsp`: the language server, on standard input and output.
 
-Built on pygls and lsprotocol, which only this module imports (the other
-commands never load them). The server keeps each open document's text
+Built on pygls and lsprotocol, which only this module and documents.py
+(an open document: its text, positions, diagnostics' LSP form) import (the
+other commands never load them). The server keeps each open document's text
 itself, analyses it with epuckc.ide.incremental (the same front end as
 `epuckc check`, reusing what an edit did not change) and answers from
 epuckc.ide. Every handler is guarded: a failure inside epuckc is logged to
@@ -22,12 +23,9 @@ from __future__ import annotations
 
 import functools
 import logging
-import re
 import sys
 import traceback
-from pathlib import Path
 from typing import Optional
-from urllib.parse import unquote, urlparse
 
 from lsprotocol import types as lsp
 from pygls.exceptions import JsonRpcException, JsonRpcInvalidParams
@@ -43,7 +41,8 @@ from .fmt import line_edits
 from .hover import hover as hover_at
 from ..diagnostics.codes import explanation_path
 from ..diagnostics import ERROR
-from .incremental import Analysis, Analyzer
+from .documents import Document, Lines  # noqa: F401 (the server's documents; Lines for tests)
+from .incremental import Analysis
 
 DEBOUNCE_S = 0.15
 
@@ -57,138 +56,11 @@ class _RequestFailed(JsonRpcException):
     MESSAGE = "request failed"
 
 
-# ---- positions ------------------------------------------------------------------
-
-_LINE_END_RE = re.compile(r"\r\n?|\n")
-_NEWLINE_RE = re.compile(r"\n")
-
-
-class Lines:
-    """LSP positions of a text: lines end at \\n, \\r\\n or \\r (LSP's line
-    ends), characters are counted in the negotiated encoding."""
-
-    def __init__(self, text: str, encoding: str, starts: Optional[list] = None):
-        """`starts`: the offsets where lines start at \\n, when known."""
-        self.text = text
-        self.encoding = encoding
-        self.has_cr = "\r" in text
-        ends = _LINE_END_RE if self.has_cr else _NEWLINE_RE
-        self.starts = starts if starts is not None and not self.has_cr else \
-            [0] + [m.end() for m in ends.finditer(text)]
-
-    def _line_end(self, line: int) -> int:
-        end = self.starts[line + 1] if line + 1 < len(self.starts) else len(self.text)
-        while end > self.starts[line] and self.text[end - 1] in "\r\n":
-            end -= 1
-        return end
-
-    def _units(self, s: str) -> int:
-        if self.encoding == "utf-16":
-            return len(s) + sum(ord(c) > 0xFFFF for c in s)
-        if self.encoding == "utf-8":
-            return len(s.encode("utf-8", "surrogatepass"))
-        return len(s)
-
-    def text_of(self, first: int, last: int) -> str:
-        """The text of lines first..last (from 0), clamped to the text."""
-        starts = self.starts
-        first = min(max(first, 0), len(starts) - 1)
-        last = max(first, min(last, len(starts) - 1))
-        return self.text[starts[first]:starts[last + 1] if last + 1 < len(starts) else len(self.text)]
-
-    def position(self, offset: int) -> lsp.Position:
-        import bisect
-        offset = max(0, min(offset, len(self.text)))
-        line = bisect.bisect_right(self.starts, offset) - 1
-        start = self.starts[line]
-        offset = min(offset, self._line_end(line))
-        segment = self.text[start:offset]
-        return lsp.Position(line, len(segment) if segment.isascii() else self._units(segment))
-
-    def offset(self, pos: lsp.Position) -> int:
-        """The character offset of a position; out-of-range positions are
-        clamped, as the specification asks."""
-        line = max(0, pos.line)
-        if line >= len(self.starts):
-            return len(self.text)
-        start, end = self.starts[line], self._line_end(line)
-        segment = self.text[start:end]
-        want = max(0, pos.character)
-        if segment.isascii():
-            return start + min(want, len(segment))
-        units = 0
-        for i, c in enumerate(segment):
-            if units >= want:
-                return start + i
-            units += self._units(c)
-        return end
-
-
-class Document:
-    def __init__(self, uri: str, text: str, version: Optional[int], server: "EpuckServer"):
-        self.uri = uri
-        self.text = text
-        self.version = version
-        self.path = _path_of(uri)
-        self.analyzer = Analyzer(self.path.name if self.path else uri)
-        self.analysis: Optional[Analysis] = None
-        self.analysed_text: Optional[str] = None
-        self.published = None       # the text whose diagnostics were published
-        self.timer = None
-        self._lines = None
-        self.lsp_diagnostics: dict = {}     # id(Diagnostic) -> (it, its lines' text, LSP's)
-
-    def base_dir(self) -> Optional[Path]:
-        """Where extern C files are looked for: the file's folder, as
-        `epuckc check` does for a file that exists."""
-        if self.path is not None and self.path.exists():
-            return self.path.parent
-        return None
-
-    def analyse(self) -> Analysis:
-        if self.analysis is None or self.analysed_text is not self.text:
-            self.analyzer.options["base_dir"] = self.base_dir()
-            self.analysis = self.analyzer.analyse(self.text)
-            self.analysed_text = self.text
-        return self.analysis
-
-    def apply(self, change, encoding: str):
-        """One change of a didChange notification."""
-        if isinstance(change, lsp.TextDocumentContentChangePartial):
-            lines = self.lines(encoding)
-            start = lines.offset(change.range.start)
-            end = max(start, lines.offset(change.range.end))
-            self.text = self.text[:start] + change.text + self.text[end:]
-        else:
-            self.text = change.text
-
-    def lines(self, encoding: str) -> Lines:
-        if self._lines is None or self._lines.text is not self.text \
-                or self._lines.encoding != encoding:
-            analysis = self.analysis        # (its lines are these when no \r ends one)
-            self._lines = Lines(self.text, encoding, analysis.line_starts if analysis is not None
-                                and analysis.text is self.text else None)
-        return self._lines
-
-
 @functools.lru_cache(maxsize=None)
 def _explanation_href(code: str) -> Optional[str]:
     """The URI of a code's explanation file (the files ship with epuckc)."""
     path = explanation_path(code)
     return path.as_uri() if path else None
-
-
-def _path_of(uri: str) -> Optional[Path]:
-    try:
-        parsed = urlparse(uri)
-        if parsed.scheme != "file":
-            return None
-        path = unquote(parsed.path)
-        if sys.platform == "win32" and path.startswith("/"):
-            path = path[1:]
-        return Path(path)
-    except (ValueError, TypeError):
-        return None
 
 
 # ---- the server ---------------------------------------------------------------------
@@ -299,6 +171,12 @@ class EpuckServer(LanguageServer):
         cache[id(d)] = (d, texts, converted)
         return converted
 
+    def diagnostics(self, doc: Document, analysis: Analysis) -> list:
+        """The LSP form of every diagnostic of the analysis, as published:
+        those of the last analysis kept (documents.Conversions)."""
+        return doc.conversions.all(analysis, doc.lines(self.encoding),
+                                   lambda d: self._diagnostic(doc, analysis, d))
+
     def _diagnostic(self, doc: Document, analysis: Analysis, d) -> lsp.Diagnostic:
         message = d.message
         related = []
@@ -326,7 +204,7 @@ class EpuckServer(LanguageServer):
         if doc.published is doc.text:
             return
         doc.published = doc.text
-        diagnostics = [self.diagnostic(doc, analysis, d) for d in analysis.diagnostics]
+        diagnostics = self.diagnostics(doc, analysis)
         self.text_document_publish_diagnostics(lsp.PublishDiagnosticsParams(
             uri=doc.uri, diagnostics=diagnostics, version=doc.version))
 

@@ -116,7 +116,7 @@ def _inside(span: Span, line: int, column: int) -> bool:
 def statement_at(analysis: Analysis, line: int, column: int):
     """The statement at a real position, and the position in its lines."""
     vline, vcol = analysis.virtual(line, column)
-    for s in analysis.program.statements:
+    for s in analysis.statements_on(vline):
         if _inside(s.span, vline, vcol):
             return s, vline, vcol
     return None, vline, vcol

@@ -10,16 +10,20 @@ their own memos here (`_Memo`).
 """
 from __future__ import annotations
 
+import itertools
 from typing import Optional
 
-from ..check import conditions as cond
+from ..check import conditions as cond, modes
 from ..check.checker import Checker
 from ..check.program import CheckedProgram
 from ..check.races import RaceMemo
 from ..check.rules import may_never_fire
 from ..check.ranges import RangeMemo
-from ..diagnostics import Collector, Diagnostic
+from ..diagnostics import Diagnostic
 from ..syntax import ast
+from .passes import FactCounts, PiecePasses
+from .pieces import PIECE
+from .watch import _ALL, _MISSING, _Capture, _Narrowing, _Watch, _Watched  # noqa: F401
 from .statements import VLINE
 
 # ---- checking, reusing results ----------------------------------------------
@@ -32,34 +36,40 @@ class _Memo:
         self.rules: dict = {}   # id(rule node) -> what the rule came to (see _rule)
         self.ranges = RangeMemo()   # the variables' intervals by component (check/ranges.py)
         self.races = RaceMemo()     # W009's facts of each rule and its last pairs (check/races.py)
-        self.blocks: dict = {}  # id(first rule of a block) -> _Block (IncrementalChecker._rules)
+        self.blocks: dict = {}  # id(piece) -> _Block of its rules (IncrementalChecker._rules)
+        self.declared = None    # (what declaring read, the state it left, its diagnostics, robot given)
+        self.counts = FactCounts()  # the facts of the blocks of rules replayed, counted
+        self.unused = None      # (what _unused read, what it said)
+        self.errors: dict = {}  # id(a list of diagnostics) -> (it, has an error) (passes.py)
 
 
-# A block of rules ends after a rule whose statement id is a multiple of
-# this: ids are given in the order statements are parsed, so the ends of
-# the blocks an edit does not touch stay where they were.
-BLOCK = 32
+# A block of rules is a piece's (ide/pieces.py), which ends after an entry
+# whose id is a multiple of this.
+BLOCK = PIECE
 
 
 class _Block:
-    """A run of consecutive rules replayed at once: the rules (kept alive,
-    so that their ids stay theirs), the declarations (env) they were valid
-    with, and what they came to together: their results in order, their own
-    diagnostics in order, and the union of their facts. Only rules whose
-    diagnostics are all their own (no diagnostic said once for the file)
-    make a block, so replaying it is what replaying each would do."""
-    __slots__ = ("rules", "ids", "closed", "env", "geo", "deps", "resolved", "maybe", "own",
-                 "facts")
+    """The rules of a piece of the document (ide/pieces.py) replayed at
+    once: the piece (kept alive, so that its id stays its own, and with it
+    its rules), the declarations (env) they were valid with, and what they
+    came to together: their results in order, their own diagnostics in
+    order, the union of their facts, what the whole-program checks read of
+    them (the rules that may never fire by event, those in modes, the
+    modes they enter). Only rules whose diagnostics are all their own (no
+    diagnostic said once for the file) make a block, so replaying it is
+    what replaying each would do."""
+    __slots__ = ("piece", "env", "geo", "hits", "_deps", "read", "resolved", "maybe", "own",
+                 "facts", "in_modes", "entered")
 
-    def __init__(self, rules, env, geo, hits):
-        self.rules, self.ids, self.env, self.geo = rules, tuple(map(id, rules)), env, geo
-        self.closed = not (rules[-1].span.line // VLINE) % BLOCK   # (else it ended the file)
-        # every name its rules looked up, once (what makes it valid again
-        # when a declaration changed, see _Watched)
-        self.deps = list({(attr, name, id(found)): (attr, name, found)
-                          for h in hits for attr, name, found in h[2]}.values())
+    def __init__(self, piece, env, geo, hits):
+        self.piece, self.env, self.geo, self.hits, self._deps = piece, env, geo, hits, None
+        # the variables its rules looked up (None: one looked at all of them)
+        read = [h[8] for h in hits]
+        self.read = None if None in read else frozenset().union(*read)
         self.resolved = [h[3] for h in hits if h[3] is not None]
-        self.maybe = [r for r in self.resolved if may_never_fire(r)]   # (see _never_fire)
+        self.maybe = by_event(self.resolved)        # (see _never_fire)
+        self.in_modes = [r for r in self.resolved if r.mode is not None]
+        self.entered = None     # (the named actions, the modes entered), when there are modes
         self.own = [d for h in hits for d in h[7]]
         facts: dict = {}
         for h in hits:
@@ -68,157 +78,50 @@ class _Block:
         self.facts = tuple(facts.items())
 
 
-class _Capture:
-    """Run a step of the checker with fresh diagnostics and fresh sets of
-    facts, and remember both, so that the step can be replayed.
-
-    The checker's memories within one file (a constant's chain followed
-    once, a problem of a definition said once) start empty too, so that
-    the step does all its own lookups (and notes them, see _Watched) and
-    says all its own diagnostics; what is said twice is dropped when the
-    steps are put together (IncrementalChecker._replay), as the whole
-    file's check says it once."""
-    FACTS = ("called", "used_actions", "const_used", "vars_used", "vars_assigned",
-             "devices_used")
-    FRESH = ("_const_memo", "_const_reported", "_const_diagnostics")
-
-    def __init__(self, checker: Checker):
-        self.checker = checker
-
-    def __enter__(self):
-        c = self.checker
-        fresh = [f for f in self.FRESH if hasattr(c, f)]
-        self.saved = (c.diags, {f: getattr(c, f) for f in self.FACTS},
-                      {f: getattr(c, f) for f in fresh})
-        c.diags = Collector(c.diags.source)
-        for f in self.FACTS:
-            setattr(c, f, set())
-        for f in fresh:
-            setattr(c, f, type(getattr(c, f))())
-        return self
-
-    def __exit__(self, *exc):
-        c = self.checker
-        self.diags = c.diags.items
-        self.facts = tuple((f, v) for f in self.FACTS if (v := getattr(c, f)))
-        c.diags, saved_facts, saved_fresh = self.saved
-        for f in self.FACTS:
-            setattr(c, f, saved_facts[f])
-        for f, value in saved_fresh.items():
-            setattr(c, f, value)
-        return False
+    @property
+    def deps(self) -> list:
+        """Every name its rules looked up, once (what makes it valid again
+        when a declaration changed, see _Watched), found when first asked."""
+        if self._deps is None:
+            self._deps = list({(attr, name, id(found)): (attr, name, found)
+                               for h in self.hits for attr, name, found in h[2]}.values())
+        return self._deps
 
 
-_MISSING = object()
-_ALL = object()
-_TABLES = ("consts", "const_arrays", "actions", "externs", "broken_externs", "rule_names",
-           "modes", "vars")
+def by_event(resolved: list) -> dict:
+    """The rules that may never fire, by event (_never_fire asks for those
+    of the events it can warn about)."""
+    out: dict = {}
+    for r in resolved:
+        if may_never_fire(r):
+            out.setdefault(r.event.name, []).append(r)
+    return out
 
 
-class _Watched:
-    """A read-only view of one of the checker's name tables that notes
-    what a rule looked up in it: (table, name, what was found), or
-    (table, _ALL, every entry) when it looked at the whole table (the
-    candidates of a did-you-mean)."""
-    __slots__ = ("_table", "_attr", "_deps")
-
-    def __init__(self, table: dict, attr: str, deps: list):
-        self._table, self._attr, self._deps = table, attr, deps
-
-    def _all(self):
-        self._deps.append((self._attr, _ALL, tuple(self._table.items())))
-        return self._table
-
-    def get(self, name, default=None):
-        found = self._table.get(name, _MISSING)
-        self._deps.append((self._attr, name, found))
-        return default if found is _MISSING else found
-
-    def __contains__(self, name):
-        return self.get(name, _MISSING) is not _MISSING
-
-    def __getitem__(self, name):
-        found = self.get(name, _MISSING)
-        if found is _MISSING:
-            raise KeyError(name)
-        return found
-
-    def __iter__(self):
-        return iter(self._all())
-
-    def __len__(self):
-        return len(self._all())
-
-    def __getattr__(self, attr):        # items(), keys(), values(), ...
-        return getattr(self._all(), attr)
-
-
-class _Narrowing:
-    """The watched table of variables as a guard's narrowing sees it
-    (IncrementalChecker._guarded_body): its items are those of the
-    variables the guard names, the only ones `conditions.narrowed` reads,
-    so that the rule depends on them and not on every variable."""
-    __slots__ = ("_watched", "_names")
-
-    def __init__(self, watched: _Watched, names):
-        self._watched, self._names = watched, sorted(names)
-
-    def items(self):
-        found = ((n, self._watched.get(n, _MISSING)) for n in self._names)
-        return [(n, v) for n, v in found if v is not _MISSING]
-
-    def get(self, name, default=None):
-        return self._watched.get(name, default)
-
-    def __contains__(self, name):
-        return name in self._watched
-
-    def __getitem__(self, name):
-        return self._watched[name]
-
-    def __iter__(self):
-        return iter(self._watched)
-
-    def __len__(self):
-        return len(self._watched)
-
-    def __getattr__(self, attr):
-        return getattr(self._watched, attr)
-
-
-class _Watch:
-    """Check one rule with its name tables watched (see _Watched)."""
-
-    def __init__(self, checker: Checker):
-        self.checker = checker
-        self.deps: list = []
-
-    def __enter__(self):
-        c = self.checker
-        self.saved = [getattr(c, t) for t in _TABLES]
-        for t, table in zip(_TABLES, self.saved):
-            setattr(c, t, _Watched(table, t, self.deps))
-        return self
-
-    def __exit__(self, *exc):
-        for t, table in zip(_TABLES, self.saved):
-            setattr(self.checker, t, table)
-        return False
-
-
-class IncrementalChecker(Checker):
+class IncrementalChecker(PiecePasses, Checker):
     """The checker, with named actions and rules replayed from `memo` when
     nothing they can see has changed."""
 
-    def __init__(self, program, diags, memo: _Memo, **options):
+    def __init__(self, program, diags, memo: _Memo, pieces=None, piece_of=None, marks=(),
+                 **options):
         super().__init__(program, diags, **options)
         self.memo = memo
+        self.pieces = pieces        # the document's pieces (ide/pieces.py), in order
+        self.piece_of = piece_of    # entry id -> its piece
+        # where each step's diagnostics start, and the list it replayed whole
+        # (None: made now); the parse's are the pieces' (passes.segments)
+        self._marks = list(marks)
+        self.segments = self.dropped = None
+        # (passes._has_errors: the runs looked at, and whether one has an error)
+        self._error_flags, self._errors_upto, self._errors_found = {}, 0, False
         self.range_memo = memo.ranges
         self.race_memo = memo.races
         self._known: Optional[set] = None
         self._env_now = None
         self._maybe: list = []      # the rules _never_fire looks at (_rules)
         self._compared: dict = {}   # (table, name, id(found)) -> (found, still the same)
+        self._env_before = None     # the last analysis's declarations
+        self._moved = None          # the variables whose intervals alone changed since, if so
 
     def _env(self):
         """Everything a rule or a named action can depend on besides itself:
@@ -249,9 +152,18 @@ class IncrementalChecker(Checker):
             getattr(self, f).update(values)
 
     def _resolve_actions(self, out: CheckedProgram):
+        self._mark()
         env = self._env()
         memo = self.memo
+        self._env_before = memo.env
         if memo.env != env:
+            # (the declarations of the last analysis, some variables' intervals
+            # moved: those, ranges.py says which; else any may have changed)
+            if not (self._declared_same and self.range_memo.moved is not None
+                    and memo.env is not None and env[:-1] == memo.env[:-1]):
+                self._moved = None
+            else:
+                self._moved = self.range_memo.moved
             memo.env, memo.actions = env, None
         self._env_now = memo.env    # the same object as long as nothing changes
         if memo.actions is None:
@@ -299,58 +211,85 @@ class IncrementalChecker(Checker):
             self.vars = table
 
     def _rules(self, out: CheckedProgram):
-        """Every rule, a block of them at a time (_Block): a block whose
-        rules are the same objects, all valid with the same declarations,
-        is replayed with one extend and a few set unions; any other is
-        checked rule by rule (_rule) and, if it can, kept as a block."""
+        """Every rule, a piece of the document at a time (_Block): the rules
+        of a piece that is the same object, all valid with the same
+        declarations, are replayed with one extend (their facts are
+        counted by block, passes.FactCounts); any other piece's are checked
+        rule by rule (_rule) and, if they can, kept as a block."""
+        if self.pieces is None:
+            return super()._rules(out)
         memo = self.memo
         old, blocks = memo.blocks, {}
-        env = self._env_now
-        rules = self.program.of_type(ast.Rule)
+        env, before, moved = self._env_now, self._env_before, self._moved
         items, resolved = self.diags.items, out.rules
-        maybe = self._maybe = []
-        start, n = 0, len(rules)
-        while start < n:
-            block = old.get(id(rules[start]))
-            end = start + len(block.ids) if block is not None else n + 1
-            if end <= n and (block.closed or end == n) \
-                    and block.ids == tuple(map(id, rules[start:end])):
-                same = True             # (a block's end is where it was: no scan)
-            else:
-                same, end = False, start
-                while end < n - 1 and (rules[end].span.line // VLINE) % BLOCK:
-                    end += 1
-                end += 1
-            run = rules[start:end]
-            if same and block.env is not env and self._still_valid(block.geo, block.deps):
-                block.env = env             # (each of its rules too: see _rule)
-                for rule in run:
-                    self.memo.rules[id(rule)][6] = env
+        maybe = self._maybe = []            # (dicts of by_event)
+        in_modes = self._in_modes = []      # (lists of rules)
+        groups = self.rule_groups = []      # (W009's, check/races.py)
+        replayed, loose = [], []
+        for piece in self.pieces:
+            run = piece.rules
+            if not run:
+                continue
+            first = len(resolved)
+            block = old.get(id(piece))
+            same = block is not None and block.piece is piece
+            if same and block.env is not env and (
+                    (moved is not None and block.env is before and block.read is not None
+                     and block.read.isdisjoint(moved))       # (only intervals it does not read moved)
+                    or self._still_valid(block.geo, block.deps)):
+                block.env = env             # (its rules' own, when they are checked again: _rule)
             if not same or block.env is not env:
+                self._mark()
                 for rule in run:
                     r = self._rule(rule)
                     if r is not None:
                         resolved.append(r)
-                        if may_never_fire(r):
-                            maybe.append(r)
-                block = self._block(run, env)
+                block = self._block(piece, env)
+                if block is None:
+                    checked = resolved[first:]
+                    loose += checked
+                    maybe.append(by_event(checked))
+                    in_modes.append([r for r in checked if r.mode is not None])
+                    groups.append((None, checked))
+                    continue
             else:
+                self._mark(block.own)
                 items.extend(block.own)
                 resolved.extend(block.resolved)
-                maybe.extend(block.maybe)
-                for f, values in block.facts:
-                    getattr(self, f).update(values)
-            if block is not None:
-                blocks[id(run[0])] = block
-            start = end
+                replayed.append(block)
+            maybe.append(block.maybe)
+            in_modes.append(block.in_modes)
+            groups.append((block, block.resolved))
+            blocks[id(piece)] = block
         memo.blocks = blocks
+        self._loose = loose
+        memo.counts.add(self, replayed)
 
-    def _may_never_fire(self, out: CheckedProgram):
-        return self._maybe
+    def _may_never_fire(self, out: CheckedProgram, events: set):
+        if self.pieces is None:
+            return super()._may_never_fire(out, events)
+        return [r for by in self._maybe for event in events for r in by.get(event, ())]
 
-    def _block(self, run, env) -> Optional[_Block]:
-        """The rules of `run`, just checked or replayed, as a block, if each
+    def _modes_program(self, out: CheckedProgram, complete: bool):
+        if self.pieces is None:
+            return super()._modes_program(out, complete)
+        self._mark()
+
+        def entered():          # (by block, kept: its rules' bodies are the same)
+            found, actions = set(), self.memo.actions
+            for block in self.memo.blocks.values():
+                if block.entered is None or block.entered[0] is not actions:
+                    block.entered = (actions, modes.entered_by(self, [r.body for r in
+                                                                      block.resolved]))
+                found |= block.entered[1]
+            return found | modes.entered_by(self, [r.body for r in self._loose])
+        modes.check_program(self, out, complete,
+                            list(itertools.chain.from_iterable(self._in_modes)), entered)
+
+    def _block(self, piece, env) -> Optional[_Block]:
+        """The rules of `piece`, just checked or replayed, as a block, if each
         can be replayed with the rest (see _Block)."""
+        run = piece.rules
         hits = [self.memo.rules.get(id(rule)) for rule in run]
         geo, same_geo = self.geo, set()
         for rule, hit in zip(run, hits):
@@ -360,7 +299,7 @@ class IncrementalChecker(Checker):
                 if hit[1] != geo:       # (each check has its own Geometry object)
                     return None
                 same_geo.add(id(hit[1]))
-        return _Block(run, env, geo, hits)
+        return _Block(piece, env, geo, hits)
 
     def _rule(self, rule: ast.Rule):
         # hit: [node, geometry, lookups, result, diagnostics said once,
@@ -376,7 +315,11 @@ class IncrementalChecker(Checker):
         if hit is None or hit[0] is not rule:
             hit = None
         elif hit[6] is not self._env_now:
-            if self._still_valid(hit[1], hit[2]):
+            moved = self._moved
+            if moved is not None and hit[6] is self._env_before and hit[8] is not None \
+                    and hit[8].isdisjoint(moved):
+                hit[6] = self._env_now      # (only intervals it does not read moved)
+            elif self._still_valid(hit[1], hit[2]):
                 hit[6] = self._env_now
             else:
                 hit = None
@@ -386,10 +329,22 @@ class IncrementalChecker(Checker):
             ident = rule.span.line // VLINE
             own = [d for d in cap.diags if ident and _within(d, ident)]
             shared = [d for d in cap.diags if not (ident and _within(d, ident))]
-            hit = [rule, self.geo, watch.deps, resolved, shared, cap.facts, self._env_now, own]
+            hit = [rule, self.geo, watch.deps, resolved, shared, cap.facts, self._env_now, own,
+                   _variables_read(watch.deps)]
             self.memo.rules[id(rule)] = hit
         self._replay(hit[4], hit[5], hit[7])
         return hit[3]
+
+
+def _variables_read(deps) -> Optional[frozenset]:
+    """The variables a rule looked up (None: it looked at all of them)."""
+    names = set()
+    for attr, name, _ in deps:
+        if attr == "vars":
+            if name is _ALL:
+                return None
+            names.add(name)
+    return frozenset(names)
 
 
 def _within(d: Diagnostic, ident: int) -> bool:

@@ -406,6 +406,10 @@ def parse_statement(chunk: list, following, source: SourceFile, diags: Collector
         return None
 
 
+# (what a mode's head or `}` came to, in ModePlacer's memory: never appended as it is)
+_MODE_MARK = object()
+
+
 class ModePlacer:
     """Builds a program's statements from the parsed ones, minding mode
     blocks: a mode's head becomes a ModeDef, its `}` a ModeEnd, and each
@@ -446,14 +450,24 @@ class ModePlacer:
     def add(self, statement) -> None:
         program, diags = self.program, self.diags
         mode = self.modes[-1] if self.modes else None
+        if isinstance(statement, (ast.ModeOpen, ast.ModeClose)):
+            # (what a mode's head or `}` becomes is kept too: the same
+            # ModeDef as last time, and its declaration is the same)
+            last = self._last
+            hit = None if last is None else last.get(id(statement))
+            if hit is None or hit[0] is not statement:
+                hit = (statement, _MODE_MARK, None,
+                       ast.ModeDef(statement.name, statement.initial, statement.span)
+                       if isinstance(statement, ast.ModeOpen) else ast.ModeEnd(statement.span))
+            if self.placed is not None:
+                self.placed[id(statement)] = hit
         if isinstance(statement, ast.ModeOpen):
             if mode is not None:
                 diags.error("E001", statement.span,
                             f"mode `{statement.name.name}` starts inside mode `{mode.name.name}`",
                             help="modes do not nest: close the first with `}` before this one",
                             notes=[Note(f"mode `{mode.name.name}` starts here", mode.span)])
-            program.statements.append(ast.ModeDef(statement.name, statement.initial,
-                                                  statement.span))
+            program.statements.append(hit[3])
             self.modes.append(statement)
             return
         if isinstance(statement, ast.ModeClose):
@@ -462,7 +476,7 @@ class ModePlacer:
                             help="remove it, or open a mode with `mode NAME {`")
             else:
                 self.modes.pop()
-                program.statements.append(ast.ModeEnd(statement.span))
+                program.statements.append(hit[3])
             return
         mode_name = mode.name if mode is not None else None
         last = self._last

@@ -1,0 +1,161 @@
+"""The variables' dependency graph, for their intervals (ranges.py): each
+statement's assignments (those inside `if` branches too, with the
+conditions that hold where they run and the variables assigned before them
+since), the names each reads, which variables each variable's assignments
+read, and the graph's strongly connected components (Tarjan, without
+recursion), dependencies first."""
+from __future__ import annotations
+
+from ..syntax import ast
+
+
+_ANY = object()     # (a statement whose assignments do not depend on its mode)
+
+
+def _runs_once(stmt) -> bool:
+    """A rule that runs at most once (its assignments are joined once each)."""
+    return isinstance(stmt, ast.Rule) and not stmt.repeat and stmt.mode is None \
+        and stmt.trigger != "every"
+
+
+def _names_read(value) -> frozenset:
+    """The names an expression reads: variables, constants and readings (a
+    loop: expressions may be deep)."""
+    found, todo = set(), [value]
+    while todo:
+        node = todo.pop()
+        cls = node.__class__
+        if cls is ast.ConstRef:
+            found.add(node.name.name)
+        elif cls is ast.BinOp:
+            todo += (node.left, node.right)
+        elif cls is ast.UnaryOp:
+            todo.append(node.operand)
+        elif cls is ast.Paren:
+            todo.append(node.expr)
+        elif cls is ast.FuncCall:
+            todo += [a.value for a in node.args or () if hasattr(a, "value")]
+    return frozenset(found)
+
+
+def _assignments(calls, context: tuple, actions, spoiled=frozenset()) -> list:
+    """(Assign, context, spoiled) for each assignment of a step's `calls`,
+    those inside `if` branches too: `context` the (condition, held) pairs
+    that hold where it runs (its branch's condition held, the ones before
+    it did not), `spoiled` the variables a call before it in those branches
+    may have assigned since (True: any, after a named action)."""
+    out = []
+    spoiled = spoiled if spoiled is True else set(spoiled)
+    for call in calls:
+        cls = call.__class__
+        if cls is ast.Assign:
+            out.append((call, context, spoiled if spoiled is True else frozenset(spoiled)))
+            if spoiled is not True:
+                spoiled.add(call.target.name)
+        elif cls is ast.IfAction:
+            failed = ()
+            for branch in call.branches:
+                here = context + failed + ((branch.condition, True),)
+                for k, step in enumerate(branch.body.steps):
+                    out += _assignments(step.calls, here if k == 0 else (), actions,
+                                        spoiled if k == 0 else frozenset())
+                failed += ((branch.condition, False),)
+            if call.otherwise is not None:
+                for k, step in enumerate(call.otherwise.steps):
+                    out += _assignments(step.calls, context + failed if k == 0 else (),
+                                        actions, spoiled if k == 0 else frozenset())
+            if spoiled is not True:
+                for inner in ast.calls_within((call,)):
+                    if inner.__class__ is ast.Assign:
+                        spoiled.add(inner.target.name)
+                    elif inner.__class__ is ast.Call and inner.name.name in actions:
+                        spoiled = True
+                        break
+        elif cls is ast.Call and call.name.name in actions:
+            spoiled = True
+    return out
+
+
+def statement_assignments(checker, known: dict, stmt) -> tuple:
+    """What the intervals need of a statement (`known`: the last ones, by
+    id, reused while the statement is the same object): (it, its mode when
+    it is a rule with assignments, else _ANY, ((target, entry), ...))."""
+    hit = known.get(id(stmt))
+    if hit is not None and hit[0] is stmt and (hit[1] is _ANY or hit[1] is stmt.mode):
+        return hit
+    body = stmt.body if isinstance(stmt, (ast.Rule, ast.ActionDef)) else None
+    runs_once = _runs_once(stmt)
+    # an entry: [the Assign, runs once, the names it reads (its
+    # conditions' too), its text (later), its statement's id, its
+    # place in the statement, the conditions that hold where it
+    # runs, the variables assigned before it since]
+    guard = stmt.guard if isinstance(stmt, ast.Rule) else None
+    calls = []
+    for k, step in enumerate(() if body is None else body.steps):
+        # (an `if`'s assignments may run, where its conditions held)
+        start = ((guard, True),) if guard is not None and k == 0 else ()
+        calls += _assignments(step.calls, start, checker.actions)
+    hit = known[id(stmt)] = (stmt, stmt.mode if calls and isinstance(stmt, ast.Rule) else _ANY,
+                             tuple((c.target.name, [c, runs_once, _names_read(c.value).union(
+                                 *(_names_read(cond) for cond, _ in context)), None, id(stmt), j,
+                                 context, spoiled])
+                                   for j, (c, context, spoiled) in enumerate(calls)))
+    return hit
+
+
+def _needs(name: str, entries: list, variables: dict) -> list:
+    """The variables a variable's assignments read (itself for `+=`)."""
+    needs = set()
+    keys = variables.keys()
+    for entry in entries:
+        needs |= entry[2] & keys
+        if entry[0].op != "=":
+            needs.add(name)
+    return sorted(needs)
+
+
+def components(graph: dict) -> list:
+    """The strongly connected components of `graph` (node -> the nodes it
+    depends on), each a tuple in the order of `graph`, dependencies first.
+    Tarjan's algorithm with an explicit stack."""
+    order = {n: i for i, n in enumerate(graph)}
+    index, low, on_stack, stack, out = {}, {}, set(), [], []
+    counter = 0
+    for root in graph:
+        if root in index:
+            continue
+        work = [(root, iter(graph[root]))]
+        index[root] = low[root] = counter
+        counter += 1
+        stack.append(root)
+        on_stack.add(root)
+        while work:
+            node, edges = work[-1]
+            pushed = False
+            for nxt in edges:
+                if nxt not in index:
+                    index[nxt] = low[nxt] = counter
+                    counter += 1
+                    stack.append(nxt)
+                    on_stack.add(nxt)
+                    work.append((nxt, iter(graph[nxt])))
+                    pushed = True
+                    break
+                if nxt in on_stack:
+                    low[node] = min(low[node], index[nxt])
+            if pushed:
+                continue
+            work.pop()
+            if work:
+                parent = work[-1][0]
+                low[parent] = min(low[parent], low[node])
+            if low[node] == index[node]:
+                members = []
+                while True:
+                    m = stack.pop()
+                    on_stack.discard(m)
+                    members.append(m)
+                    if m == node:
+                        break
+                out.append(tuple(sorted(members, key=order.__getitem__)))
+    return out

@@ -1,0 +1,340 @@
+"""The checker's passes over the whole program, following an edit: each
+keeps what it found by piece of the document (ide/pieces.py), so that an
+edit costs the pieces it touched and a loop over the pieces, not a pass
+over every statement (a part of recheck.IncrementalChecker).
+
+- **Declarations** (`_declarations`): every statement that declares
+  something (all but rules without a name) and the robot block. While they
+  are the same objects (and the extern C files they name say the same),
+  what declaring them left in the checker is put back as it was: the same
+  tables, the same VarInfo objects, the same diagnostics.
+- **Assignments** (`_assignments_by_variable`, for check/ranges.py): each
+  piece's assignments by variable; a variable's list is made again only
+  when the pieces an edit replaced assigned it differently.
+- **Facts** (FactCounts): the names the replayed blocks of rules use and
+  assign, counted by block: an edit takes away and adds the blocks it
+  changed.
+- **Unused names** (`_unused`): said again only when the declarations or
+  the names used changed.
+- **A warning beside an error** (`_no_warnings_beside_errors`): the
+  statement that holds a place is found by its virtual line (the entry's
+  id, statements.py), among that entry's statements only.
+"""
+from __future__ import annotations
+
+import bisect
+import itertools
+import operator
+
+from ..check.externs import extern_file_problem
+from ..check.ranges import statement_assignments
+from ..diagnostics import ERROR
+from .statements import VLINE
+
+_DECLS, _EXTERNS, _RULES = (operator.attrgetter("decls"), operator.attrgetter("externs"),
+                            operator.attrgetter("rules"))
+_SEVERITY, _SPAN, _NOTES = (operator.attrgetter("severity"), operator.attrgetter("span"),
+                            operator.attrgetter("notes"))
+_LINE = operator.itemgetter(0)
+_START = operator.itemgetter(0, 1)     # a Span's (line, column)
+
+# What declaring leaves in the checker that is not a declaration's: the
+# language server's own, and what the checker is given.
+_NOT_DECLARED = frozenset({"program", "diags", "base_dir", "target", "memo", "range_memo",
+                           "race_memo", "pieces", "piece_of", "_known", "_env_now", "_maybe",
+                           "_compared", "_declared_same", "_env_before", "_moved", "_marks",
+                           "segments", "dropped", "_error_flags", "_errors_upto",
+                           "_errors_found"})
+
+
+def _copy(value):
+    cls = value.__class__
+    if cls is dict:
+        return dict(value)
+    if cls is set:
+        return set(value)
+    if cls is list:
+        return list(value)
+    return value
+
+
+class PiecePasses:
+    """The whole-program passes by pieces (see the module's doc)."""
+
+    pieces = None
+    piece_of = None         # entry id -> its piece (ide/pieces.py), when known
+
+    def _declarations(self) -> bool:
+        if self.pieces is None:
+            return super()._declarations()
+        decls = tuple(itertools.chain.from_iterable(map(_DECLS, self.pieces)))
+        externs = ()
+        if self.base_dir is not None:
+            externs = tuple(extern_file_problem(self.base_dir / s.file) for s in
+                            itertools.chain.from_iterable(map(_EXTERNS, self.pieces)))
+        key = (decls, self.base_dir, self.target, externs)
+        memo = self.memo
+        hit = memo.declared
+        if hit is not None and hit[0] == key:
+            for name, value in hit[1].items():
+                setattr(self, name, _copy(value))
+            self._mark(hit[2])
+            self.diags.items.extend(hit[2])
+            self._declared_same = True
+            return hit[3]
+        self._mark()
+        start = len(self.diags.items)
+        robot_given = super()._declarations()
+        state = {name: _copy(value) for name, value in vars(self).items()
+                 if name not in _NOT_DECLARED}
+        memo.declared = (key, state, self.diags.items[start:], robot_given)
+        return robot_given
+
+    def _assignments_by_variable(self, memo, same_names: bool) -> tuple:
+        if self.pieces is None:
+            return super()._assignments_by_variable(memo, same_names)
+        old = memo.pieces           # id(piece) -> (piece, variable -> entries, id(stmt) -> place)
+        known, where = memo.statements, memo.where
+        pieces, last = self.pieces, memo.piece_list if old else []
+        # (the old pieces are kept alive by `old`: an id in both is the same piece)
+        now = set(map(id, pieces))
+        fresh_at = list(itertools.compress(range(len(pieces)), map(
+            operator.not_, map(old.__contains__, map(id, pieces)))))
+        gone_at = list(itertools.compress(range(len(last)), map(
+            operator.not_, map(now.__contains__, map(id, last)))))
+        new = dict(old) if len(gone_at) < len(old) else {}
+        gone = []
+        for at in gone_at:
+            gone.append(new.pop(id(last[at]), None) or old[id(last[at])])
+        fresh = []
+        for at in fresh_at:
+            piece = pieces[at]
+            by_name, order = {}, {}
+            for i, stmt in enumerate(piece.statements):
+                found = statement_assignments(self, known, stmt)[2]
+                if found:
+                    order[id(stmt)] = i
+                    where[id(stmt)] = piece
+                    for name, entry in found:
+                        by_name.setdefault(name, []).append(entry)
+            hit = new[id(piece)] = (piece, by_name, order)
+            fresh.append(hit)
+        first_fresh = fresh_at[0] if fresh_at else None
+        first_gone = gone_at[0] if gone_at else None
+        memo.pieces, memo.piece_list = new, self.pieces
+        if len(known) > 2 * self.program.count + 100:
+            live = {id(s) for s in self.program.statements}
+            memo.statements = {k: v for k, v in known.items() if k in live}
+            memo.where = {k: v for k, v in where.items() if k in live}
+        if not same_names or not old or len(fresh) > 8:
+            assigns = {name: [] for name in self.vars}
+            for piece in self.pieces:
+                for name, entries in new[id(piece)][1].items():
+                    found = assigns.get(name)
+                    if found is not None:
+                        found.extend(entries)
+            return assigns, None, self._place_of(new)
+        # the variables the replaced pieces assign: made again where the
+        # new pieces assign them differently (the same entries in the same
+        # order, in the same place of the file, leave the list as it was)
+        in_place = first_gone == first_fresh and len(gone) == len(fresh) and (
+            not fresh_at or fresh_at[-1] - fresh_at[0] == len(fresh_at) - 1) and (
+            not gone_at or gone_at[-1] - gone_at[0] == len(gone_at) - 1)
+        touched = set().union(*(h[1].keys() for h in gone), *(h[1].keys() for h in fresh))
+        changed = set()
+        for name in touched:
+            before = [e for h in gone for e in h[1].get(name, ())]
+            after = [e for h in fresh for e in h[1].get(name, ())]
+            if name in memo.assigns and (not in_place or len(before) != len(after) or any(
+                    x is not y for x, y in zip(before, after))):
+                changed.add(name)
+        assigns = memo.assigns
+        if changed:
+            assigns = dict(assigns)
+            for name in changed:
+                assigns[name] = [e for piece in self.pieces
+                                 for e in new[id(piece)][1].get(name, ())]
+        return assigns, changed, self._place_of(new)
+
+    def _unused(self):
+        if self.pieces is None:
+            return super()._unused()
+        # (what _unused reads: the declarations, the names used, whether
+        # there are rules)
+        declared = self.memo.declared
+        key = (self.used_actions, self.const_used, self.vars_used, self.vars_assigned,
+               any(map(_RULES, self.pieces)))
+        said = self.memo.unused
+        # (sets compare with the frozen copies kept, at C speed)
+        if said is None or said[0] is not declared or said[1] != key:
+            self._mark()
+            start = len(self.diags.items)
+            super()._unused()
+            key = tuple(frozenset(k) if k.__class__ is set else k for k in key)
+            said = self.memo.unused = (declared, key, self.diags.items[start:])
+        else:
+            self._mark(said[2])
+            self.diags.items.extend(said[2])
+
+    # ---- the diagnostics in segments (for showing.py) ----
+
+    def _mark(self, source=None) -> None:
+        """A step's diagnostics start here; `source`: the list it puts there
+        whole (the same object as last time while the step is replayed)."""
+        self._marks.append((len(self.diags.items), source))
+
+    def _segments(self) -> list:
+        """The diagnostics so far as the steps' runs: the list a step put
+        whole, else a new list of what it said."""
+        items, marks, out = self.diags.items, self._marks, []
+        ends = [m[0] for m in marks[1:]] + [len(items)]
+        for (start, source), end in zip(marks, ends):
+            if end > start:
+                out.append(source if source is not None and len(source) == end - start
+                           else items[start:end])
+        return out
+
+    def _has_errors(self) -> bool:
+        if self.pieces is None:
+            return super()._has_errors()
+        # (by the steps' runs since the last time asked; a list a step put
+        # whole says what it said last time: memo.errors)
+        items, marks = self.diags.items, self._marks
+        flags, kept = self.memo.errors, self._error_flags
+        at = self._errors_upto
+        for i in range(at, len(marks)):
+            start, source = marks[i]
+            end = marks[i + 1][0] if i + 1 < len(marks) else len(items)
+            if end <= start:
+                continue
+            if source is not None and len(source) == end - start:
+                flag = flags.get(id(source))
+                if flag is None or flag[0] is not source:
+                    flag = (source, ERROR in map(_SEVERITY, source))
+                kept[id(source)] = flag
+                found = flag[1]
+            else:
+                found = ERROR in map(_SEVERITY, itertools.islice(items, start, end))
+            if found and i + 1 < len(marks):
+                self._errors_found = True
+            elif found:
+                return True         # (in the run still under way: asked again next time)
+        self._errors_upto = max(at, len(marks) - 1)
+        return self._errors_found
+
+    def _never_fire(self, out, complete: bool):
+        if self.pieces is not None:
+            self._mark()
+        return super()._never_fire(out, complete)
+
+    def _races(self, out):
+        if self.pieces is not None:
+            self._mark()
+        return super()._races(out)
+
+    def _no_warnings_beside_errors(self):
+        if self.pieces is None:
+            return super()._no_warnings_beside_errors()
+        self.segments, self.dropped = self._segments(), ()
+        self.memo.errors = self._error_flags
+        items = self.diags.items
+        if not self._has_errors():
+            return
+        severities = list(map(_SEVERITY, items))
+        if severities.count(ERROR) == len(items):
+            return
+        holders = {}            # entry id -> its statements' spans, in order
+
+        def holder(span):
+            """Checker._no_warnings_beside_errors's: the statement whose start
+            is the last at or before the span's, if it holds the span; in
+            virtual lines, one of the statements of the span's entry."""
+            ident = span.line // VLINE
+            spans = holders.get(ident)
+            if spans is None:
+                piece = self._piece_of(ident)
+                spans = holders[ident] = [] if piece is None else [
+                    s.span for s in piece.statements
+                    if getattr(s, "span", None) is not None and s.span.line // VLINE == ident]
+            i = bisect.bisect_right(spans, (span.line, span.column), key=_START) - 1
+            if i >= 0 and (span.end_line, span.end_column) <= (spans[i].end_line,
+                                                                spans[i].end_column):
+                return spans[i]
+            return None
+
+        broken = {holder(d.span) for d in itertools.compress(
+            items, map(ERROR.__eq__, severities))} - {None}
+        if not broken:
+            return
+        entries = {span.line // VLINE for span in broken}
+        # (only a diagnostic with a place in a broken statement's entry, or
+        # with notes, can be beside one)
+        maybe = set(itertools.compress(range(len(items)), map(
+            entries.__contains__, map(VLINE.__rfloordiv__, map(_LINE, map(_SPAN, items))))))
+        maybe.update(itertools.compress(range(len(items)), map(_NOTES, items)))
+        keep = [True] * len(items)
+        for i in maybe:
+            d = items[i]
+            if severities[i] != ERROR and (holder(d.span) in broken or any(
+                    n.span is not None and holder(n.span) in broken for n in d.notes)):
+                keep[i] = False
+        if not all(keep):
+            self.dropped = {id(d) for d, k in zip(items, keep) if not k}
+            items[:] = list(itertools.compress(items, keep))   # in place: callers hold the list
+
+    def _piece_of(self, ident: int):
+        """The piece whose entries include the one of id `ident`."""
+        found = self.piece_of(ident) if self.piece_of is not None else None
+        if found is not None:
+            return found
+        for piece in self.pieces:
+            if any(e.id == ident for e in piece.entries):
+                return piece
+        return None
+
+    def _place_of(self, kept: dict):
+        """The key that puts entries in file order: by piece, then by
+        statement in the piece, then in the statement."""
+        where, index = self.range_memo.where, {}
+
+        def place(entry):
+            if not index:
+                index.update((id(p), i) for i, p in enumerate(self.pieces))
+            piece = where[entry[4]]
+            return index[id(piece)], kept[id(piece)][2][entry[4]], entry[5]
+        return place
+
+
+class FactCounts:
+    """The facts of the blocks of rules replayed (recheck.IncrementalChecker._rules),
+    counted: for each fact, how many of the blocks have each name, so that
+    an edit takes away the blocks it changed and adds the new ones instead
+    of uniting every block's."""
+
+    def __init__(self):
+        self.blocks: dict = {}      # id(block) -> block, the ones counted
+        self.counts: dict = {}      # fact -> {name: how many blocks have it}
+
+    def add(self, checker, replayed: list) -> None:
+        """Count `replayed` (and no other block), and add their facts to
+        the checker's."""
+        now = {id(b): b for b in replayed}
+        old = self.blocks
+        for gone in old.keys() - now.keys():
+            self._count(old[gone], -1)
+        for new in now.keys() - old.keys():
+            self._count(now[new], 1)
+        self.blocks = now
+        for fact, counted in self.counts.items():
+            if counted:
+                getattr(checker, fact).update(counted.keys())
+
+    def _count(self, block, by: int) -> None:
+        for fact, values in block.facts:
+            counted = self.counts.setdefault(fact, {})
+            for value in values:
+                n = counted.get(value, 0) + by
+                if n:
+                    counted[value] = n
+                else:
+                    del counted[value]
