@@ -33,9 +33,7 @@ from .statements import VLINE
 
 _DECLS, _EXTERNS, _RULES = (operator.attrgetter("decls"), operator.attrgetter("externs"),
                             operator.attrgetter("rules"))
-_SEVERITY, _SPAN, _NOTES = (operator.attrgetter("severity"), operator.attrgetter("span"),
-                            operator.attrgetter("notes"))
-_LINE = operator.itemgetter(0)
+_SEVERITY = operator.attrgetter("severity")
 _START = operator.itemgetter(0, 1)     # a Span's (line, column)
 
 # What declaring leaves in the checker that is not a declaration's: the
@@ -233,16 +231,29 @@ class PiecePasses:
         return super()._races(out)
 
     def _no_warnings_beside_errors(self):
+        """Checker._no_warnings_beside_errors's answer, by the segments: the
+        errors and the diagnostics that may be beside one (those with a
+        place in a broken statement's entry, or with notes) are found by
+        each segment's index (_SegmentIndex, kept while the segment is the
+        same list), so that an edit costs the segments it made and the
+        diagnostics it reaches, not a look at every diagnostic."""
         if self.pieces is None:
             return super()._no_warnings_beside_errors()
-        self.segments, self.dropped = self._segments(), ()
+        segments = self.segments = self._segments()
+        self.dropped = ()
         self.memo.errors = self._error_flags
-        items = self.diags.items
         if not self._has_errors():
             return
-        severities = list(map(_SEVERITY, items))
-        if severities.count(ERROR) == len(items):
-            return
+        old, indexes = self.memo.beside, {}
+        at, found = 0, []           # (where each segment starts in the list, its index)
+        for seg in segments:
+            index = old.get(id(seg))
+            if index is None or index.segment is not seg:
+                index = _SegmentIndex(seg)
+            indexes[id(seg)] = index
+            found.append((at, index))
+            at += len(seg)
+        self.memo.beside = indexes
         holders = {}            # entry id -> its statements' spans, in order
 
         def holder(span):
@@ -262,25 +273,29 @@ class PiecePasses:
                 return spans[i]
             return None
 
-        broken = {holder(d.span) for d in itertools.compress(
-            items, map(ERROR.__eq__, severities))} - {None}
+        broken = {holder(index.segment[i].span) for _, index in found
+                  for i in index.errors} - {None}
         if not broken:
             return
         entries = {span.line // VLINE for span in broken}
         # (only a diagnostic with a place in a broken statement's entry, or
         # with notes, can be beside one)
-        maybe = set(itertools.compress(range(len(items)), map(
-            entries.__contains__, map(VLINE.__rfloordiv__, map(_LINE, map(_SPAN, items))))))
-        maybe.update(itertools.compress(range(len(items)), map(_NOTES, items)))
-        keep = [True] * len(items)
-        for i in maybe:
-            d = items[i]
-            if severities[i] != ERROR and (holder(d.span) in broken or any(
-                    n.span is not None and holder(n.span) in broken for n in d.notes)):
-                keep[i] = False
-        if not all(keep):
-            self.dropped = {id(d) for d, k in zip(items, keep) if not k}
-            items[:] = list(itertools.compress(items, keep))   # in place: callers hold the list
+        items = self.diags.items
+        drop = set()
+        for start, index in found:
+            seg, by_entry = index.segment, index.by_entry
+            maybe = set(index.noted)
+            for entry in entries:
+                maybe.update(by_entry.get(entry, ()))
+            for i in maybe:
+                d = seg[i]
+                if d.severity != ERROR and (holder(d.span) in broken or any(
+                        n.span is not None and holder(n.span) in broken for n in d.notes)):
+                    drop.add(start + i)
+        if drop:
+            self.dropped = {id(items[i]) for i in drop}
+            # (in place: callers hold the list)
+            items[:] = [d for i, d in enumerate(items) if i not in drop]
 
     def _piece_of(self, ident: int):
         """The piece whose entries include the one of id `ident`."""
@@ -303,6 +318,22 @@ class PiecePasses:
             piece = where[entry[4]]
             return index[id(piece)], kept[id(piece)][2][entry[4]], entry[5]
         return place
+
+
+class _SegmentIndex:
+    """What _no_warnings_beside_errors reads of one segment of diagnostics
+    (a list kept while a step is replayed): the places of its errors, of
+    those with notes, and of each by the entry its own place is in."""
+    __slots__ = ("segment", "errors", "noted", "by_entry")
+
+    def __init__(self, segment: list):
+        self.segment = segment
+        self.errors = [i for i, d in enumerate(segment) if d.severity == ERROR]
+        self.noted = [i for i, d in enumerate(segment) if d.notes]
+        by_entry: dict = {}
+        for i, d in enumerate(segment):
+            by_entry.setdefault(d.span.line // VLINE, []).append(i)
+        self.by_entry = by_entry
 
 
 class FactCounts:

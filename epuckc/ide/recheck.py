@@ -41,6 +41,7 @@ class _Memo:
         self.counts = FactCounts()  # the facts of the blocks of rules replayed, counted
         self.unused = None      # (what _unused read, what it said)
         self.errors: dict = {}  # id(a list of diagnostics) -> (it, has an error) (passes.py)
+        self.beside: dict = {}  # id(a list of diagnostics) -> passes._SegmentIndex of it
 
 
 # A block of rules is a piece's (ide/pieces.py), which ends after an entry
