@@ -159,3 +159,61 @@ def components(graph: dict) -> list:
                         break
                 out.append(tuple(sorted(members, key=order.__getitem__)))
     return out
+
+
+def order_components(graph: dict) -> tuple:
+    """The graph's components in dependency order as ranges.py keeps them:
+    (members, their set, what they read: themselves and what they depend
+    on), the places in that order of the components reading each variable,
+    and each variable's component's place."""
+    order, readers, place = [], {}, {}
+    for at, members in enumerate(components(graph)):
+        inside = frozenset(members)
+        reads = inside.union(*(graph[m] for m in members))
+        order.append((members, inside, reads))
+        for name in members:
+            place[name] = at
+        for name in reads:
+            readers.setdefault(name, []).append(at)
+    return order, readers, place
+
+
+def regraph_in_place(order: list, readers: dict, place: dict, graph: dict, old_graph: dict,
+                     names) -> bool:
+    """After the variables `names` (and no other) changed what they depend
+    on (`old_graph` to `graph`, the same variables), the components kept
+    (`order`, `readers`, `place`: order_components's) made those of
+    `graph` in place, when the edit cannot have changed which variables
+    make a component: every dependency it added is on a component before
+    (or its own), and a component that lost a dependency inside itself
+    still is one. Then the order is still one where what a component reads
+    comes before it, each component is what `components` finds, and only
+    the changed components' `reads` (and their readers) are made again.
+    False, and nothing changed, otherwise."""
+    touched, split = set(), set()
+    for name in names:
+        old, new = old_graph[name], graph[name]
+        if old == new:
+            continue
+        at = place[name]
+        touched.add(at)
+        new_set, old_set = set(new), set(old)
+        if any(place[v] > at for v in new_set - old_set):
+            return False        # (it may join components, or come after one)
+        if any(place[v] == at for v in old_set - new_set):
+            split.add(at)
+    for at in split:
+        members, inside, _ = order[at]
+        if len(components({m: [v for v in graph[m] if v in inside] for m in members})) > 1:
+            return False
+    for at in touched:
+        members, inside, reads = order[at]
+        now = inside.union(*(graph[m] for m in members))
+        for name in reads - now:
+            readers[name].remove(at)
+            if not readers[name]:
+                del readers[name]
+        for name in now - reads:
+            readers.setdefault(name, []).append(at)
+        order[at] = (members, inside, now)
+    return True

@@ -36,7 +36,8 @@ import itertools
 from ..diagnostics import Collector
 from ..stdlib.units import INT16_MAX, INT16_MIN
 from . import conditions
-from .dependencies import _needs, components, statement_assignments  # noqa: F401 (the language server's)
+from .dependencies import _needs, order_components, regraph_in_place
+from .dependencies import statement_assignments  # noqa: F401 (the language server's)
 from .messages import _shown
 from .program import BOOL, VarInfo
 
@@ -63,6 +64,7 @@ class RangeMemo:
         self.graph = None           # variable -> the variables it depends on
         self.order: list = []       # its components: (members, members' set, what they read)
         self.readers: dict = {}     # variable -> the places in `order` of the components reading it
+        self.place: dict = {}       # variable -> the place in `order` of its component
         self.results: dict = {}     # members -> (inputs, {name: (lo, hi)})
         self.ranges: dict = {}      # variable -> (lo, hi)
         self.solved = None          # variable -> its VarInfo, the last analysis's
@@ -224,14 +226,12 @@ class Ranges:
                 graph[name] = _needs(name, entries, pristine)
         memo.names, memo.assigns, memo.decls = names, assigns, decls
         regraphed = graph is not old_graph and graph != old_graph
+        if regraphed and fast and regraph_in_place(memo.order, memo.readers, memo.place, graph,
+                                                   old_graph, dirty):
+            memo.graph, regraphed = graph, False    # (the same components: see there)
         if regraphed:
-            memo.graph, memo.order, memo.readers = graph, [], {}
-            for at, members in enumerate(components(graph)):
-                inside = frozenset(members)
-                reads = inside.union(*(graph[m] for m in members))
-                memo.order.append((members, inside, reads))
-                for name in reads:
-                    memo.readers.setdefault(name, []).append(at)
+            memo.graph = graph
+            memo.order, memo.readers, memo.place = order_components(graph)
         old_results, old_ranges = memo.results, memo.ranges
         last = memo.solved if fast else None
         variables = self.vars = dict(last) if fast else pristine
