@@ -7,7 +7,8 @@ import itertools
 
 from ..diagnostics import Note
 from .arbitration import (describe, head_text, _is_enter, _code, _Rules, _racing_pairs, EXPAND_RULES,
-                          _events_that_never_occur, _early, RuleFacts)
+                          PAIR_BUDGET, _events_that_never_occur, _early, RuleFacts,
+                          timing_allows)
 from . import conditions as cond
 from .messages import _shown
 
@@ -26,7 +27,11 @@ class RaceMemo:
     that command the motors. An edit that leaves those the same (a rule
     that commands no motor, a changed number in an action, a rule taken
     out that writes nothing a motor rule reads) reuses the pairs; any
-    other computes them again."""
+    other computes them again. Where every group of one priority with two
+    rules or more is so big that it is compared by timing alone, the
+    pairs come from each run's kinds instead (_by_timing, which looks at
+    each run, not at each rule), and the warnings are the last ones while
+    the runs' motor rules are the same objects."""
     def __init__(self):
         self.env = None
         self.named: dict = {}       # named action -> whether it commands the motors
@@ -42,8 +47,9 @@ class _Group:
     """What W009 reads of a run of consecutive rules, computed once while
     the run is the same (its `owner` kept alive): each rule's facts, what
     tells whether an entry stops the motors, and, by the events that never
-    occur, its motor rules (their keys, the names their conditions read)
-    and the order of its rules that write or command the motors."""
+    occur, its motor rules (their keys, the names their conditions read,
+    their kinds by priority, their ids) and the order of its rules that
+    write or command the motors."""
     __slots__ = ("owner", "rules", "facts", "id_facts", "moves_outside", "enters",
                  "entry_moves", "stops", "by_never")
 
@@ -68,22 +74,68 @@ class _Group:
     def motor(self, never: frozenset) -> tuple:
         """(the motor rules but those whose event never occurs, their keys,
         the names their conditions read, (is motor, key) of each rule that
-        writes or commands the motors, their ids)."""
+        writes or commands the motors, their ids, the motor rules' _Kinds
+        by priority, their ids)."""
         found = self.by_never.get(never)
         if found is None:
             rules, keys, names, order, ids = [], [], set(), [], []
+            kinds: dict = {}        # priority -> _Kinds of its motor rules here
             for r, f in zip(self.rules, self.facts):
                 motor = f.motor and not (r.event.kind == "standard" and r.event.name in never)
                 if motor:
                     rules.append(r)
                     keys.append(f.key)
                     names.update(f.names)
+                    at = kinds.get(r.priority)
+                    if at is None:
+                        at = kinds[r.priority] = _Kinds()
+                    at.add(r, f)
                 if motor or f.writes:
                     order.append((motor, f.key))
                     ids.append(id(r))
             found = self.by_never[never] = (rules, tuple(keys), frozenset(names), tuple(order),
-                                            tuple(ids))
+                                            tuple(ids), kinds, tuple(map(id, rules)))
         return found
+
+
+class _Kinds:
+    """What the pairs of a big group of one priority (arbitration's
+    _racing_blocks) read of some of its motor rules, in file order, when
+    it compares them by timing alone: the rules by timing shape; and how
+    many kinds they surely make when compared by condition (a rule whose
+    condition has clauses is a kind of its own; the others, at least one a
+    shape), which decides that it does."""
+    __slots__ = ("rules", "by_shape", "own", "shapes")
+
+    def __init__(self):
+        self.rules: list = []
+        self.by_shape: dict = {}    # timing shape -> its rules, in order
+        self.own = 0                # rules that are surely kinds of their own
+        self.shapes: dict = {}      # (whether true, shape) of the others
+
+    def add(self, rule, facts) -> None:
+        self.rules.append(rule)
+        found = self.by_shape.get(facts.shape)
+        if found is None:
+            self.by_shape[facts.shape] = [rule]
+        else:
+            found.append(rule)
+        true = facts.condition is cond.TRUE
+        if not true and cond._clauses(facts.condition) is not None:
+            self.own += 1
+        else:
+            self.shapes[(true, facts.shape)] = None
+
+    def join(self, other: "_Kinds") -> None:
+        self.rules += other.rules
+        for shape, rules in other.by_shape.items():
+            found = self.by_shape.get(shape)
+            if found is None:
+                self.by_shape[shape] = list(rules)
+            else:
+                found += rules
+        self.own += other.own
+        self.shapes.update(other.shapes)
 
 
 def _groups(checker, rules, groups, memo: RaceMemo) -> list:
@@ -129,13 +181,25 @@ def check_program(checker, out, groups=None) -> None:
     rules = out.rules
     found_groups = _groups(checker, rules, groups, memo)
     motors = [g.motor(never) for g in found_groups]
-    motor_rules = list(itertools.chain.from_iterable(m[0] for m in motors))
-    if len(motor_rules) < 2:
+    if sum(len(m[0]) for m in motors) < 2:
         return
+    stops = _entry_stops(checker, found_groups)
+    # big groups compared by timing alone: their pairs from the runs' kinds,
+    # and the warnings the last ones while the runs' motor rules are the
+    # same objects (their ids, by run: memo.said keeps them alive)
+    said_from = ("by timing", stops, tuple(m[6] for m in motors))
+    if memo.said and memo.said[0] == said_from:
+        checker.diags.items.extend(memo.said[1])
+        return
+    motor_rules = list(itertools.chain.from_iterable(m[0] for m in motors))
+    fast = _by_timing(motors, stops)
+    if fast is not None:
+        blocks, by_timing_only = fast
+        return _said(checker, memo, said_from, [], blocks, None, by_timing_only, motor_rules,
+                     rules)
     motor_keys = tuple(itertools.chain.from_iterable(m[1] for m in motors))
     if memo.read is None or memo.read[0] != motor_keys:
         memo.read = (motor_keys, sorted(frozenset().union(*(m[2] for m in motors))))
-    stops = _entry_stops(checker, found_groups)
     key = (never, stops, motor_keys, tuple(map(checker.vars.get, memo.read[1])))
     found = None
 
@@ -159,22 +223,97 @@ def check_program(checker, out, groups=None) -> None:
     # objects say the same (by their ids: memo.said keeps the rules alive)
     said_from = (last, tuple(map(id, motor_rules)),
                  tuple(itertools.chain.from_iterable(m[4] for m in motors)) if last[3] else ())
-    diags = checker.diags
     if memo.said and memo.said[0][0] is last and memo.said[0][1:] == said_from[1:]:
-        diags.items.extend(memo.said[1])
+        checker.diags.items.extend(memo.said[1])
         return
     if found is None:
         pairs = [(motor_rules[a], motor_rules[b]) for a, b in last[3]]
         blocks = [_block(motor_rules, *block) for block in last[4]]
-        # (the blocks' warnings need only the motor rules' order; the pairs' all)
-        found = every_rule() if pairs else _MotorOrder(motor_rules)
-        found.by_timing_only = by_timing_only
+    _said(checker, memo, said_from, pairs, blocks, found if found is not None else every_rule
+          if pairs else None, by_timing_only, motor_rules, rules)
+
+
+def _said(checker, memo: RaceMemo, said_from: tuple, pairs, blocks, found, by_timing_only,
+          motor_rules, rules) -> None:
+    """The warnings of the pairs and blocks: the last ones when they were
+    made from the same (`said_from`), else made (`found`: the _Rules, or
+    what makes them; None: only the motor rules' order is read)."""
+    diags = checker.diags
+    if memo.said and memo.said[0] == said_from:
+        diags.items.extend(memo.said[1])
+        return
+    if callable(found):
+        found = found()
+    if found is None:
+        found = _MotorOrder(motor_rules)
+    found.by_timing_only = by_timing_only
     first = len(diags.items)
     _report(checker, pairs, blocks, found, memo)
     said = diags.items[first:]
     if memo.said and said == list(memo.said[1]):
         diags.items[first:] = memo.said[1]  # the same objects: what caches them keeps them
     memo.said = (said_from, tuple(diags.items[first:]), rules, motor_rules)
+
+
+def _by_timing(motors: list, stops: bool):
+    """(blocks, whether a group was compared by timing alone) as _pairs
+    finds them (with no pairs), from the runs' kinds (_Kinds)
+    without a look at each motor rule, when every group of one priority
+    with two rules or more is big and surely compared by timing alone (a
+    small group's pairs are found one by one and kept: the full path);
+    None otherwise."""
+    by_priority: dict = {}
+    for m in motors:
+        for priority, kinds in m[5].items():
+            found = by_priority.get(priority)
+            if found is None:
+                found = by_priority[priority] = _Kinds()
+            found.join(kinds)
+    blocks, by_timing = [], False
+    for kinds in by_priority.values():
+        if len(kinds.rules) <= EXPAND_RULES:
+            if len(kinds.rules) > 1:
+                return None     # (its pairs one by one: kept by the full path's memo)
+            continue
+        # at least as many kinds as _racing_blocks would make (a rule whose
+        # condition has clauses has boxes of its own), and when their pairs
+        # are surely more than the budget, it compares by timing alone
+        n = kinds.own + len(kinds.shapes)
+        if n * (n + 1) // 2 <= PAIR_BUDGET:
+            return None
+        found = _timing_blocks(kinds, stops)
+        if found is None:
+            return None
+        blocks += found
+        by_timing = True
+    return blocks, by_timing
+
+
+def _timing_blocks(kinds: _Kinds, stops: bool):
+    """_racing_blocks of a big group compared by timing alone: a kind a
+    timing shape (in the order they come), its first rule standing for its
+    pairs; None where the order decides (pair by pair: the full path)."""
+    order = list(kinds.by_shape.items())
+    timing: dict = {}
+    blocks = []
+    for x, (sx, xs) in enumerate(order):
+        for sy, ys in order[x:]:
+            a, b = xs[0], ys[0]
+            if sx == sy:
+                if len(xs) < 2:
+                    continue
+                b = xs[1]
+            ab = timing.get((sx, sy))
+            if ab is None:
+                ab = timing[sx, sy] = timing_allows(a, b, stops)
+            ba = ab if sx == sy else timing.get((sy, sx))
+            if ba is None:
+                ba = timing[sy, sx] = timing_allows(b, a, stops)
+            if ab and ba:
+                blocks.append((a, b, xs, ys))
+            elif ab or ba:
+                return None
+    return blocks
 
 
 def _block(to, a, b, xs, ys) -> tuple:
