@@ -145,15 +145,34 @@ class Target:
     standard: Optional[str] = None
 
 
+def definition(statement) -> Optional[Occurrence]:
+    """The name a statement defines (the first of its occurrences, when it
+    defines one), found without a walk over the rest of it."""
+    s = statement
+    if isinstance(s, (ast.ConstDef, ast.VarDef)):
+        return Occurrence(CONST, s.name, True, s)
+    if isinstance(s, ast.ActionDef):
+        return Occurrence(ACTION, s.name, True, s)
+    if isinstance(s, ast.ExternDef):
+        return Occurrence(s.kind, s.name, True, s)
+    if isinstance(s, ast.Rule):
+        return Occurrence(RULE, s.name, True, s) if s.name is not None else None
+    if isinstance(s, ast.ModeDef):
+        return Occurrence(MODE, s.name, True, s)
+    return None
+
+
 def definitions(analysis: Analysis) -> dict:
     """(namespace, name) -> the first definition (as the checker keeps the
-    first of a name defined twice)."""
+    first of a name defined twice). A statement's names other than the one
+    it defines are not looked at: a hover on a name no check resolved (in
+    a rule with an error) costs a look at each statement, not a walk over
+    every name of the program."""
     found: dict = {}
     for s in analysis.program.statements:
-        for occ in occurrences(s):
-            if occ.definition:
-                found.setdefault((occ.namespace, occ.ident.name), occ)
-                break
+        occ = definition(s)
+        if occ is not None:
+            found.setdefault((occ.namespace, occ.ident.name), occ)
     return found
 
 
