@@ -49,14 +49,26 @@ def real_words(d: Diagnostic, starts: dict) -> Diagnostic:
     def lines(match):
         # (in the order of the file, as the checker lists them: virtual
         # lines follow statements' ids, not their places)
-        numbers = sorted(starts[n // VLINE] + n % VLINE - 1 if n >= VLINE else n
-                         for n in map(int, match.group(2).split(", ")))
+        numbers = list(map(int, match.group(2).split(", ")))
+        virtual = [n for n in numbers if n >= VLINE]
+        found = first_lines(starts, [n // VLINE for n in virtual])
+        if None in found:       # (raises KeyError, as it always did)
+            found = [starts[n // VLINE] for n in virtual]
+        first = dict(zip(virtual, found))
+        numbers = sorted([first[n] + n % VLINE - 1 if n >= VLINE else n for n in numbers])
         return f"{match.group(1)} {', '.join(map(str, numbers))}"
 
     def fix(text):
         return _LINE_WORDS.sub(lines, text) if text else text
     return replace(d, message=fix(d.message), help=fix(d.help),
                    notes=tuple(replace(n, message=fix(n.message)) for n in d.notes))
+
+
+def first_lines(starts, idents) -> tuple:
+    """The first lines of statements `idents` (None where there is none):
+    `starts` is a dict or pieces.FirstLines, which finds many at once."""
+    many = getattr(starts, "many", None)
+    return many(idents) if many is not None else tuple(map(starts.get, idents))
 
 
 def real_diagnostic(analysis, d: Diagnostic) -> Diagnostic:
@@ -108,14 +120,15 @@ class Shown:
                 self.segments, self.dropped = segments, set(dropped)
                 return spliced
         cache, kept = self.real, {}
-        get = analysis._starts.get
+        starts = analysis._starts
+        get = starts.get
         shown = []
         for d in items:
             # hit: (d, its statements, their first lines, (sort key, d in real lines))
             hit = cache.get(id(d))
             if hit is None or hit[0] is not d or (
                     get(hit[1][0]) != hit[2][0] if len(hit[1]) == 1
-                    else tuple(map(get, hit[1])) != hit[2]):
+                    else first_lines(starts, hit[1]) != hit[2]):
                 hit = self._hit(analysis, d)
             kept[id(d)] = hit
             shown.append(hit[3])
@@ -140,7 +153,7 @@ class Shown:
     def _hit(analysis, d: Diagnostic) -> tuple:
         found = idents(d)
         real = real_diagnostic(analysis, d) if found else d
-        return (d, found, tuple(map(analysis._starts.get, found)), (real.sort_key(), real))
+        return (d, found, first_lines(analysis._starts, found), (real.sort_key(), real))
 
     def _splice(self, analysis, segments: list, dropped: set, changed: set):
         """The last sorted list with the diagnostics that went taken out and
@@ -171,7 +184,7 @@ class Shown:
         for i in added_ids:
             hit = cache.get(i)
             d = present[i]
-            if hit is None or hit[0] is not d or tuple(map(analysis._starts.get, hit[1])) \
+            if hit is None or hit[0] is not d or first_lines(analysis._starts, hit[1]) \
                     != hit[2]:
                 hit = self._hit(analysis, d)
             hits.append(hit)
@@ -185,7 +198,7 @@ class Shown:
         moved = []
         for i in again:
             hit = cache[i]
-            if tuple(map(analysis._starts.get, hit[1])) != hit[2]:
+            if first_lines(analysis._starts, hit[1]) != hit[2]:
                 moved.append(i)
                 hits.append(self._hit(analysis, hit[0]))
         out = list(self.shown)
