@@ -139,19 +139,25 @@ class PiecePasses:
             not fresh_at or fresh_at[-1] - fresh_at[0] == len(fresh_at) - 1) and (
             not gone_at or gone_at[-1] - gone_at[0] == len(gone_at) - 1)
         touched = set().union(*(h[1].keys() for h in gone), *(h[1].keys() for h in fresh))
-        changed = set()
+        changed, spliced = set(), {}
         for name in touched:
             before = [e for h in gone for e in h[1].get(name, ())]
             after = [e for h in fresh for e in h[1].get(name, ())]
             if name in memo.assigns and (not in_place or len(before) != len(after) or any(
                     x is not y for x, y in zip(before, after))):
                 changed.add(name)
+                if in_place and before:
+                    spliced[name] = (before, after)
         assigns = memo.assigns
         if changed:
             assigns = dict(assigns)
             for name in changed:
-                assigns[name] = [e for piece in self.pieces
-                                 for e in new[id(piece)][1].get(name, ())]
+                # (where the replaced pieces assigned it: their entries, together
+                # in its list, replaced; else made again from every piece)
+                found = spliced.get(name)
+                found = _spliced(assigns[name], *found) if found is not None else None
+                assigns[name] = found if found is not None else [
+                    e for piece in self.pieces for e in new[id(piece)][1].get(name, ())]
         return assigns, changed, self._place_of(new)
 
     def _unused(self):
@@ -320,6 +326,19 @@ class PiecePasses:
         return place
 
 
+def _spliced(entries: list, before: list, after: list):
+    """`entries` with the run `before` (the same objects, one after the
+    other) replaced by `after`; None when `before` is not in it so."""
+    first = before[0]
+    for at, entry in enumerate(entries):
+        if entry is first:
+            end = at + len(before)
+            if all(map(operator.is_, entries[at:end], before)) and end <= len(entries):
+                return entries[:at] + after + entries[end:]
+            return None
+    return None
+
+
 class _SegmentIndex:
     """What _no_warnings_beside_errors reads of one segment of diagnostics
     (a list kept while a step is replayed): the places of its errors, of
@@ -340,11 +359,14 @@ class FactCounts:
     """The facts of the blocks of rules replayed (recheck.IncrementalChecker._rules),
     counted: for each fact, how many of the blocks have each name, so that
     an edit takes away the blocks it changed and adds the new ones instead
-    of uniting every block's."""
+    of uniting every block's; and each fact's names as a set, made again
+    only when a name came or went (a set adds a set's names without
+    hashing them again)."""
 
     def __init__(self):
         self.blocks: dict = {}      # id(block) -> block, the ones counted
         self.counts: dict = {}      # fact -> {name: how many blocks have it}
+        self.names: dict = {}       # fact -> the set of its counted names, when made
 
     def add(self, checker, replayed: list) -> None:
         """Count `replayed` (and no other block), and add their facts to
@@ -356,9 +378,13 @@ class FactCounts:
         for new in now.keys() - old.keys():
             self._count(now[new], 1)
         self.blocks = now
+        names = self.names
         for fact, counted in self.counts.items():
             if counted:
-                getattr(checker, fact).update(counted.keys())
+                found = names.get(fact)
+                if found is None:
+                    found = names[fact] = set(counted)
+                getattr(checker, fact).update(found)
 
     def _count(self, block, by: int) -> None:
         for fact, values in block.facts:
@@ -366,6 +392,9 @@ class FactCounts:
             for value in values:
                 n = counted.get(value, 0) + by
                 if n:
+                    if n == 1 and by > 0:
+                        self.names.pop(fact, None)      # (a name came)
                     counted[value] = n
                 else:
                     del counted[value]
+                    self.names.pop(fact, None)          # (a name went)
