@@ -384,7 +384,13 @@ class FactCounts:
                 found = names.get(fact)
                 if found is None:
                     found = names[fact] = set(counted)
-                getattr(checker, fact).update(found)
+                current = getattr(checker, fact)
+                if len(current) < len(found):   # (a copy of the bigger set, not its names added)
+                    merged = set(found)
+                    merged |= current
+                    setattr(checker, fact, merged)
+                else:
+                    current |= found
 
     def _count(self, block, by: int) -> None:
         for fact, values in block.facts:
