@@ -102,6 +102,8 @@ def main() -> int:
     print(f"machine: {platform.machine()}, {os.cpu_count()} CPUs, {args.workers} usable by this "
           f"process; {platform.system()} {platform.release()}, Python "
           f"{platform.python_version()}; load average {load()}")
+    from world_bench import compile_package     # (bench/, beside this script)
+    compile_package()
     ok = True
     with tempfile.TemporaryDirectory() as tmp:
         tmp = Path(tmp)
