@@ -171,3 +171,39 @@ traces = true
     swarm_distances = [float(r["distance_mm"]) for r in runs if r["robot"] == "swarm"]
     assert math.isclose(float(summary[0]["distance_mm:mean"]),
                         statistics.mean(swarm_distances), abs_tol=1e-3)
+
+
+
+def test_the_pool_forks_only_a_process_of_one_thread_and_the_rows_are_the_same(
+        tmp_path, capsys, monkeypatch):
+    """`epuckc experiment` forks its workers (a process of one thread); with
+    another thread alive (a test runner, a tool embedding epuckc) they come
+    from a fork server instead, which no lock of that thread can reach; the
+    rows are the same either way."""
+    import threading
+
+    from epuckc.experiment import engines
+    with monkeypatch.context() as m:
+        m.setattr(threading, "active_count", lambda: 1)
+        assert engines._pool_context().get_start_method() == "fork"
+        m.setattr(threading, "active_count", lambda: 2)
+        assert engines._pool_context().get_start_method() == "forkserver"
+    exp = make(tmp_path)
+    # the command as users run it: a process of one thread, whose workers fork
+    forked = subprocess.run(command(exp, "-o", tmp_path / "forked", "--workers", "2"), env=env(),
+                            capture_output=True, text=True, timeout=300)
+    assert forked.returncode == 0, forked.stderr
+    # in this process, with one more thread for sure: a fork server's workers
+    stop = threading.Event()
+    other = threading.Thread(target=stop.wait)
+    other.start()
+    try:
+        assert engines._pool_context().get_start_method() == "forkserver"
+        status, out, err = run_cli(["experiment", str(exp), "-o", str(tmp_path / "served"),
+                                    "--workers", "2"], capsys)
+    finally:
+        stop.set()
+        other.join()
+    assert status == 0, err
+    assert (tmp_path / "served" / "runs.csv").read_bytes() == \
+        (tmp_path / "forked" / "runs.csv").read_bytes()
