@@ -96,6 +96,11 @@ void rt_clock_tick(void)
     ms_ticks++;
 }
 
+void rt_clock_ticks(long k)
+{
+    ms_ticks += (unsigned long)k;
+}
+
 long rt_millis(void)
 {
     unsigned long a, b;

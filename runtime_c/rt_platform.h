@@ -69,6 +69,10 @@ long rt_millis(void);
  * the host); a platform whose library has none calls it itself (the
  * e-puck2's epuck1x layer: platform_epuck2.c). */
 void rt_clock_tick(void);
+/* Provided by the core: k >= 0 milliseconds more at once, as k calls of
+ * rt_clock_tick would make them (for a host that advances several ms at
+ * once: stub_agendas_ms). */
+void rt_clock_ticks(long k);
 
 /* Provided by the core (rt_idle.c) to a platform that simulates time (the
  * host's), which may call it at the start of each poll cycle, before it

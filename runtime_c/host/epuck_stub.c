@@ -217,7 +217,7 @@ void stub_agendas_1ms(void)
     }
 }
 
-void stub_agendas_ms(long n, void (*clock)(void))
+void stub_agendas_ms(long n, void (*clock)(void), void (*clock_ticks)(long))
 {
     int i;
     if (!stub_agendas_count_only(clock)) {
@@ -230,6 +230,12 @@ void stub_agendas_ms(long n, void (*clock)(void))
         if (agendas[i].func == NULL || agendas[i].cycle <= 0 || agendas[i].paused)
             continue;
         agendas[i].count += 10L * n;
+        if (agendas[i].func == clock && agendas[i].count >= agendas[i].cycle) {
+            long calls = agendas[i].count / agendas[i].cycle;
+            agendas[i].count -= calls * agendas[i].cycle;
+            clock_ticks(calls);
+            continue;
+        }
         while (agendas[i].func != NULL && agendas[i].count >= agendas[i].cycle) {
             agendas[i].count -= agendas[i].cycle;
             agendas[i].func();

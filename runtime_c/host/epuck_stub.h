@@ -23,7 +23,8 @@ void stub_agendas_1ms(void);
  * that processing calls is `clock` (the runtime's, which only counts ms) or
  * one that the stub made with stub_activate_counter (its own, which only
  * counts: libIrcom's frame on the air), and their calls are made agenda
- * after agenda, at once. */
+ * after agenda, at once: `clock`'s k calls as one call of clock_ticks(k),
+ * which does what they do. */
 long stub_motors_ms(long n, long left, long right);
 void stub_motors_ms_end(void);
 /* A count of the calls of the inputs' setters (stub_set_prox ... and the
@@ -32,7 +33,7 @@ void stub_motors_ms_end(void);
 unsigned long stub_inputs_epoch(void);
 void stub_input_set(void);
 int stub_agendas_count_only(void (*clock)(void));
-void stub_agendas_ms(long n, void (*clock)(void));
+void stub_agendas_ms(long n, void (*clock)(void), void (*clock_ticks)(long));
 int stub_activate_counter(void (*func)(void), int cycle);
 /* Set the reading of proximity sensor n (0..7). */
 void stub_set_prox(int n, int value);

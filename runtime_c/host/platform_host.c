@@ -621,7 +621,7 @@ void rt_platform_idle(void)
         stub_motors_ms_end();   /* a world steps at the end of its step, at this ms */
         now_ms++;
         host_scenario_apply(now_ms);    /* no line before it */
-        stub_agendas_ms(n, rt_clock_tick);
+        stub_agendas_ms(n, rt_clock_tick, rt_clock_ticks);
         rt_idle_skipped(n - 1);
         polls_skipped += n - 1;
     } else {
