@@ -33,6 +33,7 @@ from __future__ import annotations
 import heapq
 import itertools
 
+from ..base.views import MISSING, NotingView
 from ..diagnostics import Collector
 from ..stdlib.units import INT16_MAX, INT16_MIN
 from . import conditions
@@ -102,7 +103,7 @@ def _inputs(checker, entries: list, members: tuple, outside) -> tuple:
 
 # the values of an assignment kept (_assigned_where), for as many states of what it reads
 _KEPT_VALUES = 4
-_MISSING = object()
+_MISSING = MISSING
 
 
 def _state(info) -> tuple:
@@ -120,7 +121,7 @@ class _Value:
         self.kind, self.lo, self.hi = kind, lo, hi
 
 
-class _Reads:
+class _Reads(NotingView):
     """The variables as an assignment's evaluation sees them, noting the
     state of each one it reads (the first time: before the conditions that
     hold where it runs narrow them); `read` None when it looked at all."""
@@ -136,27 +137,9 @@ class _Reads:
             read[name] = _state(found)
         return default if found is _MISSING else found
 
-    def __getitem__(self, name):
-        found = self.get(name, _MISSING)
-        if found is _MISSING:
-            raise KeyError(name)
-        return found
-
-    def __contains__(self, name):
-        return self.get(name, _MISSING) is not _MISSING
-
     def _all(self):
         self.read = None
         return self._table
-
-    def __iter__(self):
-        return iter(self._all())
-
-    def __len__(self):
-        return len(self._all())
-
-    def __getattr__(self, attr):        # items(), keys(), values(), ...
-        return getattr(self._all(), attr)
 
 
 class Ranges:

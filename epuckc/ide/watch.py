@@ -3,6 +3,7 @@ replayed (ide/recheck.py): its diagnostics and facts captured (_Capture),
 its look-ups in the checker's tables noted (_Watched, _Watch)."""
 from __future__ import annotations
 
+from ..base.views import MISSING, NotingView
 from ..check.checker import Checker
 from ..diagnostics import Collector
 
@@ -48,13 +49,13 @@ class _Capture:
         return False
 
 
-_MISSING = object()
+_MISSING = MISSING
 _ALL = object()
 _TABLES = ("consts", "const_arrays", "actions", "externs", "broken_externs", "rule_names",
            "modes", "vars")
 
 
-class _Watched:
+class _Watched(NotingView):
     """A read-only view of one of the checker's name tables that notes
     what a rule looked up in it: (table, name, what was found), or
     (table, _ALL, every entry) when it looked at the whole table (the
@@ -72,24 +73,6 @@ class _Watched:
         found = self._table.get(name, _MISSING)
         self._deps.append((self._attr, name, found))
         return default if found is _MISSING else found
-
-    def __contains__(self, name):
-        return self.get(name, _MISSING) is not _MISSING
-
-    def __getitem__(self, name):
-        found = self.get(name, _MISSING)
-        if found is _MISSING:
-            raise KeyError(name)
-        return found
-
-    def __iter__(self):
-        return iter(self._all())
-
-    def __len__(self):
-        return len(self._all())
-
-    def __getattr__(self, attr):        # items(), keys(), values(), ...
-        return getattr(self._all(), attr)
 
 
 class _Narrowing:
