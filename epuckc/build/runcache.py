@@ -39,7 +39,7 @@ from pathlib import Path
 from typing import Optional
 
 from .. import __version__
-from ..base.fingerprint import PACKAGE as _PACKAGE, stat_lines
+from ..base.fingerprint import PACKAGE as _PACKAGE, stat_lines, store
 from ..base.resources import cache_dir, grammar_path, runtime_dir, templates_dir
 
 FORMAT = 2
@@ -118,19 +118,7 @@ def record(key: bytes, exe: Path, user_files: list, shown: str, shown_colour: st
         if cache_dir().resolve() not in exe.parents:
             return          # a build outside the cache (e.g. a temporary folder) does not last
         files = tuple((str(Path(p).resolve()), Path(p).read_bytes()) for p in user_files)
-        path = _entry_path(key)
-        path.parent.mkdir(parents=True, exist_ok=True)
     except (OSError, ValueError):
         return
-    # Written aside and renamed: a parallel run reads all of it or nothing.
-    tmp = path.with_name(f"{path.name}.{os.getpid()}.tmp")
-    try:
-        with open(tmp, "wb") as f:
-            marshal.dump((FORMAT, key, str(exe), files, shown, shown_colour, warnings,
-                          extra or {}), f)
-        os.replace(tmp, path)
-    except (OSError, ValueError):
-        try:
-            os.unlink(tmp)
-        except OSError:
-            pass
+    store(_entry_path(key), (FORMAT, key, str(exe), files, shown, shown_colour, warnings,
+                             extra or {}))

@@ -35,7 +35,7 @@ import zlib
 from pathlib import Path
 from typing import Optional
 
-from ..base.fingerprint import front_end_fingerprint
+from ..base.fingerprint import front_end_fingerprint, store
 from ..base.resources import cache_dir
 from ..base.source import SourceFile, Span
 from ..diagnostics import Diagnostic, Fix, Note, Report
@@ -129,19 +129,7 @@ def _record(entry: Path, key: bytes, path: Path, program, diagnostics: list) -> 
     outside = _outside(path, files)
     if outside is None:
         return
-    payload = (FORMAT, key, files, outside, tuple(map(_encode, diagnostics)))
-    tmp = entry.with_name(f"{entry.name}.{os.getpid()}.tmp")
-    try:
-        entry.parent.mkdir(parents=True, exist_ok=True)
-        # written aside and renamed: a parallel run reads all of it or nothing
-        with open(tmp, "wb") as f:
-            marshal.dump(payload, f)
-        os.replace(tmp, entry)
-    except (OSError, ValueError):
-        try:
-            os.unlink(tmp)
-        except OSError:
-            pass
+    store(entry, (FORMAT, key, files, outside, tuple(map(_encode, diagnostics))))
 
 
 def _span(span) -> Optional[tuple]:

@@ -17,6 +17,7 @@ from urllib.parse import unquote, urlparse
 from lsprotocol import types as lsp
 
 from .incremental import Analysis, Analyzer
+from .showing import find_sorted
 from .statements import _common_prefix, _common_suffix
 
 # ---- positions ------------------------------------------------------------------
@@ -148,10 +149,6 @@ def _path_of(uri: str) -> Optional[Path]:
 
 
 
-def _SORT_KEY(d):
-    return d.sort_key()
-
-
 def _primary_line(d) -> int:
     return d.span.line
 
@@ -228,8 +225,8 @@ class Conversions:
         (and the forms on edited lines made again); None if a diagnostic is
         not where the splice says."""
         before, removed, inserted = delta
-        gone = [_find(before, d) for d in removed]
-        came = [_find(diagnostics, d) for d in inserted]
+        gone = [find_sorted(before, d) for d in removed]
+        came = [find_sorted(diagnostics, d) for d in inserted]
         if None in gone or None in came:
             return None
         out = list(self.published)
@@ -277,7 +274,7 @@ class Conversions:
         for d in list(self.noted.values()):
             if any(n.span is not None and n.span.end_line >= first and n.span.line <= last
                    for n in d.notes):
-                at = _find(shown, d)
+                at = find_sorted(shown, d)
                 if at is not None:
                     found.add(at)
         return sorted(found)
@@ -289,15 +286,3 @@ class Conversions:
             d = self.shown[at]
             self.forms.pop(id(d), None)
             self.noted.pop(id(d), None)
-
-
-def _find(shown: list, d):
-    """The place of `d` in a sorted list of diagnostics (by its key, then
-    by identity among those that sort alike); None if it is not there."""
-    key = d.sort_key()
-    at = bisect.bisect_left(shown, key, key=_SORT_KEY)
-    while at < len(shown) and shown[at] is not d:
-        if shown[at].sort_key() != key:
-            return None
-        at += 1
-    return at if at < len(shown) else None

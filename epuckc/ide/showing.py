@@ -204,7 +204,7 @@ class Shown:
         out = list(self.shown)
         removed = [cache[i][3][1] for i in itertools.chain(gone, moved) if i in cache]
         for real in removed:
-            at = self._find(out, real)
+            at = find_sorted(out, real)
             if at is None:
                 return None
             del out[at]
@@ -225,18 +225,6 @@ class Shown:
         self.delta = (self.shown, removed, inserted)
         self.shown = out
         return out
-
-    @staticmethod
-    def _find(out: list, real: Diagnostic):
-        """The place of `real` in the sorted list (found by its key, then by
-        identity among those that sort alike)."""
-        key = real.sort_key()
-        at = bisect.bisect_left(out, key, key=_SORT_KEY)
-        while at < len(out) and out[at] is not real:
-            if out[at].sort_key() != key:
-                return None
-            at += 1
-        return at if at < len(out) else None
 
     def _forget(self, gone) -> None:
         cache, naming = self.real, self.naming
@@ -259,3 +247,15 @@ class Shown:
                     naming[ident] = {key}
                 else:
                     found.add(key)
+
+
+def find_sorted(shown: list, d):
+    """The place of `d` in a sorted list of diagnostics (by its key, then
+    by identity among those that sort alike); None if it is not there."""
+    key = d.sort_key()
+    at = bisect.bisect_left(shown, key, key=_SORT_KEY)
+    while at < len(shown) and shown[at] is not d:
+        if shown[at].sort_key() != key:
+            return None
+        at += 1
+    return at if at < len(shown) else None
