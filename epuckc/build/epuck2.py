@@ -86,6 +86,30 @@ def write_epuck2_project(program: Program, out_dir: Path, template_render,
         only_if_changed=True)
 
 
+def make_command(make: str, out_dir: Path, firmware: Path,
+                 environ: Optional[dict] = None) -> tuple[list[str], dict]:
+    """`make` of the project on every core, through ccache when it is on
+    PATH (and EPUCKC_NO_CCACHE is not set). The firmware's ~200 files are
+    the same in every project (same sources, flags and headers: main.h is
+    the template's), so from the second project on ccache gives their
+    objects back and only the program and the runtime compile. ccache
+    hashes the working folder where -g is used (the firmware's -ggdb);
+    CCACHE_NOHASHDIR lets one project's objects serve another's, at the
+    cost ccache documents: the debug information's compilation folder may
+    name the project that compiled the file first (the firmware's files
+    are named by absolute paths, so gdb finds them anyway)."""
+    environ = dict(os.environ if environ is None else environ)
+    command = [make, f"-j{os.cpu_count() or 1}", "-C", str(out_dir),
+               f"EPUCK2_FIRMWARE={firmware}"]
+    ccache = None if environ.get("EPUCKC_NO_CCACHE") else shutil.which(
+        "ccache", path=environ.get("PATH"))
+    if ccache is not None:
+        command.append(f"CC={ccache} {ARM_GCC}")
+        if "CCACHE_HASHDIR" not in environ:
+            environ.setdefault("CCACHE_NOHASHDIR", "1")
+    return command, environ
+
+
 def build_epuck2(program: Program, out_dir: Path, template_render,
                  firmware_option: Optional[str]) -> str:
     """Write the project, then `make` it when arm-none-eabi-gcc and the
@@ -114,8 +138,8 @@ def build_epuck2(program: Program, out_dir: Path, template_render,
     if make is None:
         raise BuildError(f"`make` was not found; the project is in {out_dir}",
                          status=EXIT_NO_TOOLCHAIN)
-    result = subprocess.run([make, "-C", str(out_dir), f"EPUCK2_FIRMWARE={firmware}"],
-                            capture_output=True, text=True)
+    command, env = make_command(make, out_dir, firmware)
+    result = subprocess.run(command, capture_output=True, text=True, env=env)
     if result.returncode != 0:
         raise BuildError(f"make failed in {out_dir}:\n{(result.stdout + result.stderr).rstrip()}")
     return f"built {out_dir / 'build' / (program.name + '.elf')} and .bin"

@@ -11,6 +11,7 @@ import pytest
 
 from conftest import REPO, require_checkout, require_tool
 from epuckc.base.resources import RUNTIME_CORE, RUNTIME_DEVICES
+from epuckc.build.epuck2 import EPUCK2_SOURCES, make_command
 from tests.support.programs import epuckc
 
 EXAMPLES = sorted((REPO / "examples").glob("*.epk"))
@@ -126,6 +127,76 @@ def test_a_full_build_with_the_firmware(tmp_path, example):
     assert r.returncode == 0, r.stdout + r.stderr
     assert (out / "build" / f"{example.stem}.elf").is_file()
     assert (out / "build" / f"{example.stem}.bin").is_file()
+
+
+def _fake_tool(folder: Path, name: str) -> Path:
+    folder.mkdir(exist_ok=True)
+    tool = folder / name
+    tool.write_text("#!/bin/sh\nexit 0\n")
+    tool.chmod(0o755)
+    return tool
+
+
+def test_make_runs_on_every_core_through_ccache_when_it_is_there(tmp_path):
+    ccache = _fake_tool(tmp_path / "bin", "ccache")
+    command, env = make_command("make", tmp_path / "p", tmp_path / "fw",
+                                {"PATH": str(ccache.parent)})
+    assert command[:4] == ["make", f"-j{os.cpu_count() or 1}", "-C", str(tmp_path / "p")]
+    assert f"EPUCK2_FIRMWARE={tmp_path / 'fw'}" in command
+    assert f"CC={ccache} arm-none-eabi-gcc" in command
+    # one project's firmware objects serve the next, whatever its folder
+    assert env["CCACHE_NOHASHDIR"] == "1"
+    # the user's own choice of ccache's hash_dir is kept
+    _, env = make_command("make", tmp_path / "p", tmp_path / "fw",
+                          {"PATH": str(ccache.parent), "CCACHE_HASHDIR": "1"})
+    assert "CCACHE_NOHASHDIR" not in env
+
+
+@pytest.mark.parametrize("environ", [{"EPUCKC_NO_CCACHE": "1"}, {}],
+                         ids=["EPUCKC_NO_CCACHE", "no ccache on PATH"])
+def test_without_ccache_make_calls_the_firmwares_compiler(tmp_path, environ):
+    folder = _fake_tool(tmp_path / "bin", "ccache").parent
+    if environ:
+        environ["PATH"] = str(folder)
+    else:
+        environ["PATH"] = str(tmp_path / "empty")
+    command, env = make_command("make", tmp_path / "p", tmp_path / "fw", environ)
+    assert not any(arg.startswith("CC=") for arg in command)
+    assert "CCACHE_NOHASHDIR" not in env
+
+
+def _ccache_stats(ccache: str) -> dict:
+    out = subprocess.run([ccache, "--print-stats"], capture_output=True, text=True,
+                         check=True).stdout
+    return {key: int(value) for key, value in
+            (line.split("\t") for line in out.splitlines() if "\t" in line)}
+
+
+def test_a_second_project_compiles_only_its_own_files(tmp_path):
+    """The firmware's files compile once: a second program, in another
+    folder, gets their objects from ccache and compiles only the program,
+    main.c and the runtime (a full build of the firmware is ~200 files)."""
+    firmware = str(require_checkout(
+        "EPUCK2_FIRMWARE", "src",
+        "EPUCK2_FIRMWARE is not set: the full e-puck2 link needs the firmware"))
+    require_tool("arm-none-eabi-gcc")
+    ccache = require_tool("ccache")
+    first, second = EXAMPLES[0], EXAMPLES[-1]
+    r = epuckc("build", "--target", "epuck2", first, "-o", tmp_path / "one",
+               "--firmware", firmware)
+    assert r.returncode == 0, r.stdout + r.stderr
+    before = _ccache_stats(ccache)
+    r = epuckc("build", "--target", "epuck2", second, "-o", tmp_path / "two",
+               "--firmware", firmware)
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert (tmp_path / "two" / "build" / f"{second.stem}.elf").is_file()
+    after = _ccache_stats(ccache)
+    hits = sum(after.get(k, 0) - before.get(k, 0)
+               for k in ("direct_cache_hit", "preprocessed_cache_hit"))
+    misses = after.get("cache_miss", 0) - before.get("cache_miss", 0)
+    own = len(EPUCK2_SOURCES) + 2          # the runtime, main.c, program_main.c
+    assert misses <= own, (misses, own)
+    assert hits >= 150, hits
 
 
 DEVICES = """# messages, the camera, the ToF sensor and the RGB LEDs in one program
