@@ -45,7 +45,8 @@ def pytest_addoption(parser):
 @pytest.fixture(autouse=True)
 def _private_cache(tmp_path_factory, monkeypatch):
     """Host builds go to a cache of this test session, not the user's; so do
-    ccache's objects (the e-puck2 firmware's, shared by its projects)."""
+    ccache's objects (the e-puck2 firmware's, shared by its projects). Under
+    pytest-xdist each worker has its own base folder, so its own caches."""
     monkeypatch.setenv("EPUCKC_CACHE_DIR", str(tmp_path_factory.getbasetemp() / "epuckc-cache"))
     monkeypatch.setenv("CCACHE_DIR", str(tmp_path_factory.getbasetemp() / "ccache"))
 
