@@ -165,6 +165,29 @@ def test_without_ccache_make_calls_the_firmwares_compiler(tmp_path, environ):
     assert "CCACHE_NOHASHDIR" not in env
 
 
+def test_a_ccache_that_fails_is_named_with_the_way_around_it(tmp_path):
+    """A ccache that cannot work (here one that always fails, as one with an
+    unwritable cache folder does) fails the build with its own message,
+    and the error says how to build without it."""
+    firmware = str(require_checkout(
+        "EPUCK2_FIRMWARE", "src",
+        "EPUCK2_FIRMWARE is not set: the full e-puck2 link needs the firmware"))
+    require_tool("arm-none-eabi-gcc")
+    broken = tmp_path / "bin" / "ccache"
+    broken.parent.mkdir()
+    broken.write_text("#!/bin/sh\necho 'ccache: error: Failed to create directory' >&2\nexit 1\n")
+    broken.chmod(0o755)
+    path = f"{broken.parent}{os.pathsep}{os.environ['PATH']}"
+    r = epuckc("build", "--target", "epuck2", EXAMPLES[0], "-o", tmp_path / "p",
+               "--firmware", firmware, env={"PATH": path})
+    assert r.returncode != 0 and "Traceback" not in r.stderr
+    assert "ccache: error: Failed to create directory" in r.stderr
+    assert f"through {broken}" in r.stderr and "EPUCKC_NO_CCACHE=1" in r.stderr
+    r = epuckc("build", "--target", "epuck2", EXAMPLES[0], "-o", tmp_path / "p",
+               "--firmware", firmware, env={"PATH": path, "EPUCKC_NO_CCACHE": "1"})
+    assert r.returncode == 0, r.stdout + r.stderr
+
+
 def _ccache_stats(ccache: str) -> dict:
     out = subprocess.run([ccache, "--print-stats"], capture_output=True, text=True,
                          check=True).stdout
