@@ -141,7 +141,8 @@ def build_epuck2(program: Program, out_dir: Path, template_render,
     command, env = make_command(make, out_dir, firmware)
     result = subprocess.run(command, capture_output=True, text=True, env=env)
     if result.returncode != 0:
-        through = next((arg[3:].split()[0] for arg in command if arg.startswith("CC=")), None)
+        through = next((arg[3:].rsplit(" ", 1)[0] for arg in command if arg.startswith("CC=")),
+                       None)
         hint = (f"\n(the compiler ran through {through}; if ccache is what failed, "
                 "EPUCKC_NO_CCACHE=1 builds without it)" if through else "")
         raise BuildError(f"make failed in {out_dir}:\n{(result.stdout + result.stderr).rstrip()}"
