@@ -37,6 +37,16 @@ def require_checkout(variable: str, inside: str, reason: str) -> Path:
     pytest.skip(reason)
 
 
+def pytest_xdist_auto_num_workers(config):
+    """`-n auto`: a worker per CPU this process may run on. pytest-xdist's
+    own count asks psutil (installed with Dask) for the machine's physical
+    cores, which a container limited to some of them, or a machine whose
+    CPUs are hyperthreads, gets wrong both ways."""
+    if hasattr(os, "sched_getaffinity"):
+        return len(os.sched_getaffinity(0))
+    return os.cpu_count() or 1
+
+
 def pytest_addoption(parser):
     parser.addoption("--update-goldens", action="store_true", default=False,
                      help="rewrite golden files from the current output")
