@@ -87,7 +87,7 @@ def write_epuck2_project(program: Program, out_dir: Path, template_render,
 
 
 def make_command(make: str, out_dir: Path, firmware: Path,
-                 environ: Optional[dict] = None) -> tuple[list[str], dict]:
+                 environ: Optional[dict] = None) -> tuple[list[str], dict, Optional[str]]:
     """`make` of the project on every core, through ccache when it is on
     PATH (and EPUCKC_NO_CCACHE is not set). The firmware's ~200 files are
     the same in every project (same sources, flags and headers: main.h is
@@ -97,7 +97,8 @@ def make_command(make: str, out_dir: Path, firmware: Path,
     CCACHE_NOHASHDIR lets one project's objects serve another's, at the
     cost ccache documents: the debug information's compilation folder may
     name the project that compiled the file first (the firmware's files
-    are named by absolute paths, so gdb finds them anyway)."""
+    are named by absolute paths, so gdb finds them anyway). Returns the
+    command, its environment and the ccache used (None: none)."""
     environ = dict(os.environ if environ is None else environ)
     command = [make, f"-j{os.cpu_count() or 1}", "-C", str(out_dir),
                f"EPUCK2_FIRMWARE={firmware}"]
@@ -107,7 +108,7 @@ def make_command(make: str, out_dir: Path, firmware: Path,
         command.append(f"CC={ccache} {ARM_GCC}")
         if "CCACHE_HASHDIR" not in environ:
             environ.setdefault("CCACHE_NOHASHDIR", "1")
-    return command, environ
+    return command, environ, ccache
 
 
 def build_epuck2(program: Program, out_dir: Path, template_render,
@@ -138,13 +139,11 @@ def build_epuck2(program: Program, out_dir: Path, template_render,
     if make is None:
         raise BuildError(f"`make` was not found; the project is in {out_dir}",
                          status=EXIT_NO_TOOLCHAIN)
-    command, env = make_command(make, out_dir, firmware)
+    command, env, ccache = make_command(make, out_dir, firmware)
     result = subprocess.run(command, capture_output=True, text=True, env=env)
     if result.returncode != 0:
-        through = next((arg[3:].rsplit(" ", 1)[0] for arg in command if arg.startswith("CC=")),
-                       None)
-        hint = (f"\n(the compiler ran through {through}; if ccache is what failed, "
-                "EPUCKC_NO_CCACHE=1 builds without it)" if through else "")
+        hint = (f"\n(the compiler ran through {ccache}; if ccache is what failed, "
+                "EPUCKC_NO_CCACHE=1 builds without it)" if ccache else "")
         raise BuildError(f"make failed in {out_dir}:\n{(result.stdout + result.stderr).rstrip()}"
                          + hint)
     return f"built {out_dir / 'build' / (program.name + '.elf')} and .bin"

@@ -107,17 +107,23 @@ def test_the_platform_layer_sleeps_and_never_spins():
     assert "while (rt_millis() ==" not in idle
 
 
+def _firmware() -> str:
+    """The firmware's folder (EPUCK2_FIRMWARE), with arm-none-eabi-gcc."""
+    firmware = str(require_checkout(
+        "EPUCK2_FIRMWARE", "src",
+        "EPUCK2_FIRMWARE is not set: the full e-puck2 link needs the firmware "
+        "(git clone --recursive https://github.com/e-puck2/e-puck2_main-processor)"))
+    require_tool("arm-none-eabi-gcc")
+    return firmware
+
+
 @pytest.mark.parametrize("example", EXAMPLES + ["every_feature"],
                          ids=lambda p: getattr(p, "stem", p))
 def test_a_full_build_with_the_firmware(tmp_path, example):
     """Needs the firmware tree with its submodules (ChibiOS, ...): where
     EPUCK2_FIRMWARE names it, every example and the language's
     every-feature program link into an .elf and a .bin."""
-    firmware = str(require_checkout(
-        "EPUCK2_FIRMWARE", "src",
-        "EPUCK2_FIRMWARE is not set: the full e-puck2 link needs the firmware "
-        "(git clone --recursive https://github.com/e-puck2/e-puck2_main-processor)"))
-    require_tool("arm-none-eabi-gcc")
+    firmware = _firmware()
     if example == "every_feature":
         from tests.runtime.test_language import EVERY_FEATURE
         example = tmp_path / "every_feature.epk"
@@ -129,38 +135,39 @@ def test_a_full_build_with_the_firmware(tmp_path, example):
     assert (out / "build" / f"{example.stem}.bin").is_file()
 
 
-def _fake_tool(folder: Path, name: str) -> Path:
+def _fake_tool(folder: Path, name: str, body: str = "exit 0") -> Path:
     folder.mkdir(exist_ok=True)
     tool = folder / name
-    tool.write_text("#!/bin/sh\nexit 0\n")
+    tool.write_text(f"#!/bin/sh\n{body}\n")
     tool.chmod(0o755)
     return tool
 
 
 def test_make_runs_on_every_core_through_ccache_when_it_is_there(tmp_path):
     ccache = _fake_tool(tmp_path / "bin", "ccache")
-    command, env = make_command("make", tmp_path / "p", tmp_path / "fw",
-                                {"PATH": str(ccache.parent)})
+    command, env, used = make_command("make", tmp_path / "p", tmp_path / "fw",
+                                      {"PATH": str(ccache.parent)})
+    assert used == str(ccache)
     assert command[:4] == ["make", f"-j{os.cpu_count() or 1}", "-C", str(tmp_path / "p")]
     assert f"EPUCK2_FIRMWARE={tmp_path / 'fw'}" in command
     assert f"CC={ccache} arm-none-eabi-gcc" in command
     # one project's firmware objects serve the next, whatever its folder
     assert env["CCACHE_NOHASHDIR"] == "1"
     # the user's own choice of ccache's hash_dir is kept
-    _, env = make_command("make", tmp_path / "p", tmp_path / "fw",
-                          {"PATH": str(ccache.parent), "CCACHE_HASHDIR": "1"})
+    _, env, _ = make_command("make", tmp_path / "p", tmp_path / "fw",
+                             {"PATH": str(ccache.parent), "CCACHE_HASHDIR": "1"})
     assert "CCACHE_NOHASHDIR" not in env
 
 
-@pytest.mark.parametrize("environ", [{"EPUCKC_NO_CCACHE": "1"}, {}],
+@pytest.mark.parametrize("no_ccache, on_path", [(True, True), (False, False)],
                          ids=["EPUCKC_NO_CCACHE", "no ccache on PATH"])
-def test_without_ccache_make_calls_the_firmwares_compiler(tmp_path, environ):
+def test_without_ccache_make_calls_the_firmwares_compiler(tmp_path, no_ccache, on_path):
     folder = _fake_tool(tmp_path / "bin", "ccache").parent
-    if environ:
-        environ["PATH"] = str(folder)
-    else:
-        environ["PATH"] = str(tmp_path / "empty")
-    command, env = make_command("make", tmp_path / "p", tmp_path / "fw", environ)
+    environ = {"PATH": str(folder if on_path else tmp_path / "empty")}
+    if no_ccache:
+        environ["EPUCKC_NO_CCACHE"] = "1"
+    command, env, used = make_command("make", tmp_path / "p", tmp_path / "fw", environ)
+    assert used is None
     assert not any(arg.startswith("CC=") for arg in command)
     assert "CCACHE_NOHASHDIR" not in env
 
@@ -169,14 +176,9 @@ def test_a_ccache_that_fails_is_named_with_the_way_around_it(tmp_path):
     """A ccache that cannot work (here one that always fails, as one with an
     unwritable cache folder does) fails the build with its own message,
     and the error says how to build without it."""
-    firmware = str(require_checkout(
-        "EPUCK2_FIRMWARE", "src",
-        "EPUCK2_FIRMWARE is not set: the full e-puck2 link needs the firmware"))
-    require_tool("arm-none-eabi-gcc")
-    broken = tmp_path / "bin" / "ccache"
-    broken.parent.mkdir()
-    broken.write_text("#!/bin/sh\necho 'ccache: error: Failed to create directory' >&2\nexit 1\n")
-    broken.chmod(0o755)
+    firmware = _firmware()
+    broken = _fake_tool(tmp_path / "bin", "ccache",
+                        "echo 'ccache: error: Failed to create directory' >&2\nexit 1")
     path = f"{broken.parent}{os.pathsep}{os.environ['PATH']}"
     r = epuckc("build", "--target", "epuck2", EXAMPLES[0], "-o", tmp_path / "p",
                "--firmware", firmware, env={"PATH": path})
@@ -199,10 +201,7 @@ def test_a_second_project_compiles_only_its_own_files(tmp_path):
     """The firmware's files compile once: a second program, in another
     folder, gets their objects from ccache and compiles only the program,
     main.c and the runtime (a full build of the firmware is ~200 files)."""
-    firmware = str(require_checkout(
-        "EPUCK2_FIRMWARE", "src",
-        "EPUCK2_FIRMWARE is not set: the full e-puck2 link needs the firmware"))
-    require_tool("arm-none-eabi-gcc")
+    firmware = _firmware()
     ccache = require_tool("ccache")
     first, second = EXAMPLES[0], EXAMPLES[-1]
     r = epuckc("build", "--target", "epuck2", first, "-o", tmp_path / "one",
@@ -240,10 +239,7 @@ def test_a_full_build_with_messages_the_camera_and_the_tof_sensor(tmp_path):
     epuck1x e_poxxxx over po8030 and dcmi, started as its main starts it)
     and the VL53L0X link into the firmware, each from the runtime's own file;
     and issue 25's RGB LEDs (its src/leds.c's set_rgb_led)."""
-    firmware = str(require_checkout(
-        "EPUCK2_FIRMWARE", "src",
-        "EPUCK2_FIRMWARE is not set: the full e-puck2 link needs the firmware"))
-    require_tool("arm-none-eabi-gcc")
+    firmware = _firmware()
     nm = require_tool("arm-none-eabi-nm")
     program = tmp_path / "devices.epk"
     program.write_text(DEVICES, encoding="utf-8")
