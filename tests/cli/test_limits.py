@@ -130,6 +130,34 @@ def test_time_limit_without_a_unit_is_refused(work, capsys, value):
     assert f"write {value}s for seconds or {value}ms" in capsys.readouterr().err
 
 
+@settings(max_examples=300, deadline=None)
+@given(whole=st.text("0123456789", min_size=1, max_size=12),
+       fraction=st.none() | st.text("0123456789", min_size=1, max_size=8),
+       unit=st.sampled_from(["ms", "s", "min"]))
+def test_time_limit_is_read_exactly(whole, fraction, unit):
+    """--time-limit in whole numbers of ms, against exact fractions: the
+    value if it is whole and from 1 ms to the harness's limit, else the
+    matching usage error."""
+    import argparse
+    from fractions import Fraction
+    from epuckc.cli import args
+    text = whole + ("" if fraction is None else "." + fraction) + unit
+    exact = Fraction(whole + ("" if fraction is None else "." + fraction)) * \
+        {"ms": 1, "s": 1000, "min": 60000}[unit]
+    if 1 <= exact <= args.MAX_TIME_LIMIT_MS and exact.denominator == 1:
+        assert args._duration_ms(text) == exact
+        return
+    with pytest.raises(argparse.ArgumentTypeError) as error:
+        args._duration_ms(text)
+    why = str(error.value)
+    if exact < 1:
+        assert "at least 1 ms" in why
+    elif exact > args.MAX_TIME_LIMIT_MS:
+        assert "too long" in why
+    else:
+        assert "not a whole number of milliseconds" in why
+
+
 @pytest.mark.parametrize("command", ["check", "compile", "build", "run"])
 @pytest.mark.parametrize("value", ["99999999999999999999", "0", "-3", "32768", "1e3", "x"])
 def test_capacities_are_bounded(work, capsys, command, value):
