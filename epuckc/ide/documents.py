@@ -89,6 +89,7 @@ class Lines:
 class Document:
     def __init__(self, uri: str, text: str, version: Optional[int], server=None):
         self.uri = uri
+        self._same: Optional[list] = None
         self.text = text
         self.version = version
         self.path = _path_of(uri)
@@ -101,6 +102,17 @@ class Document:
         self.lsp_diagnostics: dict = {}     # id(Diagnostic) -> (it, its lines' text, LSP's)
         self.conversions = Conversions()    # what publishing converted, kept
 
+    @property
+    def text(self) -> str:
+        return self._text
+
+    @text.setter
+    def text(self, text: str):
+        """A new text that no change describes (the client sent it whole,
+        or a caller set it)."""
+        self._text = text
+        self._same = None
+
     def base_dir(self) -> Optional[Path]:
         """Where extern C files are looked for: the file's folder, as
         `epuckc check` does for a file that exists."""
@@ -111,8 +123,11 @@ class Document:
     def analyse(self) -> Analysis:
         if self.analysis is None or self.analysed_text is not self.text:
             self.analyzer.options["base_dir"] = self.base_dir()
-            self.analysis = self.analyzer.analyse(self.text)
+            same = self._same
+            self.analysis = self.analyzer.analyse(
+                self.text, None if same is None else (self.analysed_text, *same))
             self.analysed_text = self.text
+            self._same = [len(self.text), len(self.text)]
         return self.analysis
 
     def apply(self, change, encoding: str):
@@ -121,7 +136,11 @@ class Document:
             lines = self.lines(encoding)
             start = lines.offset(change.range.start)
             end = max(start, lines.offset(change.range.end))
-            self.text = self.text[:start] + change.text + self.text[end:]
+            same = self._same
+            if same is not None:
+                same[0] = min(same[0], start)
+                same[1] = min(same[1], len(self._text) - end)
+            self._text = self._text[:start] + change.text + self._text[end:]
         else:
             self.text = change.text
 

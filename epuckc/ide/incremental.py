@@ -188,13 +188,19 @@ class Analyzer:
         self._line_starts = None    # of the last text split (_chunks)
         self._changed = None        # the ids of the statements an edit replaced (_chunks)
         self._edit = None           # (common prefix, common suffix) with the last text (_chunks)
+        self._same = None           # what the caller knows of them (analyse)
         self._lines = LineCache()   # statements' first lines found (pieces.py)
         self._shown = Shown()       # the diagnostics in real lines (showing.py)
 
-    def analyse(self, text: str) -> Analysis:
+    def analyse(self, text: str, same: Optional[tuple] = None) -> Analysis:
+        """The analysis of `text`. `same`: (a text, n, m) when `text` has
+        that text's first n and last m characters (an editor's changes say
+        so: Document.apply); when it is the last text analysed, the edit is
+        known without comparing the two."""
         collecting = gc.isenabled()
         gc.disable()            # the ASTs have no cycles (see frontend.py)
         first_id = self._next_id
+        self._same = same
         try:
             return self._analyse(text)
         finally:
@@ -242,8 +248,15 @@ class Analyzer:
             p = s = 0
         else:
             old, bad = prev
-            p = _common_prefix(old, text)
-            s = _common_suffix(old, text, min(len(old), len(text)) - p)
+            same = self._same
+            if same is not None and same[0] is old:
+                # (the editor's changes bound the edit: what is outside is
+                # the same, what is inside is split again whether or not)
+                p = min(same[1], len(old), len(text))
+                s = max(0, min(same[2], min(len(old), len(text)) - p))
+            else:
+                p = _common_prefix(old, text)
+                s = _common_suffix(old, text, min(len(old), len(text)) - p)
         # the last statement start that the edit cannot move
         k = max(0, layout.bisect_right(p - _MARGIN) - 1) if n else 0
         delta = len(text) - len(old)

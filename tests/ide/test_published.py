@@ -96,3 +96,44 @@ def test_random_sessions_in_every_encoding():
                     continue
                 end = at + rng.choice([0, 0, 1, 3, 20])
                 doc.text = doc.text[:at] + rng.choice(PIECES) + doc.text[end:]
+
+
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.sampled_from(("utf-16", "utf-8", "utf-32")), st.integers(0, len(PROGRAMS) - 1),
+       st.lists(st.lists(st.tuples(st.integers(0, 10_000), st.integers(0, 12),
+                                   st.lists(st.sampled_from(PIECES), max_size=3)),
+                         min_size=1, max_size=3),
+                min_size=1, max_size=6))
+def test_changes_as_the_client_sends_them(encoding, which, notifications):
+    """Edits that come as didChange's ranges (several changes in one
+    notification, each in the client's view of the text after the one
+    before): the document knows from them what stayed the same, and the
+    analysis uses that instead of comparing the texts; what is published is
+    a fresh server's."""
+    from lsprotocol import types as lsp
+    from epuckc.ide import incremental
+    from epuckc.ide.documents import Lines
+    compared = []
+    real = incremental._common_prefix
+
+    def counted(a, b):
+        compared.append(1)
+        return real(a, b)
+    incremental._common_prefix = counted
+    try:
+        server = _server(encoding)
+        doc = Document("file:///x/prog.epk", PROGRAMS[which], 1, server)
+        server.diagnostics(doc, doc.analyse())
+        for changes in notifications:
+            for at, length, pieces in changes:
+                at %= len(doc.text) + 1
+                end = min(len(doc.text), at + length)
+                lines = Lines(doc.text, encoding)       # (the client's view, as the server's)
+                doc.apply(lsp.TextDocumentContentChangePartial(
+                    range=lsp.Range(lines.position(at), lines.position(end)),
+                    text="".join(pieces)), encoding)
+            assert server.diagnostics(doc, doc.analyse()) == _fresh(server, doc.text)
+        assert not compared         # (the changes said where the edits were)
+    finally:
+        incremental._common_prefix = real
+
