@@ -105,8 +105,9 @@ def on_robot(analysis: Analysis, value, param) -> Optional[str]:
     if not isinstance(value, (ast.Number, ast.ConstRef)):
         return None         # an expression: its hover gives its unit and interval
     checker = analysis.checker
-    saved, saved_used = checker.diags, set(checker.const_used)
-    checker.diags = Collector(checker.diags.source)
+    # (on copies: the checker's own sets may be frozen, passes.FactCounts)
+    saved, saved_used = checker.diags, checker.const_used
+    checker.diags, checker.const_used = Collector(checker.diags.source), set(saved_used)
     try:
         q = checker._value(value, param.kind, param.name)
         v = checker._to_runtime(q, param, value) if q is not None else None
@@ -242,8 +243,9 @@ def _expression_hover(analysis: Analysis, node) -> Optional[str]:
         return None
     if isinstance(node, ast.Number) or isinstance(node, ast.ConstRef):
         return None
-    saved, saved_used = checker.diags, (set(checker.const_used), set(checker.vars_used))
+    saved, saved_used = checker.diags, (checker.const_used, checker.vars_used)
     checker.diags = Collector(checker.diags.source)
+    checker.const_used, checker.vars_used = set(saved_used[0]), set(saved_used[1])
     try:
         e = checker._expr(node)
     finally:

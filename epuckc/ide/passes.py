@@ -42,7 +42,7 @@ _NOT_DECLARED = frozenset({"program", "diags", "base_dir", "target", "memo", "ra
                            "race_memo", "pieces", "piece_of", "_known", "_env_now", "_maybe",
                            "_compared", "_declared_same", "_env_before", "_moved", "_marks",
                            "segments", "dropped", "_error_flags", "_errors_upto",
-                           "_errors_found"})
+                           "_errors_found", "_unknown"})
 
 
 def _copy(value):
@@ -177,6 +177,10 @@ class PiecePasses:
             key = tuple(frozenset(k) if k.__class__ is set else k for k in key)
             said = self.memo.unused = (declared, key, self.diags.items[start:])
         else:
+            if any(k is not kept for k, kept in zip(key, said[1])):
+                # (the frozen sets of now, the same next time: compared by identity)
+                key = tuple(frozenset(k) if k.__class__ is set else k for k in key)
+                self.memo.unused = (declared, key, said[2])
             self._mark(said[2])
             self.diags.items.extend(said[2])
 
@@ -184,7 +188,10 @@ class PiecePasses:
 
     def _mark(self, source=None) -> None:
         """A step's diagnostics start here; `source`: the list it puts there
-        whole (the same object as last time while the step is replayed)."""
+        whole (the same object as last time while the step is replayed).
+        (A block of rules replayed marks itself, and says whether it has an
+        error, recheck.IncrementalChecker._rules.)"""
+        self._unknown.append(len(self._marks))
         self._marks.append((len(self.diags.items), source))
 
     def _segments(self) -> list:
@@ -201,14 +208,18 @@ class PiecePasses:
     def _has_errors(self) -> bool:
         if self.pieces is None:
             return super()._has_errors()
-        # (by the steps' runs since the last time asked; a list a step put
-        # whole says what it said last time: memo.errors)
-        items, marks = self.diags.items, self._marks
+        # (by the steps' runs since the last time asked, but for the blocks
+        # of rules replayed, which said whether they have one; a list a step
+        # put whole says what it said last time: memo.errors)
+        items, marks, unknown = self.diags.items, self._marks, self._unknown
         flags, kept = self.memo.errors, self._error_flags
-        at = self._errors_upto
-        for i in range(at, len(marks)):
+        at, last = self._errors_upto, len(marks) - 1
+        if last >= 0 and (not unknown or unknown[-1] != last):
+            unknown.append(last)    # (its run may have grown: a look, as at any other)
+        for u in range(at, len(unknown)):
+            i = unknown[u]
             start, source = marks[i]
-            end = marks[i + 1][0] if i + 1 < len(marks) else len(items)
+            end = marks[i + 1][0] if i < last else len(items)
             if end <= start:
                 continue
             if source is not None and len(source) == end - start:
@@ -218,12 +229,12 @@ class PiecePasses:
                 kept[id(source)] = flag
                 found = flag[1]
             else:
-                found = ERROR in map(_SEVERITY, itertools.islice(items, start, end))
-            if found and i + 1 < len(marks):
+                found = ERROR in map(_SEVERITY, items[start:end])
+            if found and i < last:
                 self._errors_found = True
             elif found:
                 return True         # (in the run still under way: asked again next time)
-        self._errors_upto = max(at, len(marks) - 1)
+        self._errors_upto = max(at, len(unknown) - 1)
         return self._errors_found
 
     def _never_fire(self, out, complete: bool):
@@ -359,9 +370,11 @@ class FactCounts:
     """The facts of the blocks of rules replayed (recheck.IncrementalChecker._rules),
     counted: for each fact, how many of the blocks have each name, so that
     an edit takes away the blocks it changed and adds the new ones instead
-    of uniting every block's; and each fact's names as a set, made again
-    only when a name came or went (a set adds a set's names without
-    hashing them again)."""
+    of uniting every block's; and each fact's names as a frozenset, made
+    again only when a name came or went. After the rules, the checker's
+    set of a fact is that frozenset (with what other steps found, if any
+    is not in it): nothing adds to it after the rules are checked, and
+    what would gets an error rather than a memory changed behind it."""
 
     def __init__(self):
         self.blocks: dict = {}      # id(block) -> block, the ones counted
@@ -373,24 +386,24 @@ class FactCounts:
         the checker's."""
         now = {id(b): b for b in replayed}
         old = self.blocks
-        for gone in old.keys() - now.keys():
-            self._count(old[gone], -1)
+        # (the new blocks first: a name that an edit's new block has as the
+        # old one had never goes to none, so its fact's set is kept)
         for new in now.keys() - old.keys():
             self._count(now[new], 1)
+        for gone in old.keys() - now.keys():
+            self._count(old[gone], -1)
         self.blocks = now
         names = self.names
         for fact, counted in self.counts.items():
             if counted:
                 found = names.get(fact)
                 if found is None:
-                    found = names[fact] = set(counted)
+                    found = names[fact] = frozenset(counted)
                 current = getattr(checker, fact)
-                if len(current) < len(found):   # (a copy of the bigger set, not its names added)
-                    merged = set(found)
-                    merged |= current
-                    setattr(checker, fact, merged)
-                else:
-                    current |= found
+                # (the same frozenset as long as no name came or went, and
+                # what the other steps found is in it: no copy, and the
+                # unused names' key compares it by identity, _unused)
+                setattr(checker, fact, found if current <= found else found | current)
 
     def _count(self, block, by: int) -> None:
         for fact, values in block.facts:

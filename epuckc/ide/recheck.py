@@ -11,6 +11,7 @@ their own memos here (`_Memo`).
 from __future__ import annotations
 
 import itertools
+import operator
 from typing import Optional
 
 from ..check import conditions as cond, modes
@@ -19,7 +20,7 @@ from ..check.program import CheckedProgram
 from ..check.races import RaceMemo
 from ..check.rules import may_never_fire
 from ..check.ranges import RangeMemo
-from ..diagnostics import Diagnostic
+from ..diagnostics import ERROR, Diagnostic
 from ..syntax import ast
 from .passes import FactCounts, PiecePasses
 from .pieces import PIECE
@@ -44,6 +45,8 @@ class _Memo:
         self.beside: dict = {}  # id(a list of diagnostics) -> passes._SegmentIndex of it
 
 
+_SEVERITY = operator.attrgetter("severity")
+
 # A block of rules is a piece's (ide/pieces.py), which ends after an entry
 # whose id is a multiple of this.
 BLOCK = PIECE
@@ -54,13 +57,13 @@ class _Block:
     once: the piece (kept alive, so that its id stays its own, and with it
     its rules), the declarations (env) they were valid with, and what they
     came to together: their results in order, their own diagnostics in
-    order, the union of their facts, what the whole-program checks read of
+    order (and whether one is an error), the union of their facts, what the whole-program checks read of
     them (the rules that may never fire by event, those in modes, the
     modes they enter). Only rules whose diagnostics are all their own (no
     diagnostic said once for the file) make a block, so replaying it is
     what replaying each would do."""
     __slots__ = ("piece", "env", "geo", "hits", "_deps", "read", "resolved", "maybe", "own",
-                 "facts", "in_modes", "entered")
+                 "error", "facts", "in_modes", "entered")
 
     def __init__(self, piece, env, geo, hits):
         self.piece, self.env, self.geo, self.hits, self._deps = piece, env, geo, hits, None
@@ -72,6 +75,7 @@ class _Block:
         self.in_modes = [r for r in self.resolved if r.mode is not None]
         self.entered = None     # (the named actions, the modes entered), when there are modes
         self.own = [d for h in hits for d in h[7]]
+        self.error = ERROR in map(_SEVERITY, self.own)
         facts: dict = {}
         for h in hits:
             for f, values in h[5]:
@@ -112,6 +116,7 @@ class IncrementalChecker(PiecePasses, Checker):
         # where each step's diagnostics start, and the list it replayed whole
         # (None: made now); the parse's are the pieces' (passes.segments)
         self._marks = list(marks)
+        self._unknown = list(range(len(self._marks)))  # (the marks _has_errors looks at)
         self.segments = self.dropped = None
         # (passes._has_errors: the runs looked at, and whether one has an error)
         self._error_flags, self._errors_upto, self._errors_found = {}, 0, False
@@ -254,7 +259,9 @@ class IncrementalChecker(PiecePasses, Checker):
                     groups.append((None, checked))
                     continue
             else:
-                self._mark(block.own)
+                self._marks.append((len(items), block.own))     # (see PiecePasses._mark)
+                if block.error:
+                    self._errors_found = True
                 items.extend(block.own)
                 resolved.extend(block.resolved)
                 replayed.append(block)
