@@ -380,6 +380,7 @@ class FactCounts:
         self.blocks: dict = {}      # id(block) -> block, the ones counted
         self.counts: dict = {}      # fact -> {name: how many blocks have it}
         self.names: dict = {}       # fact -> the set of its counted names, when made
+        self.merged: dict = {}      # fact -> (its names, the other steps' more, the union)
 
     def add(self, checker, replayed: list) -> None:
         """Count `replayed` (and no other block), and add their facts to
@@ -400,10 +401,18 @@ class FactCounts:
                 if found is None:
                     found = names[fact] = frozenset(counted)
                 current = getattr(checker, fact)
-                # (the same frozenset as long as no name came or went, and
-                # what the other steps found is in it: no copy, and the
-                # unused names' key compares it by identity, _unused)
-                setattr(checker, fact, found if current <= found else found | current)
+                # (the same frozenset as long as no name came or went and what
+                # the other steps found is in it, or is what they found last
+                # time: no copy, and the unused names' key compares it by
+                # identity, _unused)
+                if current <= found:
+                    setattr(checker, fact, found)
+                    continue
+                extra = current - found
+                last = self.merged.get(fact)
+                if last is None or last[0] is not found or last[1] != extra:
+                    last = self.merged[fact] = (found, extra, found | extra)
+                setattr(checker, fact, last[2])
 
     def _count(self, block, by: int) -> None:
         for fact, values in block.facts:

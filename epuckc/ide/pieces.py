@@ -88,10 +88,10 @@ class _Program(ast.Program):
     """The program of the pieces' statements, made into one list only when
     something asks for it (hover, a check of the declarations): an edit's
     analysis does not."""
-    __slots__ = ("_pieces", "_statements")
+    __slots__ = ("_pieces", "_statements", "_count")
 
     def __init__(self, name: str, pieces: list):
-        self.file, self._pieces, self._statements = name, pieces, None
+        self.file, self._pieces, self._statements, self._count = name, pieces, None, None
 
     @property
     def statements(self) -> list:
@@ -105,7 +105,9 @@ class _Program(ast.Program):
         """How many statements (without making their list)."""
         if self._statements is not None:
             return len(self._statements)
-        return sum(map(len, map(_STATEMENTS, self._pieces)))
+        if self._count is None:     # (asked a few times a check: counted once)
+            self._count = sum(map(len, map(_STATEMENTS, self._pieces)))
+        return self._count
 
 
 def _same_modes(a: tuple, b: tuple) -> bool:

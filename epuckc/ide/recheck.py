@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import itertools
 import operator
+from collections.abc import Sequence
 from typing import Optional
 
 from ..check import conditions as cond, modes
@@ -91,6 +92,41 @@ class _Block:
             self._deps = list({(attr, name, id(found)): (attr, name, found)
                                for h in self.hits for attr, name, found in h[2]}.values())
         return self._deps
+
+
+class _Joined(Sequence):
+    """The resolved rules of every piece, in order (CheckedProgram.rules
+    of an edit's check): the pieces' own lists, joined into one only when
+    something asks for a rule by its place. Putting 4,000 rules into a new
+    list touched each of them at every keystroke, which the whole-program
+    checks do not need: they read the rules by piece."""
+    __slots__ = ("_runs", "_all", "_len")
+
+    def __init__(self, runs: list):
+        self._runs, self._all, self._len = runs, None, None
+
+    def __len__(self) -> int:
+        if self._len is None:
+            self._len = sum(map(len, self._runs))
+        return self._len
+
+    def __iter__(self):
+        return itertools.chain.from_iterable(self._runs)
+
+    def __getitem__(self, at):
+        if self._all is None:
+            self._all = list(itertools.chain.from_iterable(self._runs))
+        return self._all[at]
+
+    def __eq__(self, other):
+        if not isinstance(other, (list, _Joined)):
+            return NotImplemented
+        return list(self) == list(other)
+
+    __hash__ = None
+
+    def __repr__(self) -> str:
+        return repr(list(self))
 
 
 def by_event(resolved: list) -> dict:
@@ -227,16 +263,16 @@ class IncrementalChecker(PiecePasses, Checker):
         memo = self.memo
         old, blocks = memo.blocks, {}
         env, before, moved = self._env_now, self._env_before, self._moved
-        items, resolved = self.diags.items, out.rules
-        maybe = self._maybe = []            # (dicts of by_event)
-        in_modes = self._in_modes = []      # (lists of rules)
+        items = self.diags.items
+        runs = []               # (the resolved rules, by piece: out.rules, _Joined)
+        maybe = self._maybe = []            # (dicts of by_event, none empty)
+        in_modes = self._in_modes = []      # (lists of rules, none empty)
         groups = self.rule_groups = []      # (W009's, check/races.py)
         replayed, loose = [], []
         for piece in self.pieces:
             run = piece.rules
             if not run:
                 continue
-            first = len(resolved)
             block = old.get(id(piece))
             same = block is not None and block.piece is piece
             if same and block.env is not env and (
@@ -246,16 +282,21 @@ class IncrementalChecker(PiecePasses, Checker):
                 block.env = env             # (its rules' own, when they are checked again: _rule)
             if not same or block.env is not env:
                 self._mark()
+                checked = []
                 for rule in run:
                     r = self._rule(rule)
                     if r is not None:
-                        resolved.append(r)
+                        checked.append(r)
                 block = self._block(piece, env)
                 if block is None:
-                    checked = resolved[first:]
+                    runs.append(checked)
                     loose += checked
-                    maybe.append(by_event(checked))
-                    in_modes.append([r for r in checked if r.mode is not None])
+                    found = by_event(checked)
+                    if found:
+                        maybe.append(found)
+                    found = [r for r in checked if r.mode is not None]
+                    if found:
+                        in_modes.append(found)
                     groups.append((None, checked))
                     continue
             else:
@@ -263,13 +304,16 @@ class IncrementalChecker(PiecePasses, Checker):
                 if block.error:
                     self._errors_found = True
                 items.extend(block.own)
-                resolved.extend(block.resolved)
                 replayed.append(block)
-            maybe.append(block.maybe)
-            in_modes.append(block.in_modes)
+            runs.append(block.resolved)
+            if block.maybe:         # (those of the blocks that have some, in order)
+                maybe.append(block.maybe)
+            if block.in_modes:
+                in_modes.append(block.in_modes)
             groups.append((block, block.resolved))
             blocks[id(piece)] = block
         memo.blocks = blocks
+        out.rules = _Joined(runs)
         self._loose = loose
         memo.counts.add(self, replayed)
 
