@@ -58,11 +58,11 @@ class _Block:
     once: the piece (kept alive, so that its id stays its own, and with it
     its rules), the declarations (env) they were valid with, and what they
     came to together: their results in order, their own diagnostics in
-    order (and whether one is an error), the union of their facts, what the whole-program checks read of
-    them (the rules that may never fire by event, those in modes, the
-    modes they enter). Only rules whose diagnostics are all their own (no
-    diagnostic said once for the file) make a block, so replaying it is
-    what replaying each would do."""
+    order (and whether one is an error), the union of their facts, what
+    the whole-program checks read of them (the rules that may never fire
+    by event, those in modes, the modes they enter). Only rules whose
+    diagnostics are all their own (no diagnostic said once for the file)
+    make a block, so replaying it is what replaying each would do."""
     __slots__ = ("piece", "env", "geo", "hits", "_deps", "read", "resolved", "maybe", "own",
                  "error", "facts", "in_modes", "entered")
 
