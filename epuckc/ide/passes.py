@@ -169,20 +169,20 @@ class PiecePasses:
         key = (self.used_actions, self.const_used, self.vars_used, self.vars_assigned,
                any(map(_RULES, self.pieces)))
         said = self.memo.unused
-        # (sets compare with the frozen copies kept, at C speed)
+        # (sets compare with the frozen copies kept; the big ones are
+        # FactCounts' frozensets, the same objects while no name came or
+        # went, and compare by identity)
         if said is None or said[0] is not declared or said[1] != key:
             self._mark()
             start = len(self.diags.items)
             super()._unused()
-            key = tuple(frozenset(k) if k.__class__ is set else k for k in key)
-            said = self.memo.unused = (declared, key, self.diags.items[start:])
+            diags = self.diags.items[start:]
         else:
-            if any(k is not kept for k, kept in zip(key, said[1])):
-                # (the frozen sets of now, the same next time: compared by identity)
-                key = tuple(frozenset(k) if k.__class__ is set else k for k in key)
-                self.memo.unused = (declared, key, said[2])
-            self._mark(said[2])
-            self.diags.items.extend(said[2])
+            diags = said[2]
+            self._mark(diags)
+            self.diags.items.extend(diags)
+        self.memo.unused = (declared, tuple(frozenset(k) if k.__class__ is set else k
+                                            for k in key), diags)
 
     # ---- the diagnostics in segments (for showing.py) ----
 

@@ -11,7 +11,6 @@ their own memos here (`_Memo`).
 from __future__ import annotations
 
 import itertools
-import operator
 from collections.abc import Sequence
 from typing import Optional
 
@@ -23,7 +22,7 @@ from ..check.rules import may_never_fire
 from ..check.ranges import RangeMemo
 from ..diagnostics import ERROR, Diagnostic
 from ..syntax import ast
-from .passes import FactCounts, PiecePasses
+from .passes import _SEVERITY, FactCounts, PiecePasses
 from .pieces import PIECE
 from .watch import _ALL, _MISSING, _Capture, _Narrowing, _Watch, _Watched  # noqa: F401
 from .statements import VLINE
@@ -45,8 +44,6 @@ class _Memo:
         self.errors: dict = {}  # id(a list of diagnostics) -> (it, has an error) (passes.py)
         self.beside: dict = {}  # id(a list of diagnostics) -> passes._SegmentIndex of it
 
-
-_SEVERITY = operator.attrgetter("severity")
 
 # A block of rules is a piece's (ide/pieces.py), which ends after an entry
 # whose id is a multiple of this.
