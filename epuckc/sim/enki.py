@@ -74,8 +74,13 @@ def _atomic_copy_into(cached: Path, produce) -> Path:
     return cached
 
 
-RUNNER_SOURCES = ("enki/world_runner.cpp", "enki/enki_bridge.h", "enki/world_channel.h",
-                  "enki/robot_loader.h")
+RUNNER_MAIN = "enki/world_runner.cpp"
+
+
+def _runner_sources(rt: Path) -> list:
+    """The runner's source and every header beside it (a header added there
+    is part of the runner's key without a list to update)."""
+    return [rt / RUNNER_MAIN, *sorted((rt / "enki").glob("*.h"))]
 
 
 def build_runner() -> Path:
@@ -84,7 +89,7 @@ def build_runner() -> Path:
     cache, compared whole), so that a run hashes them only after a change:
     hashing took a tenth of the Python around a world run."""
     rt = runtime_dir()
-    paths = [*(rt / rel for rel in RUNNER_SOURCES), ENKI_HEADER]
+    paths = [*_runner_sources(rt), ENKI_HEADER]
     try:
         stamp = "\n".join([" ".join(cxx_compiler() + RUNNER_FLAGS)] + [
             f"{path} {st.st_size} {st.st_mtime_ns}" for path, st in zip(paths, map(os.stat, paths))])
@@ -111,7 +116,7 @@ def build_runner() -> Path:
 
     def produce(out: Path):
         _run_compiler(cxx_compiler() + RUNNER_FLAGS + [f"-I{rt / 'enki'}",
-                      str(rt / "enki" / "world_runner.cpp"), "-o", str(out), "-lenki", "-ldl"],
+                      str(rt / RUNNER_MAIN), "-o", str(out), "-lenki", "-ldl"],
                       "the Enki world runner")
     _atomic_copy_into(exe, produce)
     if stamp is not None:

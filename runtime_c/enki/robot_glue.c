@@ -28,9 +28,10 @@
  *   - getenv() sees this robot's own settings (trace file, time limit, ...);
  *   - exit() (time-out, bad setting) ends this robot only, not the process.
  *
- * Each robot's copy of the shared object is loaded from its own file with
- * dlopen(RTLD_LOCAL), so every robot has its own copy of the runtime's
- * globals; -Bsymbolic binds the object's references to its own definitions.
+ * The robots of one program share its loaded object, each with its own
+ * copy of the object's globals, which the runner swaps in while the robot's
+ * code runs (robot_loader.h); -Bsymbolic binds the object's references to
+ * its own definitions.
  */
 #include <math.h>
 

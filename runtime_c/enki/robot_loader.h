@@ -1,23 +1,33 @@
 /*
  * robot_loader.h - loads the robots' shared objects for the world runner
- * (world_runner.cpp): one copy per robot, the copies' code shared.
+ * (world_runner.cpp): one object per program, each robot's own state
+ * swapped into it while that robot's code runs.
  *
- * dlopen loads a file once, and every robot needs its own globals (the
- * runtime's state is its globals), so each robot after the first of a
- * program loads its own copy of the program's file: a file in memory
+ * The runtime's state is its globals, and every robot needs its own.  The
+ * robots of a program run one after the other (coroutines of one thread),
+ * so they share one loaded copy of the program's file, and each robot keeps
+ * its own copy of the object's writable data (.data and .bss: the pages
+ * that are written after loading; state_of): the runner copies a robot's
+ * bytes in before resuming it and out when it yields (world_runner.cpp,
+ * swap_in and swap_out: some 4 KB each way for a rule program).  The code
+ * then runs at the same addresses for every robot, and what the processor
+ * keeps of code by its address (branch predictors, decoded instructions,
+ * TLB entries) serves them all: with one copy of the file per robot (the
+ * design before, its code pages shared as below), a poll took 4 times as
+ * long with 50 robots as with one or two, and the whole run 10 % more
+ * (docs/performance.md, "One object for all the robots of a program").
+ *
+ * Two kinds of program keep one copy of the file per robot instead: one
+ * with thread-local storage (a PT_TLS segment: a user's C file with
+ * _Thread_local), which is not in those pages (each loaded object has its
+ * own TLS block), and one with more than MAX_SWAPPED_STATE bytes of state,
+ * whose swapping would cost more than the copies do.  Each robot after the
+ * first then loads its own copy of the file, a file in memory
  * (memfd_create) where Linux has them, else a file written beside the
- * SPEC (creating 50 files on a journalled file system took 0.15 s of
- * wall-clock time, a memory file some microseconds).  The copies' read-only segments (code, constants, symbol tables)
- * hold the same bytes as the first robot's, but at other pages: with 50
- * robots the processor's caches held 50 copies of the same code, and
- * fetching them cost a fifth of a run (docs/performance.md).  So the
- * read-only pages of each copy are mapped again from the first robot's
- * file, at the same addresses: the bytes stay the same, and the caches hold
- * one copy.  Only when they are the same: a segment is shared after its
- * loaded bytes compare equal to the first robot's and when no writable
- * segment shares its pages; otherwise the copy keeps its own (slower, as
- * exact).  Linux (dl_iterate_phdr, dlinfo); elsewhere the copies keep
- * their own pages.
+ * SPEC, whose read-only segments are mapped again from the first robot's
+ * file after their loaded bytes compare equal, so that the caches hold the
+ * code once (only when no writable segment shares their pages).  Linux
+ * (dl_iterate_phdr, dlinfo); elsewhere the copies keep their own pages.
  */
 #ifndef ROBOT_LOADER_H
 #define ROBOT_LOADER_H
@@ -25,10 +35,12 @@
 #include <dlfcn.h>
 #include <fcntl.h>
 #include <unistd.h>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #if defined(__linux__)
@@ -185,6 +197,118 @@ inline void share_pages(void *first, void *copy, const std::string &path)
     close(fd);
 }
 #endif
+
+// Above this many bytes of state, swapping costs more than the robots'
+// copies of the file do (bench/world_bench.py's 50 robots, with 4 KB of
+// state more or less swapped: docs/performance.md): the robots then load
+// their copies.
+const size_t MAX_SWAPPED_STATE = 8192;
+
+// The state a robot keeps of a loaded object: its writable pages that are
+// not made read-only after relocation (PT_GNU_RELRO), in address order;
+// `tls`: the object has thread-local storage, which is not in them;
+// `swappable`: the robots of the object can share it (no TLS, at most
+// MAX_SWAPPED_STATE bytes).
+struct State {
+    std::vector<std::pair<unsigned char *, size_t>> ranges;
+    size_t size = 0;
+    bool tls = false;
+    bool swappable = false;
+    uintptr_t base = 0;
+};
+
+#if ROBOT_LOADER_SHARES
+inline int find_state(struct dl_phdr_info *info, size_t, void *data)
+{
+    State *s = static_cast<State *>(data);
+    if (info->dlpi_addr != s->base)
+        return 0;
+    uintptr_t relro_start = 0, relro_end = 0;
+    for (int i = 0; i < info->dlpi_phnum; i++) {
+        const ElfW(Phdr) &ph = info->dlpi_phdr[i];
+        if (ph.p_type == PT_TLS)
+            s->tls = true;
+        if (ph.p_type == PT_GNU_RELRO) {
+            relro_start = info->dlpi_addr + ph.p_vaddr;
+            relro_end = relro_start + ph.p_memsz;
+        }
+    }
+    for (int i = 0; i < info->dlpi_phnum; i++) {
+        const ElfW(Phdr) &ph = info->dlpi_phdr[i];
+        if (ph.p_type != PT_LOAD || !(ph.p_flags & PF_W))
+            continue;
+        uintptr_t start = info->dlpi_addr + ph.p_vaddr, end = start + ph.p_memsz;
+        // RELRO is at the start of its segment (the linker puts it there)
+        if (relro_start <= start && start < relro_end)
+            start = relro_end < end ? relro_end : end;
+        if (start < end) {
+            s->ranges.push_back({reinterpret_cast<unsigned char *>(start), end - start});
+            s->size += end - start;
+        }
+    }
+    return 1;
+}
+
+#endif
+
+// The state of a loaded object (not swappable where it cannot be found:
+// elsewhere than on Linux, each robot loads its copy).
+inline State state_of(void *handle)
+{
+    State s;
+#if ROBOT_LOADER_SHARES
+    struct link_map *map = nullptr;
+    if (dlinfo(handle, RTLD_DI_LINKMAP, &map) != 0 || map == nullptr)
+        return s;
+    s.base = map->l_addr;
+    dl_iterate_phdr(find_state, &s);
+#else
+    (void)handle;
+#endif
+    s.swappable = !s.tls && !s.ranges.empty() && s.size <= MAX_SWAPPED_STATE;
+    return s;
+}
+
+// A robot's own copy of the state of the object it shares with other
+// robots: into the object's data pages before the robot's code runs, out
+// of them when it has yielded (some 4 KB each way for a rule program: as
+// long as a poll of a robot alone, docs/performance.md).  Inert for a robot
+// that has its object alone.
+struct Swapped {
+    const State *of = nullptr;
+    std::vector<unsigned char> bytes;
+
+    // the object's state as it is now (loaded, its constructors run) is
+    // this robot's start
+    void share(const State &state)
+    {
+        of = &state;
+        bytes.resize(state.size);
+        swap_out();
+    }
+
+    void swap_in() const
+    {
+        if (of == nullptr)
+            return;
+        const unsigned char *from = bytes.data();
+        for (const auto &range : of->ranges) {
+            std::memcpy(range.first, from, range.second);
+            from += range.second;
+        }
+    }
+
+    void swap_out()
+    {
+        if (of == nullptr)
+            return;
+        unsigned char *to = bytes.data();
+        for (const auto &range : of->ranges) {
+            std::memcpy(to, range.first, range.second);
+            to += range.second;
+        }
+    }
+};
 
 // Loads `path` for a robot: the file itself for the first robot of that
 // path (`first` null), else a copy (in memory, or at `copy_path`) whose

@@ -26,10 +26,12 @@
  *   camera                               it has Enki's camera (its program reads it)
  *   tof                                  its ToF ray is cast (its program reads it)
  *
- * Each robot's shared object is loaded from its own file (so its globals
- * are its own: robots of one program load copies of its `lib`, in memory
- * or beside the SPEC, whose code they share; robot_loader.h) and its main()
- * runs as a coroutine: it runs step_ms poll
+ * The robots of one `lib` share one loaded copy of it, each with its own
+ * copy of its globals, swapped into the object's data pages while its code
+ * runs (robot_loader.h; with thread-local storage, more than 8 KB of state,
+ * or the environment's EPUCK_WORLD_COPIES set, each robot loads its own copy
+ * of the file instead, in memory or beside the SPEC).  A robot's main() runs as a
+ * coroutine: it runs step_ms poll
  * cycles, then yields (robot_glue.c), and the world steps once.  Robots are
  * resumed in the order of the SPEC; nothing depends on wall-clock time, so
  * a run is reproducible byte for byte.
@@ -44,7 +46,6 @@
  * shared object cannot be used.
  */
 #include <dlfcn.h>
-#include <ucontext.h>
 #include <signal.h>
 #include <sys/time.h>
 #include <cmath>
@@ -52,6 +53,7 @@
 #include <cstdlib>
 #include <cstdint>
 #include <cstring>
+#include <map>
 #include <memory>
 #include <string>
 #include <utility>
@@ -63,6 +65,7 @@
 #include <enki/PhysicalEngine.h>
 #include <enki/robots/e-puck/EPuck.h>
 
+#include "coroutine.h"
 #include "enki_bridge.h"
 #include "robot_loader.h"
 #include "world_channel.h"
@@ -70,42 +73,6 @@
 namespace {
 
 const int EXIT_RUNNER = 4;
-const size_t STACK_SIZE = 1 << 20;
-
-/* Coroutines.  On x86-64 a switch saves the callee-saved registers and
- * swaps stacks (a few ns); elsewhere ucontext's swapcontext, which also
- * saves the signal mask with a system call (about ten times slower;
- * -DEPUCK_WORLD_UCONTEXT chooses it on x86-64 too). */
-#if defined(__x86_64__) && defined(__linux__) && !defined(EPUCK_WORLD_UCONTEXT)
-#define FAST_SWITCH 1
-extern "C" void epuck_switch_stack(void **save_sp, void *new_sp);
-asm(R"(
-    .text
-    .globl epuck_switch_stack
-    .type epuck_switch_stack, @function
-epuck_switch_stack:
-    pushq %rbp
-    pushq %rbx
-    pushq %r12
-    pushq %r13
-    pushq %r14
-    pushq %r15
-    movq %rsp, (%rdi)
-    movq %rsi, %rsp
-    popq %r15
-    popq %r14
-    popq %r13
-    popq %r12
-    popq %rbx
-    popq %rbp
-    ret
-    .size epuck_switch_stack, .-epuck_switch_stack
-    .section .note.GNU-stack,"",@progbits
-    .text
-)");
-#else
-#define FAST_SWITCH 0
-#endif
 
 [[noreturn]] void die(const std::string &message)
 {
@@ -166,18 +133,17 @@ struct Robot {
     void *handle = nullptr;
     int (*main)(int, char **) = nullptr;
     void (*cmain_signal)(int wall) = nullptr;   // host/cmain.c's timers, this robot's
-    std::unique_ptr<char[]> stack;          // not zeroed: the kernel commits it as used
-#if FAST_SWITCH
-    void *world_sp = nullptr, *robot_sp = nullptr;
-#else
-    ucontext_t world_ctx, robot_ctx;
-#endif
+    coroutine::Coroutine run;               // its main, on its own stack
+    // its own copy of its program's globals, when other robots share the
+    // object (swapped in while its code runs)
+    loader::Swapped state;
     FILE *out = nullptr;                    // several robots: collected output
     char *out_buf = nullptr;
     size_t out_size = 0, out_done = 0;
 };
 
 std::vector<Robot> robots;
+std::map<void *, loader::State> states;     // of each program's object, by handle
 Enki::World *world;
 Robot *current;
 Robot *volatile running_robot;      // the robot whose code runs now, else null
@@ -215,22 +181,7 @@ void start_timers()
 // robot -> world
 void yield_robot(enki_robot_io *io)
 {
-    Robot *r = static_cast<Robot *>(io->runner);
-#if FAST_SWITCH
-    epuck_switch_stack(&r->robot_sp, r->world_sp);
-#else
-    swapcontext(&r->robot_ctx, &r->world_ctx);
-#endif
-}
-
-// world -> robot
-void resume_robot(Robot &r)
-{
-#if FAST_SWITCH
-    epuck_switch_stack(&r.world_sp, r.robot_sp);
-#else
-    swapcontext(&r.world_ctx, &r.robot_ctx);
-#endif
+    static_cast<Robot *>(io->runner)->run.yield();
 }
 
 void start_robot()
@@ -243,29 +194,6 @@ void start_robot()
     r->io.finished = 1;
     yield_robot(&r->io);
     std::abort();
-}
-
-void prepare_robot(Robot &r)
-{
-    r.stack.reset(new char[STACK_SIZE]);
-#if FAST_SWITCH
-    // the stack as epuck_switch_stack leaves it: six saved registers, then
-    // the address it returns to (start_robot), then a dummy return address
-    // for start_robot, with the stack 16-byte aligned at its call
-    uintptr_t top = (reinterpret_cast<uintptr_t>(r.stack.get()) + STACK_SIZE) & ~uintptr_t(15);
-    void **sp = reinterpret_cast<void **>(top);
-    *--sp = nullptr;
-    *--sp = reinterpret_cast<void *>(&start_robot);
-    for (int i = 0; i < 6; i++)
-        *--sp = nullptr;
-    r.robot_sp = sp;
-#else
-    getcontext(&r.robot_ctx);
-    r.robot_ctx.uc_stack.ss_sp = r.stack.get();
-    r.robot_ctx.uc_stack.ss_size = STACK_SIZE;
-    r.robot_ctx.uc_link = nullptr;
-    makecontext(&r.robot_ctx, start_robot, 0);
-#endif
 }
 
 std::string rest(const char *line, const char *word)
@@ -467,6 +395,9 @@ int main(int argc, char **argv)
     std::string folder(argv[1]);
     folder = folder.find('/') == std::string::npos ? "./" : folder.substr(0, folder.rfind('/') + 1);
     const bool several = robots.size() > 1;
+    const char *copies_setting = std::getenv("EPUCK_WORLD_COPIES");
+    const bool copies = copies_setting != nullptr && *copies_setting != '\0'
+                        && std::strcmp(copies_setting, "0") != 0;
     for (Robot &r : robots) {
         std::memset(&r.io, 0, sizeof r.io);
         r.io.version = ENKI_BRIDGE_VERSION;
@@ -479,8 +410,11 @@ int main(int argc, char **argv)
             die("too many settings for robot " + r.name);
         for (size_t i = 0; i < r.settings.size(); i++)
             r.io.settings[i] = r.settings[i].c_str();
-        // its own copy of its program's file (its own globals), the code
-        // shared with the first robot of that program (robot_loader.h)
+        // the object of the first robot of its program, its own state
+        // swapped in and out (robot_loader.h); else (thread-local storage,
+        // more than 8 KB of state, or EPUCK_WORLD_COPIES for tests and
+        // benches) its own copy of the file, the code shared with the first
+        // robot's
         void *first = nullptr;
         for (Robot &o : robots) {
             if (&o == &r)
@@ -490,11 +424,17 @@ int main(int argc, char **argv)
                 break;
             }
         }
-        std::string error;
-        r.handle = loader::load(r.lib, first, folder + "robot" + std::to_string(&r - &robots[0])
-                                + ".so", &error);
-        if (r.handle == nullptr)
-            die("cannot load robot " + r.name + ": " + error);
+        if (first != nullptr && !copies && states.at(first).swappable) {
+            r.handle = first;
+        } else {
+            std::string error;
+            r.handle = loader::load(r.lib, first, folder + "robot"
+                                    + std::to_string(&r - &robots[0]) + ".so", &error);
+            if (r.handle == nullptr)
+                die("cannot load robot " + r.name + ": " + error);
+            if (first == nullptr)
+                states.emplace(r.handle, loader::state_of(r.handle));
+        }
         auto attach = (int (*)(enki_robot_io *))dlsym(r.handle, "enki_robot_attach");
         r.main = (int (*)(int, char **))dlsym(r.handle, "main");
         r.cmain_signal = (void (*)(int))dlsym(r.handle, "epuck_cmain_signal");
@@ -516,6 +456,16 @@ int main(int argc, char **argv)
         }
     }
     loader::loaded();
+    // the robots that share an object each start from its data as loaded
+    // (its constructors have run, no robot's code yet)
+    std::map<void *, int> sharing;
+    for (const Robot &r : robots)
+        sharing[r.handle]++;
+    for (Robot &r : robots) {
+        if (sharing[r.handle] < 2)
+            continue;
+        r.state.share(states.at(r.handle));
+    }
     // readings for the first poll: the world as placed, nothing moving
     const double dt = step_ms / 1000.0;
     channel::Random random(seed);
@@ -525,9 +475,11 @@ int main(int argc, char **argv)
     for (Robot &r : robots) {
         sense(r);
         auto attach = (int (*)(enki_robot_io *))dlsym(r.handle, "enki_robot_attach");
+        r.state.swap_in();
         if (attach(&r.io) != 0)
             die("robot " + r.name + ": " + r.lib + " was built for another runner");
-        prepare_robot(r);
+        r.state.swap_out();
+        r.run.prepare(start_robot);
     }
 
     FILE *real_stdout = stdout;
@@ -541,9 +493,11 @@ int main(int argc, char **argv)
             current = &r;
             if (r.out != nullptr)
                 stdout = r.out;
+            r.state.swap_in();
             running_robot = &r;
-            resume_robot(r);
+            r.run.resume();
             running_robot = nullptr;
+            r.state.swap_out();
             stdout = real_stdout;
             running = running || !r.io.finished;
         }

@@ -47,7 +47,7 @@ def demos():
     return folder / "program" / "DemoGCtronic-complete"
 
 
-def _run(demos, tmp_path, demo, *extra, world=None, expect=3):
+def _run(demos, tmp_path, demo, *extra, world=None, expect=3, env=None):
     main = tmp_path / f"main_{demo}.c"
     main.write_text(MAINS[demo])
     trace = tmp_path / f"{demo}.jsonl"
@@ -57,7 +57,7 @@ def _run(demos, tmp_path, demo, *extra, world=None, expect=3):
         path = tmp_path / f"{demo}.world"
         path.write_text(world)
         args += ["--world", path]
-    result = epuckc(*args)
+    result = epuckc(*args, env=env)
     assert result.returncode == expect, result.stdout + result.stderr
     # the demos' own warnings may show; never one from epuckc's files
     ours = [line for line in result.stderr.splitlines()
@@ -103,6 +103,22 @@ def test_the_avoider_is_deterministic(demos, tmp_path):
     first, _ = _run(demos, tmp_path, "shocker", "--time-limit", "10s", world=world)
     second, _ = _run(demos, tmp_path, "shocker", "--time-limit", "10s", world=world)
     assert first == second
+
+
+def test_several_avoiders_share_their_object_as_copies_would(demos, tmp_path):
+    """Three robots of one C program with its own main (signals, agendas,
+    the library's busy loops) share its loaded object, each with its own
+    globals swapped in (runtime_c/enki/robot_loader.h): the same trace as
+    when each loads its own copy (EPUCK_WORLD_COPIES=1)."""
+    require_enki()
+    world = ("arena 100 cm x 80 cm\ncylinder at 50 cm, 40 cm radius 8 cm\n"
+             "robot a at 15 cm, 15 cm heading 30 deg\nrobot b at 85 cm, 20 cm heading 150 deg\n"
+             "robot c at 50 cm, 70 cm heading 270 deg\n")
+    shared, _ = _run(demos, tmp_path, "shocker", "--time-limit", "6s", world=world)
+    copies, _ = _run(demos, tmp_path, "shocker", "--time-limit", "6s", world=world,
+                     env={"EPUCK_WORLD_COPIES": "1"})
+    assert shared == copies
+    assert {r["robot"] for r in shared if r["kind"] == "pose"} == {"a", "b", "c"}
 
 
 def test_the_follower_holds_its_distance_to_what_it_faces(demos, tmp_path):

@@ -1,0 +1,155 @@
+"""The robots of one program share one loaded copy of its shared object in
+a world, each robot's globals swapped into it while its code runs
+(runtime_c/enki/robot_loader.h, docs/world.md): every run here is made
+twice, as it is and with EPUCK_WORLD_COPIES=1 (each robot its own copy of
+the file, the design before), and both give the same merged trace, output
+and exit status: the examples' worlds of several robots, two programs
+interleaved in one world, and generated programs of the whole language in
+a world of three robots. And the mechanism itself, seen from a C program:
+robots of one program see their globals at one address and each its own
+values; a program with thread-local storage is not shared."""
+from __future__ import annotations
+
+import re
+
+import pytest
+
+from conftest import REPO, require_enki
+from tests.support.bulk import GENERATED, accepted_programs
+from tests.support.world import EXAMPLES, epuckc
+
+COPIES = {"EPUCK_WORLD_COPIES": "1"}
+
+
+@pytest.fixture(autouse=True)
+def _enki():
+    require_enki()
+
+
+def run_both(tmp_path, *args):
+    """`epuckc run ARGS --trace` with the object shared and with copies: the
+    same trace, stdout and status (returned)."""
+    results = []
+    for env in ({}, COPIES):
+        trace = tmp_path / "t.jsonl"
+        r = epuckc("run", *args, "--trace", trace, env=env)
+        assert r.returncode in (0, 3), r.stderr
+        results.append((trace.read_bytes(), r.stdout, r.returncode))
+    assert results[0][0], "no trace"
+    assert results[0] == results[1]
+    return results[0]
+
+
+SEVERAL = [p.name for p in sorted(EXAMPLES.glob("*.world"))
+           if len(re.findall(r"^robot ", p.read_text(), re.M)) > 1]
+
+
+def test_the_examples_have_worlds_of_several_robots():
+    assert {"aggregation.world", "dispersion.world", "swarm.world"} <= set(SEVERAL)
+
+
+@pytest.mark.parametrize("world", SEVERAL)
+def test_example_worlds_trace_the_same(tmp_path, world):
+    program = EXAMPLES / world.replace(".world", ".epk")
+    if not program.exists():
+        program = EXAMPLES / "random_walk.epk"
+    trace, _, _ = run_both(tmp_path, program, "--world", EXAMPLES / world,
+                           "--time-limit", "10s", "--pose-interval", "90ms")
+    assert len(set(re.findall(rb'"robot": ?"([^"]+)"', trace))) > 1
+
+
+def test_two_programs_interleaved_trace_the_same(tmp_path):
+    """Robots of two programs in turn (a b a b): two shared objects, each
+    with two robots' states."""
+    world = tmp_path / "mixed.world"
+    wander, walk = EXAMPLES / "wander.epk", EXAMPLES / "random_walk.epk"
+    world.write_text("arena 100 cm x 80 cm\ncylinder at 50 cm, 40 cm radius 8 cm\n"
+                     f"robot a at 15 cm, 15 cm heading 30 deg program {wander}\n"
+                     f"robot b at 85 cm, 15 cm heading 150 deg program {walk}\n"
+                     f"robot c at 15 cm, 65 cm heading 300 deg program {wander}\n"
+                     f"robot d at 85 cm, 65 cm heading 200 deg program {walk}\n"
+                     "seed 3\n", encoding="utf-8")
+    run_both(tmp_path, wander, "--world", world, "--time-limit", "8s", "--pose-interval", "50ms")
+
+
+SWARM = """arena 90 cm x 70 cm
+box at 30 cm, 40 cm size 20 cm x 6 cm angle 30 deg
+cylinder at 65 cm, 45 cm radius 6 cm colour red
+robot a at 15 cm, 12 cm heading 20 deg
+robot b at 60 cm, 15 cm heading 120 deg colour green
+robot c at 45 cm, 58 cm heading 250 deg
+seed 5
+"""
+
+
+@pytest.mark.parametrize("index", range(GENERATED))
+def test_generated_programs_in_a_world_trace_the_same(tmp_path, index):
+    path = tmp_path / f"g{index}.epk"
+    path.write_text(accepted_programs(GENERATED, 3033)[index], encoding="utf-8")
+    world = tmp_path / "swarm.world"
+    world.write_text(SWARM, encoding="utf-8")
+    run_both(tmp_path, path, "--world", world, "--time-limit", "4s", "--seed", str(index))
+
+
+COUNTER = """\
+#include <stdio.h>
+#include <utility/utility.h>
+static %sint counter;             /* every robot its own */
+%s
+int main(void)
+{
+    int k;
+    for (k = 0; k < 5; k++) {
+        counter += 1;
+        %s
+        printf("count %%d at %%p\\n", counter, (void *)&counter);
+        wait(20000L * (k + 1));
+    }
+    return 0;
+}
+"""
+
+TWO = "arena 60 cm x 60 cm\nrobot a at 15 cm, 15 cm\nrobot b at 45 cm, 45 cm\n"
+
+
+def _counts(tmp_path, storage: str = "", more: tuple = ("", ""), env=None) -> dict:
+    """Each robot's counter counts 1 to 5 (its own); the addresses at which
+    each robot saw it. `more`: a declaration, and a statement of the loop."""
+    program = tmp_path / "count.c"
+    program.write_text(COUNTER % (storage, *more), encoding="utf-8")
+    world = tmp_path / "two.world"
+    world.write_text(TWO, encoding="utf-8")
+    r = epuckc("run", program, "--world", world, "--time-limit", "2s", env=env)
+    assert r.returncode == 0, r.stdout + r.stderr
+    seen: dict = {}
+    for robot, count, address in re.findall(r"^(\w+): count (\d+) at (\S+)$", r.stdout, re.M):
+        seen.setdefault(robot, []).append((int(count), address))
+    assert sorted(seen) == ["a", "b"], r.stdout
+    for pairs in seen.values():     # each robot counts alone, from its own start
+        assert [c for c, _ in pairs] == [1, 2, 3, 4, 5], r.stdout
+    return {robot: {a for _, a in pairs} for robot, pairs in seen.items()}
+
+
+def test_robots_of_a_program_share_its_object_each_with_its_globals(tmp_path):
+    shared = _counts(tmp_path)
+    assert shared["a"] == shared["b"] and len(shared["a"]) == 1
+    copies = _counts(tmp_path, env=COPIES)
+    assert copies["a"] != copies["b"]
+
+
+def test_a_program_with_thread_local_storage_is_not_shared(tmp_path):
+    """Thread-local storage is not in the data pages that are swapped: each
+    robot loads its own copy of the file (its own TLS block) and counts
+    alone."""
+    addresses = _counts(tmp_path, "__thread ")
+    assert addresses["a"] != addresses["b"]
+
+
+def test_a_program_with_much_state_is_not_shared(tmp_path):
+    """Swapping more than MAX_SWAPPED_STATE bytes (robot_loader.h) at every
+    step would cost more than the copies: its robots load their copies."""
+    header = (REPO / "runtime_c" / "enki" / "robot_loader.h").read_text()
+    limit = int(re.search(r"MAX_SWAPPED_STATE = (\d+);", header).group(1))
+    large = (f"static volatile unsigned char table[{limit + 1}];", "table[k] = (unsigned char)k;")
+    addresses = _counts(tmp_path, "", large)
+    assert addresses["a"] != addresses["b"]
