@@ -133,7 +133,10 @@ def main() -> int:
               f"{ours / enki:.2f} x Enki alone; target 1.25 x: "
               f"{'met' if ours / enki <= 1.25 else 'NOT met'}"
               f"\n  (each robot its own copy of the program, EPUCK_WORLD_COPIES=1: "
-              f"{copies:.3f} s = {copies / enki:.2f} x)")
+              f"{copies:.3f} s = {copies / enki:.2f} x)"
+              f"\n  each round's own ratio (the machine's speed drifts less within a round): "
+              f"median {statistics.median(r[0][1] / r[1][1] for r in rounds):.2f} x, copies "
+              f"{statistics.median(r[2][1] / r[1][1] for r in rounds):.2f} x")
         ok &= ours / enki <= 1.25
         exe_dir = Path(tmp) / "stub"
         subprocess.run([sys.executable, "-m", "epuckc", "build", str(PROGRAM), "-o", str(exe_dir)],
