@@ -14,7 +14,7 @@
  * keeps of code by its address (branch predictors, decoded instructions,
  * TLB entries) serves them all: with one copy of the file per robot (the
  * design before, its code pages shared as below), a poll took 4 times as
- * long with 50 robots as with one or two, and the whole run 10 % more
+ * long with 50 robots as with one or two, and the whole run 12 % more
  * (docs/performance.md, "One object for all the robots of a program").
  *
  * Two kinds of program keep one copy of the file per robot instead: one
@@ -198,10 +198,10 @@ inline void share_pages(void *first, void *copy, const std::string &path)
 }
 #endif
 
-// Above this many bytes of state, swapping costs more than the robots'
-// copies of the file do (bench/world_bench.py's 50 robots, with 4 KB of
-// state more or less swapped: docs/performance.md): the robots then load
-// their copies.
+// Swapping more bytes than this at every step costs more than the robots'
+// copies of the file do (measured with bench/world_bench.py's 50 robots
+// swapping 0 to 16 KB more than their state: docs/performance.md): the
+// robots of an object with more state load their copies.
 const size_t MAX_SWAPPED_STATE = 8192;
 
 // The state a robot keeps of a loaded object: its writable pages that are

@@ -30,9 +30,9 @@
  * copy of its globals, swapped into the object's data pages while its code
  * runs (robot_loader.h; with thread-local storage, more than 8 KB of state,
  * or the environment's EPUCK_WORLD_COPIES set, each robot loads its own copy
- * of the file instead, in memory or beside the SPEC).  A robot's main() runs as a
- * coroutine: it runs step_ms poll
- * cycles, then yields (robot_glue.c), and the world steps once.  Robots are
+ * of the file instead, in memory or beside the SPEC).  A robot's main()
+ * runs as a coroutine (coroutine.h): it runs step_ms poll cycles, then
+ * yields (robot_glue.c), and the world steps once.  Robots are
  * resumed in the order of the SPEC; nothing depends on wall-clock time, so
  * a run is reproducible byte for byte.
  *
