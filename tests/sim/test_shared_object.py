@@ -5,9 +5,10 @@ twice, as it is and with EPUCK_WORLD_COPIES=1 (each robot its own copy of
 the file, the design before), and both give the same merged trace, output
 and exit status: the examples' worlds of several robots, two programs
 interleaved in one world, and generated programs of the whole language in
-a world of three robots. And the mechanism itself, seen from a C program:
+a world of three robots. And the mechanism itself, seen from C programs:
 robots of one program see their globals at one address and each its own
-values; a program with thread-local storage is not shared."""
+values, also when the world takes over mains that never wait; a program
+with thread-local storage or much state is not shared."""
 from __future__ import annotations
 
 import re
@@ -153,3 +154,32 @@ def test_a_program_with_much_state_is_not_shared(tmp_path):
     large = (f"static volatile unsigned char table[{limit + 1}];", "table[k] = (unsigned char)k;")
     addresses = _counts(tmp_path, "", large)
     assert addresses["a"] != addresses["b"]
+
+
+SPINNER = """\
+#include <stdio.h>
+static long spins;              /* every robot its own */
+int main(void)
+{
+    for (;;) {                  /* main's clock runs on the blocks it executes */
+        spins++;
+        if (spins % 20000 == 0)
+            printf("spins %ld\\n", spins);
+    }
+}
+"""
+
+
+def test_spinning_mains_are_taken_over_each_with_its_globals(tmp_path):
+    """Mains that never wait: the world takes each over inside its loop
+    (host/cmain.c charges its blocks to main's clock), its globals half-way
+    through an update; each robot still counts alone, as with copies."""
+    program = tmp_path / "spin.c"
+    program.write_text(SPINNER, encoding="utf-8")
+    world = tmp_path / "two.world"
+    world.write_text(TWO, encoding="utf-8")
+    trace, stdout, status = run_both(tmp_path, program, "--world", world, "--time-limit", "1s")
+    assert status == 3
+    for robot in ("a", "b"):
+        seen = [int(n) for n in re.findall(rf"^{robot}: spins (\d+)$", stdout, re.M)]
+        assert len(seen) > 3 and seen == [20000 * (k + 1) for k in range(len(seen))], stdout
