@@ -424,17 +424,21 @@ int main(int argc, char **argv)
                 break;
             }
         }
-        if (first != nullptr && !copies && states.at(first).swappable) {
-            r.handle = first;
-        } else {
-            std::string error;
-            r.handle = loader::load(r.lib, first, folder + "robot"
-                                    + std::to_string(&r - &robots[0]) + ".so", &error);
-            if (r.handle == nullptr)
-                die("cannot load robot " + r.name + ": " + error);
-            if (first == nullptr)
+        std::string error;
+        const std::string copy_path = folder + "robot" + std::to_string(&r - &robots[0]) + ".so";
+        if (first == nullptr) {
+            r.handle = loader::load(r.lib, nullptr, copy_path, &error);
+            // the same file by another name is the object loaded already
+            if (r.handle != nullptr && states.count(r.handle) != 0)
+                first = r.handle;
+            else if (r.handle != nullptr)
                 states.emplace(r.handle, loader::state_of(r.handle));
         }
+        if (first != nullptr)
+            r.handle = !copies && states.at(first).swappable
+                       ? first : loader::load(r.lib, first, copy_path, &error);
+        if (r.handle == nullptr)
+            die("cannot load robot " + r.name + ": " + error);
         auto attach = (int (*)(enki_robot_io *))dlsym(r.handle, "enki_robot_attach");
         r.main = (int (*)(int, char **))dlsym(r.handle, "main");
         r.cmain_signal = (void (*)(int))dlsym(r.handle, "epuck_cmain_signal");

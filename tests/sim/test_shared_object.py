@@ -183,3 +183,38 @@ def test_spinning_mains_are_taken_over_each_with_its_globals(tmp_path):
     for robot in ("a", "b"):
         seen = [int(n) for n in re.findall(rf"^{robot}: spins (\d+)$", stdout, re.M)]
         assert len(seen) > 3 and seen == [20000 * (k + 1) for k in range(len(seen))], stdout
+
+
+@pytest.mark.parametrize("storage", ["", "__thread "])
+def test_one_file_by_two_names_is_one_object_and_robots_still_count_alone(tmp_path, storage):
+    """Two robots' `lib` lines naming one file by two paths (links): the
+    dynamic loader gives the object loaded already, and the runner treats
+    it as one program's: shared with the state swapped, or (thread-local
+    storage) a copy for the second robot."""
+    import os
+    import subprocess
+    from epuckc.cli.driver import load_program
+    from epuckc.diagnostics import Report
+    from epuckc.sim import enki
+    from epuckc.sim.world import parse_world, runner_spec
+    program = tmp_path / "count.c"
+    program.write_text(COUNTER % (storage, "", ""), encoding="utf-8")
+    lib = enki.build_robot(load_program(program, Report()))
+    world = tmp_path / "two.world"
+    world.write_text(TWO, encoding="utf-8")
+    robots = []
+    for i in range(2):
+        os.symlink(lib, tmp_path / f"r{i}.so")
+        robots.append((tmp_path / f"r{i}.so", {"EPUCK_TIME_LIMIT_MS": "2000"}))
+    (tmp_path / "spec").write_text(runner_spec(parse_world(world), robots))
+    result = subprocess.run([str(enki.build_runner()), str(tmp_path / "spec"),
+                             str(tmp_path / "results")], capture_output=True, text=True)
+    assert result.returncode == 0, result.stderr
+    seen: dict = {}
+    for robot, count, address in re.findall(r"^(\w+): count (\d+) at (\S+)$", result.stdout,
+                                            re.M):
+        seen.setdefault(robot, []).append((int(count), address))
+    assert {r: [c for c, _ in p] for r, p in seen.items()} == {"a": [1, 2, 3, 4, 5],
+                                                               "b": [1, 2, 3, 4, 5]}
+    one_address = len({a for p in seen.values() for _, a in p}) == 1
+    assert one_address == (storage == "")
