@@ -11,7 +11,7 @@ import pytest
 
 from conftest import require_enki
 from tests.support.bulk import EVERY_MS, GENERATED, accepted_programs
-from tests.support.world import EXAMPLES, epuckc
+from tests.support.world import EXAMPLES, same_run_both_ways, three_robots_world
 WORLDS = sorted(p.name for p in EXAMPLES.glob("*.world"))
 
 
@@ -23,15 +23,8 @@ def _enki():
 def run_twice(tmp_path, *args, stats=None):
     """`epuckc run ARGS --trace` in bulk and ms by ms: the same trace,
     stdout and status (returned)."""
-    results = []
-    for env in ({"EPUCK_POLL_STATS": str(stats)} if stats else {}, EVERY_MS):
-        trace = tmp_path / "t.jsonl"
-        r = epuckc("run", *args, "--trace", trace, env=env)
-        assert r.returncode in (0, 3), r.stderr
-        results.append((trace.read_bytes(), r.stdout, r.returncode))
-    assert results[0][0], "no trace"
-    assert results[0] == results[1]
-    return results[0]
+    return same_run_both_ways(tmp_path, {"EPUCK_POLL_STATS": str(stats)} if stats else {},
+                              EVERY_MS, *args)
 
 
 @pytest.mark.parametrize("world", WORLDS)
@@ -48,22 +41,12 @@ def test_examples_in_the_arena_trace_the_same(tmp_path, example):
               "--time-limit", "8s", "--pose-interval", "70ms")
 
 
-SWARM = """arena 90 cm x 70 cm
-box at 30 cm, 40 cm size 20 cm x 6 cm angle 30 deg
-cylinder at 65 cm, 45 cm radius 6 cm colour red
-robot a at 15 cm, 12 cm heading 20 deg
-robot b at 60 cm, 15 cm heading 120 deg colour green
-robot c at 45 cm, 58 cm heading 250 deg
-seed 7
-"""
-
-
 @pytest.mark.parametrize("index", range(GENERATED))
 def test_generated_programs_in_a_world_trace_the_same(tmp_path, index):
     path = tmp_path / f"g{index}.epk"
     path.write_text(accepted_programs(GENERATED, 2028)[index], encoding="utf-8")
     world = tmp_path / "swarm.world"
-    world.write_text(SWARM, encoding="utf-8")
+    world.write_text(three_robots_world(seed=7), encoding="utf-8")
     run_twice(tmp_path, path, "--world", world, "--time-limit", "4s", "--seed", str(index))
 
 

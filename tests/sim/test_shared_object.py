@@ -17,7 +17,7 @@ import pytest
 
 from conftest import REPO, require_enki
 from tests.support.bulk import GENERATED, accepted_programs
-from tests.support.world import EXAMPLES, epuckc
+from tests.support.world import EXAMPLES, epuckc, same_run_both_ways, three_robots_world
 
 COPIES = {"EPUCK_WORLD_COPIES": "1"}
 
@@ -30,15 +30,7 @@ def _enki():
 def run_both(tmp_path, *args):
     """`epuckc run ARGS --trace` with the object shared and with copies: the
     same trace, stdout and status (returned)."""
-    results = []
-    for env in ({}, COPIES):
-        trace = tmp_path / "t.jsonl"
-        r = epuckc("run", *args, "--trace", trace, env=env)
-        assert r.returncode in (0, 3), r.stderr
-        results.append((trace.read_bytes(), r.stdout, r.returncode))
-    assert results[0][0], "no trace"
-    assert results[0] == results[1]
-    return results[0]
+    return same_run_both_ways(tmp_path, {}, COPIES, *args)
 
 
 SEVERAL = [p.name for p in sorted(EXAMPLES.glob("*.world"))
@@ -73,22 +65,12 @@ def test_two_programs_interleaved_trace_the_same(tmp_path):
     run_both(tmp_path, wander, "--world", world, "--time-limit", "8s", "--pose-interval", "50ms")
 
 
-SWARM = """arena 90 cm x 70 cm
-box at 30 cm, 40 cm size 20 cm x 6 cm angle 30 deg
-cylinder at 65 cm, 45 cm radius 6 cm colour red
-robot a at 15 cm, 12 cm heading 20 deg
-robot b at 60 cm, 15 cm heading 120 deg colour green
-robot c at 45 cm, 58 cm heading 250 deg
-seed 5
-"""
-
-
 @pytest.mark.parametrize("index", range(GENERATED))
 def test_generated_programs_in_a_world_trace_the_same(tmp_path, index):
     path = tmp_path / f"g{index}.epk"
     path.write_text(accepted_programs(GENERATED, 3033)[index], encoding="utf-8")
     world = tmp_path / "swarm.world"
-    world.write_text(SWARM, encoding="utf-8")
+    world.write_text(three_robots_world(seed=5), encoding="utf-8")
     run_both(tmp_path, path, "--world", world, "--time-limit", "4s", "--seed", str(index))
 
 
@@ -122,12 +104,17 @@ def _counts(tmp_path, storage: str = "", more: tuple = ("", ""), env=None) -> di
     world.write_text(TWO, encoding="utf-8")
     r = epuckc("run", program, "--world", world, "--time-limit", "2s", env=env)
     assert r.returncode == 0, r.stdout + r.stderr
+    return _counted_alone(r.stdout)
+
+
+def _counted_alone(stdout: str) -> dict:
+    """Robots a and b each printed counts 1 to 5 (each counts alone, from
+    its own start); the addresses at which each saw its counter."""
     seen: dict = {}
-    for robot, count, address in re.findall(r"^(\w+): count (\d+) at (\S+)$", r.stdout, re.M):
+    for robot, count, address in re.findall(r"^(\w+): count (\d+) at (\S+)$", stdout, re.M):
         seen.setdefault(robot, []).append((int(count), address))
-    assert sorted(seen) == ["a", "b"], r.stdout
-    for pairs in seen.values():     # each robot counts alone, from its own start
-        assert [c for c, _ in pairs] == [1, 2, 3, 4, 5], r.stdout
+    assert {r: [c for c, _ in pairs] for r, pairs in seen.items()} == \
+        {"a": [1, 2, 3, 4, 5], "b": [1, 2, 3, 4, 5]}, stdout
     return {robot: {a for _, a in pairs} for robot, pairs in seen.items()}
 
 
@@ -210,11 +197,5 @@ def test_one_file_by_two_names_is_one_object_and_robots_still_count_alone(tmp_pa
     result = subprocess.run([str(enki.build_runner()), str(tmp_path / "spec"),
                              str(tmp_path / "results")], capture_output=True, text=True)
     assert result.returncode == 0, result.stderr
-    seen: dict = {}
-    for robot, count, address in re.findall(r"^(\w+): count (\d+) at (\S+)$", result.stdout,
-                                            re.M):
-        seen.setdefault(robot, []).append((int(count), address))
-    assert {r: [c for c, _ in p] for r, p in seen.items()} == {"a": [1, 2, 3, 4, 5],
-                                                               "b": [1, 2, 3, 4, 5]}
-    one_address = len({a for p in seen.values() for _, a in p}) == 1
-    assert one_address == (storage == "")
+    addresses = _counted_alone(result.stdout)
+    assert (addresses["a"] == addresses["b"]) == (storage == "")

@@ -34,6 +34,31 @@ def epuckc(*args, cwd=None, env=None):
                           env=full_env, capture_output=True, text=True)
 
 
+def same_run_both_ways(tmp_path, env_a: dict, env_b: dict, *args):
+    """`epuckc run ARGS --trace` in two environments: the same merged trace,
+    stdout and exit status (0 or 3) both times; returns them."""
+    results = []
+    for env in (env_a, env_b):
+        trace = tmp_path / "t.jsonl"
+        r = epuckc("run", *args, "--trace", trace, env=env)
+        assert r.returncode in (0, 3), r.stderr
+        results.append((trace.read_bytes(), r.stdout, r.returncode))
+    assert results[0][0], "no trace"
+    assert results[0] == results[1]
+    return results[0]
+
+
+def three_robots_world(seed: int) -> str:
+    """A small arena with a box, a cylinder and three robots (a, b, c)."""
+    return ("arena 90 cm x 70 cm\n"
+            "box at 30 cm, 40 cm size 20 cm x 6 cm angle 30 deg\n"
+            "cylinder at 65 cm, 45 cm radius 6 cm colour red\n"
+            "robot a at 15 cm, 12 cm heading 20 deg\n"
+            "robot b at 60 cm, 15 cm heading 120 deg colour green\n"
+            "robot c at 45 cm, 58 cm heading 250 deg\n"
+            f"seed {seed}\n")
+
+
 def run(program, tmp_path, *extra, expect=0, name="trace"):
     """`epuckc run` with a trace; returns (records, stdout, the trace's text).
     `expect`: the exit status (None: any)."""
