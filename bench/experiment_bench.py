@@ -16,15 +16,24 @@
    does not spread) is small.
 2. 1,000 runs of 10 s with one robot on N workers (--thousand; it takes
    the longest). Target: within 2 minutes on 2 cores.
+3. The cost of a run beside the run itself, at scale (--scale M): short
+   runs (100 ms, one robot), 1,000 of them and M, each in tasks of one run
+   (--batch 1, as before batches) and in batches (the default), side by
+   side: the CPU per run of the whole process tree, and of the experiment's
+   own process (what does not spread over workers). Target: batched, M runs
+   cost no more CPU per run than 1,000 (within 10 %), and less than tasks
+   of one run.
 
 Prints the machine and its load average before and after.
 
     python3 bench/experiment_bench.py [--runs 300] [--workers N] [--repeat 3] [--thousand]
+                                      [--scale 10000]
 """
 import argparse
 import os
 import platform
 import resource
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -43,12 +52,12 @@ robot at 15 cm, 12 cm heading 20 deg
 """
 
 
-def experiment(folder: Path, seeds: int) -> Path:
+def experiment(folder: Path, seeds: int, duration: str = "10 s") -> Path:
     folder.mkdir(parents=True, exist_ok=True)
     (folder / "wander.epk").write_text(PROGRAM.read_text())
     (folder / "arena.world").write_text(WORLD)
     exp = folder / "exp.toml"
-    exp.write_text(f'program = "wander.epk"\nworld = "arena.world"\nduration = "10 s"\n'
+    exp.write_text(f'program = "wander.epk"\nworld = "arena.world"\nduration = "{duration}"\n'
                    f'seeds = {seeds}\nmetrics = ["contacts", "distance", "coverage"]\n')
     return exp
 
@@ -68,13 +77,14 @@ RUN = ("import resource, sys\n"
        "sys.exit(status)\n")
 
 
-def timed(exp: Path, out: Path, workers: int, env) -> tuple:
+def timed(exp: Path, out: Path, workers: int, env, more=()) -> tuple:
     """(wall seconds, rows, CPU seconds of the whole process tree, CPU
     seconds of the experiment's own process)."""
     cpu = cpu_of_children()
     start = time.perf_counter()
     proc = subprocess.run([sys.executable, "-c", RUN, "experiment", str(exp), "-o", str(out),
-                           "--workers", str(workers)], env=env, capture_output=True, text=True)
+                           "--workers", str(workers), *more], env=env, capture_output=True,
+                          text=True)
     wall = time.perf_counter() - start
     cpu = cpu_of_children() - cpu
     if proc.returncode != 0:
@@ -97,6 +107,9 @@ def main() -> int:
     parser.add_argument("--workers", type=int, default=len(os.sched_getaffinity(0)))
     parser.add_argument("--repeat", type=int, default=2)
     parser.add_argument("--thousand", action="store_true")
+    parser.add_argument("--scale", type=int, metavar="M",
+                        help="only the cost per run of 1,000 and M short runs, in tasks of one "
+                             "run and in batches")
     args = parser.parse_args()
     env = dict(os.environ, PYTHONPATH=str(REPO) + os.pathsep + os.environ.get("PYTHONPATH", ""))
     print(f"machine: {platform.machine()}, {os.cpu_count()} CPUs, {args.workers} usable by this "
@@ -105,6 +118,8 @@ def main() -> int:
     from world_bench import compile_package     # (bench/, beside this script)
     compile_package()
     ok = True
+    if args.scale:
+        return 0 if scale(args, env) else 1
     with tempfile.TemporaryDirectory() as tmp:
         tmp = Path(tmp)
         exp = experiment(tmp / "exp", args.runs)
@@ -139,6 +154,31 @@ def main() -> int:
                   f"{'met' if wall <= 120 else 'NOT met'}; load average {load()}")
             ok &= wall <= 120
     return 0 if ok else 1
+
+
+def scale(args, env) -> bool:
+    """Part 3: CPU per run of 1,000 and M short runs, tasks of one run
+    against batches, alternated in one session."""
+    figures = {}
+    with tempfile.TemporaryDirectory() as tmp:
+        tmp = Path(tmp)
+        timed(experiment(tmp / "warm", 4, "100 ms"), tmp / "warm-o", 1, env)
+        for runs in (1000, args.scale):
+            exp = experiment(tmp / f"e{runs}", runs, "100 ms")
+            for label, more in (("tasks of one run", ["--batch", "1"]), ("batches", [])):
+                wall, rows, cpu, parent = timed(exp, tmp / f"o{runs}-{len(more)}", args.workers,
+                                                env, more)
+                figures[(runs, label)] = (wall, cpu / rows, parent / rows)
+                print(f"{runs} runs of 100 ms, {label}, {args.workers} workers: {wall:.1f} s, "
+                      f"{1000 * cpu / rows:.2f} ms CPU a run (the experiment's own process "
+                      f"{1000 * parent / rows:.2f} ms); load average {load()}", flush=True)
+                shutil.rmtree(tmp / f"o{runs}-{len(more)}")
+    small, big = figures[(1000, "batches")][1], figures[(args.scale, "batches")][1]
+    ok = big <= 1.10 * small and big < figures[(args.scale, "tasks of one run")][1]
+    print(f"batched: {args.scale} runs cost {big / small:.2f} x the CPU per run of 1,000 "
+          f"(target <= 1.10) and {big / figures[(args.scale, 'tasks of one run')][1]:.2f} x "
+          f"tasks of one run: {'met' if ok else 'NOT met'}")
+    return ok
 
 
 if __name__ == "__main__":

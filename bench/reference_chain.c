@@ -11,6 +11,10 @@
  *
  *     cc -O2 -Iruntime_c/epuck_api -Ibench/<dir> bench/reference_chain.c \
  *        runtime_c/host/epuck_stub.c ... -o chain && ./chain POLLS
+ *
+ * (with the rest of the library's simulation, resources.py's
+ * LIBRARY_SIMULATION, whose few calls of its platform it answers: nothing
+ * is traced here)
  */
 #include <stdlib.h>
 
@@ -50,4 +54,31 @@ int main(int argc, char **argv)
     for (k = 0; k < polls; k++)
         poll();
     return fired != 0;      /* the readings stay 0: nothing fires */
+}
+
+/* what the library's simulation asks of its platform (host/epuck_stub.h) */
+void host_record(const char *kind, const char *name, const char *extra, const char *line);
+void host_record(const char *kind, const char *name, const char *extra, const char *line)
+{
+    (void)kind;
+    (void)name;
+    (void)extra;
+    (void)line;
+}
+
+void host_stop(const char *kind, const char *name, const char *extra, const char *line,
+               int status);
+void host_stop(const char *kind, const char *name, const char *extra, const char *line,
+               int status)
+{
+    host_record(kind, name, extra, line);
+    exit(status);
+}
+
+void stub_unsimulated(const char *function, const char *device);
+void stub_unsimulated(const char *function, const char *device)
+{
+    (void)function;
+    (void)device;
+    exit(6);
 }

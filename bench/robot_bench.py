@@ -54,14 +54,14 @@ sys.path.insert(0, str(BENCH))
 from check_bench import generate as generate_mixed  # noqa: E402
 
 sys.path.insert(0, str(REPO))
-from epuckc.base.resources import RUNTIME_CORE, RUNTIME_SIMULATED  # noqa: E402
+from epuckc.base.resources import LIBRARY_SIMULATION, RUNTIME_CORE, RUNTIME_SIMULATED  # noqa: E402
 
 HOST_CFLAGS = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", "-O2"]
 # as epuckc's robot builds: no name labels
 AVR_CFLAGS = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", "-Os", "-DEPUCKRT_NO_NAMES"]
 CORE = [RT / name for name in RUNTIME_CORE]     # the runtime, one file per concern
 HOST_SOURCES = [*CORE, *(RT / name for name in RUNTIME_SIMULATED), RT / "host" / "platform_host.c", RT / "host" / "scenario.c",
-                RT / "host" / "epuck_stub.c"]
+                *(RT / name for name in LIBRARY_SIMULATION)]
 BUDGET_CYCLES = 16000           # 1 ms at 16 MIPS
 SIM_MCU = "atmega1284p"
 # epuckc before static registration counted every rule against the runtime's
@@ -207,7 +207,8 @@ def host_per_poll(c: Path, extra, defines: list, d: Path, p1=1000, p2=2000) -> f
     files: its externs), the harness's own per-poll work subtracted."""
     exe = d / (c.stem + ".host")
     run(["cc", *HOST_CFLAGS, *defines, f"-I{RT}", f"-I{RT / 'epuck_api'}", f"-I{RT / 'host'}",
-         f"-I{c.parent}", c, *extra, *HOST_SOURCES, "-o", exe, "-lm"])
+         f"-I{RT / 'epuck_api_unsimulated'}", f"-I{c.parent}", c, *extra, *HOST_SOURCES, "-o",
+         exe, "-lm"])
     per = []
     for polls in (p1, p2):
         env = {k: v for k, v in os.environ.items() if not k.startswith("EPUCK_")}
@@ -223,8 +224,9 @@ def reference_per_poll(n: int, d: Path, p1=1000, p2=2000) -> float:
     (d / "chain_rules.h").write_text("".join(f"RULE({i}, {s}, {t})\n"
                                              for i, (s, t) in enumerate(sensor_rules(n))))
     ref_exe = d / "chain"
-    run(["cc", *HOST_CFLAGS, f"-I{RT}", f"-I{RT / 'epuck_api'}", f"-I{d}", BENCH / "reference_chain.c",
-         RT / "host" / "epuck_stub.c", "-o", ref_exe, "-lm"])
+    run(["cc", *HOST_CFLAGS, f"-I{RT}", f"-I{RT / 'epuck_api'}", f"-I{RT / 'host'}",
+         f"-I{RT / 'epuck_api_unsimulated'}", f"-I{d}", BENCH / "reference_chain.c",
+         *(RT / name for name in LIBRARY_SIMULATION), "-o", ref_exe, "-lm"])
     ref = [callgrind_ir(ref_exe, d, args=[polls])[0] for polls in (p1, p2)]
     return (ref[1] - ref[0]) / (p2 - p1)
 
@@ -268,7 +270,8 @@ def bench_callgrind(sizes, work: Path, p1=1000, p2=2000) -> list:
         dyn_c.write_text(dynamic_program(n))
         dyn_exe = d / f"dynamic{n}"
         run(["cc", *HOST_CFLAGS, "-DMAX_ACTIONS=2", f"-DMAX_EVENTS={n + 1}", f"-I{RT}",
-             f"-I{RT / 'epuck_api'}", f"-I{RT / 'host'}", dyn_c, *HOST_SOURCES, "-o", dyn_exe, "-lm"])
+             f"-I{RT / 'epuck_api'}", f"-I{RT / 'host'}", f"-I{RT / 'epuck_api_unsimulated'}",
+             dyn_c, *HOST_SOURCES, "-o", dyn_exe, "-lm"])
         per = []
         for polls in (p1, p2):
             env = {k: v for k, v in os.environ.items() if not k.startswith("EPUCK_")}

@@ -26,7 +26,7 @@ from pathlib import Path
 REPO = Path(__file__).resolve().parent.parent
 RUNTIME = REPO / "runtime_c"
 sys.path.insert(0, str(REPO))
-from epuckc.base.resources import RUNTIME_CORE  # noqa: E402
+from epuckc.base.resources import LIBRARY_SIMULATION, RUNTIME_CORE  # noqa: E402
 PROGRAM = REPO / "tests" / "runtime" / "programs" / "straight.c"
 SANITIZE = ["-g", "-O1", "-fsanitize=address,undefined"]
 
@@ -36,8 +36,9 @@ def build(out: Path, platform_host: Path, asan: bool) -> Path:
     exe = out / "harness"
     subprocess.run(cc + ["-std=c99", *(SANITIZE if asan else ["-O2"]),
                          f"-I{RUNTIME}", f"-I{RUNTIME / 'epuck_api'}", f"-I{RUNTIME / 'host'}",
+                         f"-I{RUNTIME / 'epuck_api_unsimulated'}",
                          str(PROGRAM), *(str(RUNTIME / name) for name in RUNTIME_CORE), str(platform_host),
-                         str(RUNTIME / "host" / "epuck_stub.c"), "-o", str(exe), "-lm"],
+                         *(str(RUNTIME / name) for name in LIBRARY_SIMULATION), "-o", str(exe), "-lm"],
                    check=True)
     return exe
 

@@ -25,6 +25,9 @@ PICTURES = [
     ("wander.svg", "examples/wander.epk", "examples/arena.world", ["--time-limit", "60s"]),
     ("braitenberg.svg", "examples/braitenberg.epk", "examples/braitenberg.world",
      ["--time-limit", "60s"]),
+    # half a lap (every switch of its LEDs is a dot on its path)
+    ("line_follower.svg", "examples/line_follower.epk", "examples/line_follower.world",
+     ["--time-limit", "20s"]),
 ]
 
 

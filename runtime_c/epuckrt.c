@@ -859,7 +859,9 @@ void mainloop(void)
     rt_last_right = e_get_steps_right();
     rt_looping = 1;
     for (;;) {
+        RT_TRACE_POLL_END();        /* the robot's trace: the LEDs the poll changed */
         rt_platform_idle();         /* (1) wait for / advance time by 1 ms */
+        RT_TRACE_POLL();            /* the robot's trace: its link (without it, nothing) */
         rt_motion_update();            /* (2) */
         rt_sequence_advance();         /* (3) */
         if (rt_exit_requested)

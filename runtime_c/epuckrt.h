@@ -440,6 +440,9 @@ long rt_sub(long a, long b);
 long rt_mul(long a, long b);
 long rt_div(long a, long b);
 long rt_mod(long a, long b);
+/* the language's `<<` and `>>` of a 16-bit value, for every count */
+int rt_shl(int a, int n);
+int rt_shr(int a, int n);
 long rt_neg(long a);
 long rt_abs(long a);
 long rt_min(long a, long b);
@@ -490,6 +493,16 @@ void rt_use_odometry(void);
 /* `NAME = value`: stores it in *var and traces the change (variable number
  * id, named with name_var). */
 void rt_assign(int *var, int id, int value);
+/* `fill(a, v)`: every element of the variable array a (count elements,
+ * the first traced as variable number id) gets value, each traced where it
+ * changes. */
+typedef struct {
+    int *array;
+    int id;
+    int count;
+    int value;
+} param_fill;
+void action_fill(void *param);               /* param_fill * */
 void name_var(int id, const char *name);
 #if defined(EPUCKRT_NO_NAMES) || (defined(__XC16__) && !defined(EPUCKRT_NAMES))
 #define name_var(id, name) ((void)(id))
@@ -556,6 +569,13 @@ unsigned long rt_messages_dropped(void);
  * nothing is in range; the sensor is started at the first reading. */
 #define RT_DISTANCE_MAX 2000
 int rt_distance(void);
+
+/* ---- Extension: GCtronic's ground-sensor module (runtime_c/rt_ground.c) --
+ * rt_ground: the light the floor reflects under sensor 0 (left), 1 (centre)
+ * or 2 (right) (get_ground_prox), 0..RT_GROUND_MAX; the module is started
+ * at the first reading. */
+#define RT_GROUND_MAX 4095
+int rt_ground(int sensor);
 
 /* ---- Extension: the colour camera (runtime_c/rt_camera.c) ----------------
  * One subsampled row of RT_CAMERA_PIXELS pixels over 60 degrees, read at

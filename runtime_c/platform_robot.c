@@ -5,9 +5,11 @@
  * agenda variant's order (e_init_port, e_start_agendas_processing,
  * e_init_motors, e_init_ad_scan(ALL_ADC)) and starts the 1 ms clock agenda,
  * so that the robot and the host harness share one code path.  What is left
- * here is waiting for the clock, and trace hooks that do nothing (there is
- * no trace on the robot).  The e-puck2 shares the hooks and the seed; its
- * wait for the clock is platform_epuck2.c's (EPUCKRT_EPUCK2).
+ * here is waiting for the clock, and trace hooks that do nothing: without
+ * `--trace` a robot build has no trace; with it (EPUCKRT_TRACE) the hooks
+ * are the tracer's (rt_trace.c) and these are not compiled.  The e-puck2
+ * shares the hooks and the seed; its wait for the clock is
+ * platform_epuck2.c's (EPUCKRT_EPUCK2).
  */
 #include "rt_platform.h"
 #include "a_d/advance_ad_scan/e_prox.h"
@@ -27,6 +29,7 @@ void rt_platform_idle(void)
 }
 #endif
 
+#ifndef EPUCKRT_TRACE
 void rt_trace_event(int event_id)
 {
     (void)event_id;
@@ -69,6 +72,7 @@ void rt_trace_motors(int active, int owner_event_id)
     (void)active;
     (void)owner_event_id;
 }
+#endif
 
 void rt_name_var(int id, const char *name)
 {

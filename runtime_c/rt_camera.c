@@ -6,18 +6,25 @@
  * Below it, the e-puck library's camera API (camera/fast_2_timer/e_poxxxx.h):
  * on the e-puck the library's driver of its po3030/po6030/po8030, on the
  * e-puck2 the firmware's epuck1x layer over its po8030 and dcmi, on the host
- * host/stub_devices.c (Enki's CircularCam in worlds).  As Aseba's e-puck
- * target does, it reads one subsampled row: RT_CAMERA_PIXELS pixels of
- * RGB565 across the middle of the image (480 of the sensor's 640 columns,
- * zoomed by 8: 60 degrees of the camera's field), one row of 8 lines.  The
- * first reading of a poll takes the line if a capture is ready (and starts
- * the next); the line's pixels are classified once, when it is taken.
+ * host/camera.c (Enki's CircularCam in worlds).  It reads one subsampled
+ * line across the field: RT_CAMERA_PIXELS pixels of RGB565 over 480 of the
+ * sensor's pixels zoomed by 8 (60 degrees of the camera's field), 8 wide,
+ * at the image's middle, along the sensor's axis that is horizontal on the
+ * robot, as the library's e_poxxxx_get_orientation says (the e-puck's
+ * camera is mounted one way or another from one hardware revision to the
+ * next, GCtronic's EEPROM word says which): 0, the image 480 x 640, its
+ * rows across (a column of 60 pixels, read right to left), 1, 640 x 480
+ * (a row, left to right; the e-puck2's), 2, 640 x 480 upside down (a row,
+ * right to left), as Aseba's e-puck target reads a row.  The first reading
+ * of a poll takes the line if a capture is ready (and starts the next); the
+ * line's pixels are classified once, when it is taken.
  */
 #include "rt_internal.h"
 
 #include "camera/fast_2_timer/e_poxxxx.h"
 
 static char frame[2 * RT_CAMERA_PIXELS];    /* RGB565, two bytes a pixel, big-endian */
+static int from_right;      /* the line's pixel 0 is its rightmost */
 static unsigned char line[RT_CAMERA_PIXELS];    /* RT_NO_COLOUR or RT_RED..RT_MAGENTA */
 static int started;
 static unsigned long taken_in;  /* rt_poll_count of the last look */
@@ -61,10 +68,17 @@ static void look(void)
     const unsigned char *px = (const unsigned char *)frame;
 
     if (!started) {
+        int orientation;
         started = 1;
         e_poxxxx_init_cam();
-        e_poxxxx_config_cam((ARRAY_WIDTH - 8 * RT_CAMERA_PIXELS) / 2, (ARRAY_HEIGHT - 8) / 2,
-                            8 * RT_CAMERA_PIXELS, 8, 8, 8, RGB_565_MODE);
+        orientation = e_poxxxx_get_orientation();
+        if (orientation == 0)       /* the rows across the field: a column */
+            e_poxxxx_config_cam((ARRAY_WIDTH - 8) / 2, (ARRAY_HEIGHT - 8 * RT_CAMERA_PIXELS) / 2,
+                                8, 8 * RT_CAMERA_PIXELS, 8, 8, RGB_565_MODE);
+        else
+            e_poxxxx_config_cam((ARRAY_WIDTH - 8 * RT_CAMERA_PIXELS) / 2, (ARRAY_HEIGHT - 8) / 2,
+                                8 * RT_CAMERA_PIXELS, 8, 8, 8, RGB_565_MODE);
+        from_right = orientation == 0 || orientation == 2;
         e_poxxxx_write_cam_registers();
         e_poxxxx_launch_capture(frame);
     }
@@ -75,8 +89,9 @@ static void look(void)
         return;
     for (i = 0; i < RT_CAMERA_PIXELS; i++) {
         unsigned hi = px[2 * i], lo = px[2 * i + 1];
-        line[i] = (unsigned char)rt_colour((int)(hi & 0xF8u), (int)(((hi & 7u) << 5) | ((lo >> 3) & 0x1Cu)),
-                                           (int)((lo & 0x1Fu) << 3));
+        line[from_right ? RT_CAMERA_PIXELS - 1 - i : i] =
+            (unsigned char)rt_colour((int)(hi & 0xF8u), (int)(((hi & 7u) << 5) | ((lo >> 3) & 0x1Cu)),
+                                     (int)((lo & 0x1Fu) << 3));
     }
     e_poxxxx_launch_capture(frame);
 }

@@ -99,6 +99,7 @@ static void comm_poll(void)
     moved_in = rt_poll_count;
     if (waiting >= 0 && !ircomIsSending()) {
         ircomSend((long)waiting);
+        RT_TRACE_SEND(waiting);
         waiting = -1;
     }
     for (n = 0; n < IRCOM_MESSAGES_MAX; n++) {
@@ -113,6 +114,7 @@ static void comm_poll(void)
         r.value = (int)(m.value & 0xFFL);
         r.bearing = degrees(m.direction);
         r.range = mm <= 0.0f ? 0 : mm >= 1000.0f ? 1000 : (int)mm;
+        RT_TRACE_MESSAGE(r.value, r.bearing, r.range);
         push(&r);
     }
 }
@@ -137,8 +139,10 @@ void action_send(void *param)
     value = (int)((unsigned)p->value & 0xFFu);
     if (ircomIsSending())
         waiting = value;
-    else
+    else {
         ircomSend((long)value);
+        RT_TRACE_SEND(value);
+    }
 }
 
 void event_message(void *param, void *status)

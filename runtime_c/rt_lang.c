@@ -100,6 +100,33 @@ long rt_clamp(long x, long lo, long hi)
     return v > hi ? hi : v;
 }
 
+/* ---- shifts ------------------------------------------------------------------ */
+
+/* `a << n` and `a >> n` on the 16-bit pattern of a (stdlib/arith.py: shl,
+ * shr), defined for every count: a negative one shifts the other way, one
+ * of 16 or more leaves no bit (`<<` gives 0, `>>` the sign).  Computed in
+ * unsigned and with `~`, so that no shift of a negative int, no overflow
+ * and no conversion out of range is left to the C compiler. */
+int rt_shl(int a, int n)
+{
+    unsigned int bits;
+    if (n < 0)
+        return rt_shr(a, n <= -16 ? 16 : -n);
+    if (n >= 16)
+        return 0;
+    bits = ((unsigned int)a << n) & 0xFFFFu;
+    return (bits & 0x8000u) ? -(int)(0xFFFFu - bits) - 1 : (int)bits;
+}
+
+int rt_shr(int a, int n)
+{
+    if (n < 0)
+        return rt_shl(a, n <= -16 ? 16 : -n);
+    if (n > 15)
+        n = 15;
+    return a >= 0 ? a >> n : -1 - ((-1 - a) >> n);     /* floor(a / 2^n) */
+}
+
 /* ---- arrays ------------------------------------------------------------------ */
 
 int rt_index(long i, int n)
@@ -246,7 +273,7 @@ int rt_acc(int axis)
         return 0;
     new_poll();
     if (!(other_valid & (8u << axis))) {
-        acc[axis] = e_get_acc((unsigned)axis);
+        acc[axis] = e_get_acc_filtered((unsigned)axis, 1);    /* raw: see rt_accel_sample */
         other_valid |= 8u << axis;
     }
     return acc[axis];
@@ -371,6 +398,14 @@ void rt_assign(int *var, int id, int value)
         return;
     *var = value;
     rt_trace_set(id, value);
+}
+
+void action_fill(void *param)
+{
+    const param_fill *p = (const param_fill *)param;
+    int k;
+    for (k = 0; k < p->count; k++)
+        rt_assign(&p->array[k], p->id + k, p->value);
 }
 
 #undef name_var

@@ -4,7 +4,8 @@
  * e-puck library API; what differs between the robot and the host harness
  * is behind these few functions:
  *
- *   platform_robot.c      on the e-puck: wait for the 1 ms tick; no trace.
+ *   platform_robot.c      on the e-puck: wait for the 1 ms tick; no trace
+ *                         (with EPUCKRT_TRACE: rt_trace.c's, below).
  *   host/platform_host.c  on a PC: virtual time, virtual robot, trace.
  */
 #ifndef RT_PLATFORM_H
@@ -91,5 +92,49 @@ void rt_idle_skipped(long polls);
  * returns 0 when the poll must run after all (the motion ends in it). */
 int rt_idle_each_ms(void);
 int rt_idle_ms(void);
+
+/* ---- The robot's trace (rt_trace.c; `epuckc build --trace`) --------------
+ * With EPUCKRT_TRACE defined, the trace hooks above are rt_trace.c's: each
+ * record is encoded compactly (ids, raw values, the ms clock, the wheels'
+ * step counters), framed (COBS, a CRC-16 each) and queued in a bounded ring
+ * that the link drains; the poll never waits for the link, and what does
+ * not fit is dropped and counted (docs/runtime.md, "The robot's trace").
+ * The hooks below reach it from the core and the devices; without
+ * EPUCKRT_TRACE they are nothing at all (not even their arguments are
+ * evaluated), and rt_trace.c is not built. */
+#ifdef EPUCKRT_TRACE
+void rt_tracer_poll(void);          /* once a poll: periodic frames, the link */
+void rt_tracer_poll_end(void);      /* a poll ends: the LEDs that changed in it */
+void rt_tracer_led(int led, int value);     /* led 0..7, SET_LED_ALL, _BODY, _FRONT */
+void rt_tracer_sound(int sound);            /* SOUND_HAA .. */
+void rt_tracer_send(int value);             /* a message went on the air */
+void rt_tracer_message(int value, int bearing, int range);  /* one was received */
+void rt_tracer_timeout(void);       /* a time limit (the 16-bit simulator's) */
+/* The link, one file per platform: rt_trace_uart1.c (the e-puck's UART1,
+ * and the 16-bit simulator's model of it), rt_trace_chibios.c (the
+ * e-puck2's UART3 or USB serial).  start: once, before the first send;
+ * busy: nonzero while the bytes of the last send are still being read
+ * from the ring; send: takes up to n bytes (the count it took) that stay
+ * in place until busy is 0; wait: returns when the link has moved on (the
+ * piece in flight sent, or about a millisecond passed), for the end of the
+ * run, which empties the ring. */
+void rt_trace_port_start(void);
+int rt_trace_port_busy(void);
+int rt_trace_port_send(const unsigned char *bytes, int n);
+void rt_trace_port_wait(void);
+#define RT_TRACE_POLL() rt_tracer_poll()
+#define RT_TRACE_POLL_END() rt_tracer_poll_end()
+#define RT_TRACE_LED(led, value) rt_tracer_led((led), (value))
+#define RT_TRACE_SOUND(sound) rt_tracer_sound(sound)
+#define RT_TRACE_SEND(value) rt_tracer_send(value)
+#define RT_TRACE_MESSAGE(value, bearing, range) rt_tracer_message((value), (bearing), (range))
+#else
+#define RT_TRACE_POLL() ((void)0)
+#define RT_TRACE_POLL_END() ((void)0)
+#define RT_TRACE_LED(led, value) ((void)0)
+#define RT_TRACE_SOUND(sound) ((void)0)
+#define RT_TRACE_SEND(value) ((void)0)
+#define RT_TRACE_MESSAGE(value, bearing, range) ((void)0)
+#endif
 
 #endif /* RT_PLATFORM_H */

@@ -162,22 +162,33 @@ void event_sensor(void *param, void *status)
 void action_set_led(void *param)
 {
     const param_set_led *p = (const param_set_led *)param;
+    unsigned k;
 
     if (p == NULL || p->value < SET_LED_OFF || p->value > SET_LED_TOGGLE)
         return;
-    if (p->led >= 0 && p->led <= SET_LED_ALL)
+    if (p->led == SET_LED_ALL && p->value == SET_LED_TOGGLE) {
+        /* the library toggles one LED; for "all" it writes the value's low bit */
+        for (k = 0; k < 8; k++)
+            e_set_led(k, SET_LED_TOGGLE);
+    } else if (p->led >= 0 && p->led <= SET_LED_ALL) {
         e_set_led((unsigned)p->led, (unsigned)p->value);
-    else if (p->led == SET_LED_BODY)
+    } else if (p->led == SET_LED_BODY) {
         e_set_body_led((unsigned)p->value);
-    else if (p->led == SET_LED_FRONT)
+    } else if (p->led == SET_LED_FRONT) {
         e_set_front_led((unsigned)p->value);
+    } else {
+        return;
+    }
+    RT_TRACE_LED(p->led, p->value);     /* the robot's trace (nothing without it) */
 }
 
 static void ring(unsigned bits)
 {
     unsigned k;
-    for (k = 0; k < 8; k++)
+    for (k = 0; k < 8; k++) {
         e_set_led(k, (bits >> k) & 1u);
+        RT_TRACE_LED((int)k, (int)((bits >> k) & 1u));
+    }
 }
 
 void action_led_ring(void *param)
@@ -216,6 +227,7 @@ void action_play_sound(void *param)
         e_init_sound();
     }
     e_play_sound(sound_samples[p->sound][0], sound_samples[p->sound][1]);
+    RT_TRACE_SOUND(p->sound);
 }
 
 /* ---- extension: selector, microphones, accelerometer, remote, ambient light ----- */
@@ -241,7 +253,13 @@ void event_clap(void *param, void *status)
 
 /* Accelerometer samples, taken once per poll (phase 4) when a tap or tilt
  * event is registered: this poll's, the previous poll's, and the first
- * (the robot at rest). */
+ * (the robot at rest).  e_get_acc_filtered over one sample: the raw 12
+ * bits, 2048 at no acceleration, on every e-puck (the library keeps that
+ * scale on the 1.3's LSM330, and the e-puck2's epuck1x layer too), where
+ * e_get_acc is centred differently from one robot to the next.  Not before
+ * RT_ACC_SETTLE_MS: the library reads the e-puck 1.3's LSM330 every 3.9 ms
+ * of its A/D scan, and reports 0 g until it first did. */
+#define RT_ACC_SETTLE_MS 5
 static int acc_now[3], acc_prev[3], acc_rest[3];
 static int acc_samples;
 
@@ -249,9 +267,12 @@ void rt_accel_sample(void)
 {
     unsigned k;
 
+    if (rt_millis() < RT_ACC_SETTLE_MS)
+        return;
+
     for (k = 0; k < 3; k++) {
         acc_prev[k] = acc_now[k];
-        acc_now[k] = e_get_acc(k);
+        acc_now[k] = e_get_acc_filtered(k, 1);
         if (acc_samples == 0) {
             acc_prev[k] = acc_now[k];
             acc_rest[k] = acc_now[k];

@@ -37,6 +37,17 @@ def require_checkout(variable: str, inside: str, reason: str) -> Path:
     pytest.skip(reason)
 
 
+def require_epuck_library(inside: str) -> Path:
+    """The checkout of GCtronic's e-puck library that EPUCK_LIB names,
+    holding `inside` (`library`, `program/DemoGCtronic-complete`); as
+    require_checkout (.ci/run points it at shared/third_party)."""
+    top = inside.split("/", 1)[0]
+    return require_checkout(
+        "EPUCK_LIB", inside,
+        "EPUCK_LIB does not name a checkout of GCtronic's e-puck library (git clone "
+        f"https://github.com/gctronic/e-puck-library; the folder that holds {top}/)")
+
+
 def pytest_xdist_auto_num_workers(config):
     """`-n auto`: a worker per CPU this process may run on. pytest-xdist's
     own count asks psutil (installed with Dask) for the machine's physical
@@ -75,6 +86,18 @@ def require_enki():
     if os.environ.get("EPUCKC_REQUIRE_ALL_TOOLS"):
         pytest.fail(ENKI_MISSING)
     pytest.skip(ENKI_MISSING)
+
+
+def require_physics(name: str):
+    """A world runner's provider (`physics enki` or `physics chipmunk`):
+    its headers and library and a C++ compiler; skips without them, fails
+    in CI, like require_tool."""
+    from epuckc.sim.enki import PROVIDERS, provider_available
+    if provider_available(name):
+        return
+    if os.environ.get("EPUCKC_REQUIRE_ALL_TOOLS"):
+        pytest.fail(PROVIDERS[name].missing)
+    pytest.skip(PROVIDERS[name].missing)
 
 
 def pytest_collection_modifyitems(config, items):

@@ -17,7 +17,7 @@ PACKAGE = REPO / "epuckc"
 
 # Which stages each stage may import (besides itself). The pipeline runs
 # syntax -> check -> lower -> emit -> build; ide and sim sit on top of it,
-# experiment on sim, cli on top of everything. docs/architecture.md shows the same table.
+# experiment on sim, link on build and sim, cli on top of everything. docs/architecture.md shows the same table.
 ALLOWED = {
     "base": set(),
     "diagnostics": {"base"},
@@ -31,8 +31,14 @@ ALLOWED = {
     "ide": {"base", "diagnostics", "stdlib", "syntax", "check"},
     "testing": {"base", "diagnostics", "check", "emit", "build", "sim"},
     "experiment": {"base", "build", "check", "sim"},
+    "tune": {"base", "build", "check", "sim", "experiment"},
+    # the robots: flashing what build made, reading what they send (the
+    # simulator's records and readable trace)
+    "link": {"base", "build", "sim"},
+    "studio": {"base", "diagnostics", "stdlib", "syntax", "check", "emit", "build", "sim", "ide",
+               "testing", "link"},
     "cli": {"base", "diagnostics", "stdlib", "syntax", "check", "lower", "emit", "build",
-            "sim", "ide", "testing", "experiment"},
+            "sim", "ide", "testing", "experiment", "tune", "link", "studio"},
 }
 TOP_LEVEL = {"__init__", "__main__"}      # the package's own files: version, `python -m epuckc`
 
@@ -171,3 +177,70 @@ def test_c_file_sizes():
     big = {str(p.relative_to(REPO)): n for p in sources
            if (n := p.read_text(encoding="utf-8", errors="replace").count("\n")) > MAX_C_LINES}
     assert not big, f"C files over {MAX_C_LINES} lines: {big}"
+
+
+def _defined_names(tree) -> set:
+    """The names a module defines: its functions, classes, assigned
+    attributes and variables, imported names and slot strings."""
+    own = set()
+    for node in ast.walk(tree):
+        if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
+            own.add(node.name)
+        elif isinstance(node, ast.Attribute) and isinstance(node.ctx, (ast.Store, ast.Del)):
+            own.add(node.attr)
+        elif isinstance(node, ast.Name) and isinstance(node.ctx, ast.Store):
+            own.add(node.id)
+        elif isinstance(node, ast.Constant) and isinstance(node.value, str):
+            own.add(node.value)
+        elif isinstance(node, ast.alias):
+            own.add(node.asname or node.name.split(".")[-1])
+    return own
+
+
+def _foreign_private_reads(path: Path) -> list:
+    """`x._name` where x is not self, cls or super() and the module does not
+    define `_name`: a private attribute of another module's object."""
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    own, out = _defined_names(tree), []
+    for node in ast.walk(tree):
+        if not (isinstance(node, ast.Attribute) and node.attr.startswith("_")
+                and not node.attr.startswith("__")) or node.attr in own:
+            continue
+        base = node.value
+        if isinstance(base, ast.Name) and base.id in ("self", "cls"):
+            continue
+        if isinstance(base, ast.Call) and getattr(base.func, "id", None) == "super":
+            continue
+        out.append(f"{path.relative_to(REPO)}:{node.lineno}: {ast.unparse(node)}")
+    return out
+
+
+def test_the_language_server_reads_no_private_attribute_of_another_modules_object():
+    """The checker/ide boundary (issue 44): the language server asks the
+    checker through its records (check/state.py) and its public methods
+    (Checker.apart, evaluated, converted), and its own modules one
+    another's public names; a private attribute is its module's."""
+    found = [hit for path in sorted((PACKAGE / "ide").glob("*.py"))
+             for hit in _foreign_private_reads(path)]
+    assert not found, "\n".join(found)
+
+
+def test_a_diagnostics_sink_is_given_and_never_swapped():
+    """A Collector is given once (in an __init__) and kept: a step whose
+    diagnostics are looked at apart says them into `Collector.capture()`,
+    never into another collector put in the holder's attribute."""
+    found = []
+    for path in sorted(PACKAGE.rglob("*.py")):
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        for fn in ast.walk(tree):
+            if not isinstance(fn, (ast.FunctionDef, ast.AsyncFunctionDef)) \
+                    or fn.name == "__init__":
+                continue
+            for node in ast.walk(fn):
+                targets = node.targets if isinstance(node, ast.Assign) else \
+                    [node.target] if isinstance(node, (ast.AnnAssign, ast.AugAssign)) else []
+                for t in targets:
+                    for leaf in ast.walk(t):
+                        if isinstance(leaf, ast.Attribute) and leaf.attr == "diags":
+                            found.append(f"{path.relative_to(REPO)}:{leaf.lineno}")
+    assert not found, found

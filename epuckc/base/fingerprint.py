@@ -1,11 +1,10 @@
 """What epuckc's own code is, for the caches keyed on inputs (`epuckc run`'s,
 build/runcache.py, and `epuckc check`'s, check/cache.py): the size and
 modification time of every file of the compiler, so that an edited
-compiler never reuses an old result; and how such a cache keeps an entry
-(`store`)."""
+compiler never reuses an old result (how the caches keep their entries:
+cache.py)."""
 from __future__ import annotations
 
-import marshal
 import os
 import sys
 from functools import lru_cache
@@ -42,19 +41,3 @@ def front_end_fingerprint() -> str:
     parts += stat_lines(grammar_path().parent, (".lark",), recursive=False)
     return "\n".join(parts)
 
-
-def store(path: Path, payload) -> None:
-    """`payload` marshalled into `path`, written aside and renamed, so that
-    a parallel run reads all of it or nothing; a cache that cannot be
-    written is not an error (nothing is left behind)."""
-    tmp = path.with_name(f"{path.name}.{os.getpid()}.tmp")
-    try:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        with open(tmp, "wb") as f:
-            marshal.dump(payload, f)
-        os.replace(tmp, path)
-    except (OSError, ValueError):
-        try:
-            os.unlink(tmp)
-        except OSError:
-            pass

@@ -12,8 +12,8 @@ from typing import Optional
 
 from ..base.output import write_atomic
 from ..base.records import field, record
-from ..base.resources import (RUNTIME_CORE, RUNTIME_CORE_HEADERS, RUNTIME_DEVICES,
-                              RUNTIME_DSPIC_DEVICES, RUNTIME_SIMULATED)
+from ..base.resources import (LIBRARY_SIMULATION, RUNTIME_CORE, RUNTIME_CORE_HEADERS,
+                              RUNTIME_DEVICES, RUNTIME_DSPIC_DEVICES, RUNTIME_SIMULATED)
 
 # -O1 as on the robot (the dspic Makefile; XC16's free edition stops there)
 # and in the sanitizer builds of the tests: the harness runs no slower than
@@ -34,8 +34,14 @@ USER_CFLAGS = HOST_CFLAGS
 
 # The user's C on the host and in worlds also calls the C main model at
 # every basic block (runtime_c/host/cmain.c: main's clock in dsPIC cycles,
-# the watchdog's last place), with the lines addr2line names.
-HOST_USER_FLAGS = ["-fsanitize-coverage=trace-pc", "-g"]
+# the watchdog's last place), with the lines addr2line names. Its loops
+# read memory at each turn, as GCtronic's builds of the library and its
+# demos (no -O: XC16 at -O0) do: e-puck programs wait for a flag that an
+# interrupt sets without `volatile` (`while (e_dci_unavailable);`), which
+# gcc would read once before such a loop. Its globals go one section each
+# (build/dspic_asm.py moves them where a reset restores them).
+HOST_USER_FLAGS = ["-fsanitize-coverage=trace-pc", "-g", "-fno-tree-loop-im",
+                   "-fno-move-loop-invariants", "-fdata-sections"]
 
 
 # How gcc runs, not what it makes: no temporary assembly files.
@@ -43,8 +49,8 @@ BUILD_FLAGS = ["-pipe"]
 
 
 # The runtime's files for each target, relative to runtime_c/.
-HOST_SOURCES = [*RUNTIME_CORE, *RUNTIME_SIMULATED, *RUNTIME_DEVICES, "host/platform_host.c", "host/scenario.c",
-                "host/epuck_stub.c", "host/stub_devices.c", "host/cmain.c", "host/epuck_more.c"]
+HOST_SOURCES = [*RUNTIME_CORE, *RUNTIME_SIMULATED, *RUNTIME_DEVICES, "host/platform_host.c",
+                "host/scenario.c", "host/cmain.c", *LIBRARY_SIMULATION]
 
 
 # epuck_api_unsimulated: #error headers of what the simulator does not model
@@ -54,7 +60,14 @@ HOST_INCLUDES = [".", "epuck_api", "host", "epuck_api_unsimulated"]
 ROBOT_SOURCES = [*RUNTIME_CORE, *RUNTIME_DSPIC_DEVICES, "platform_robot.c"]
 
 
-ROBOT_HEADERS = list(RUNTIME_CORE_HEADERS)
+# sensors/ground.h: the e-puck2 firmware's ground API, which ground_i2c.c
+# provides on the e-puck (the e-puck library has none), at the firmware's path
+ROBOT_HEADERS = list(RUNTIME_CORE_HEADERS) + ["sensors/ground.h"]
+
+
+# A file of the project (relative to its runtime/) -> where it is in runtime_c/
+# when that is another place.
+ROBOT_COPIES = {"sensors/ground.h": "epuck_api/sensors/ground.h"}
 
 
 ROBOT_FILES = ROBOT_SOURCES + ROBOT_HEADERS
@@ -110,6 +123,9 @@ class Program:
     variables: list = field(default_factory=list)
     # the devices it uses (stdlib DEVICES); None: not known (hand-written C)
     devices: Optional[frozenset] = None
+    # what the host's trace names (emit.program.trace_names): the table of
+    # the robot's trace (trace_table.py); None: hand-written C (by number)
+    trace_names: Optional[dict] = None
 
     def user_sources(self) -> list:
         """The C files of the user's that are compiled on their own."""
@@ -170,7 +186,8 @@ def _compiler_missing(command: list) -> BuildError:
 
 def _run_compiler(command: list, what: str, hint: str = ""):
     try:
-        result = subprocess.run(command, capture_output=True, text=True)
+        # its messages quote the user's C, whose bytes may not be UTF-8
+        result = subprocess.run(command, capture_output=True, text=True, errors="replace")
     except FileNotFoundError:
         raise _compiler_missing(command) from None
     if result.stderr and result.returncode == 0:

@@ -11,10 +11,11 @@ from pathlib import Path
 from typing import Optional
 
 from ..base.output import prepare_directory, write_atomic
-from ..base.resources import runtime_dir
-from .common import (DSPIC_RUNTIME, DSPIC_USER, EXIT_NO_TOOLCHAIN, EXIT_USAGE, ROBOT_FILES,
+from ..base.resources import RUNTIME_TRACE, RUNTIME_TRACE_UART1, runtime_dir
+from .common import (DSPIC_RUNTIME, DSPIC_USER, EXIT_NO_TOOLCHAIN, EXIT_USAGE, ROBOT_COPIES,
                      ROBOT_HEADERS, ROBOT_SOURCES, BuildError, Program, _capacity_defines,
                      _write_generated, check_outputs, user_headers)
+from .trace_table import TraceOptions, table_path, trace_defines, write_table
 
 
 def find_xc16() -> Optional[Path]:
@@ -61,41 +62,50 @@ def dspic_user_headers(program: Program) -> list:
     return [(header, target) for target, (header, _) in sorted(copies.items())]
 
 
-def write_dspic_project(program: Program, out_dir: Path, template_render) -> None:
+def write_dspic_project(program: Program, out_dir: Path, template_render,
+                        trace: Optional[TraceOptions] = None) -> None:
     """A self-contained project inside out_dir: the program (and its
     externs header) at the top, the runtime files the robot needs in
     runtime/, copies of the user's C in user/, and a Makefile for XC16.
-    Files whose contents did not change are not rewritten, so `make`
-    rebuilds only what changed."""
+    With `trace`, the robot's tracer on the Bluetooth UART1 too, and the
+    trace table beside the program (NAME.trace.json). Files whose contents
+    did not change are not rewritten, so `make` rebuilds only what
+    changed."""
     rt = runtime_dir()
     copies = dspic_user_copies(program)
     headers = dspic_user_headers(program)
     generated = [f"{program.name}.c"] if program.generated else []
     if program.generated and program.header_name:
         generated.append(program.header_name)
-    runtime_files = [f"{DSPIC_RUNTIME}/{rel}" for rel in ROBOT_FILES]
+    sources = ROBOT_SOURCES + (list(RUNTIME_TRACE + RUNTIME_TRACE_UART1) if trace else [])
+    files = sources + ROBOT_HEADERS
+    runtime_files = [f"{DSPIC_RUNTIME}/{rel}" for rel in files]
     targets = (generated + runtime_files + [copy for _, copy in copies + headers]
-               + ["Makefile"])
+               + ["Makefile"] + ([table_path(Path(), program.name).name] if trace else []))
     check_outputs([out_dir / t for t in targets],
                   program.inputs + [header for header, _ in headers], inside=out_dir)
     out_dir = prepare_directory(out_dir)
     if program.generated:
         _write_generated(program, out_dir, only_if_changed=True)
-    for rel in ROBOT_FILES:
-        write_atomic(out_dir / DSPIC_RUNTIME / rel, (rt / rel).read_bytes(), only_if_changed=True)
+    for rel in files:
+        write_atomic(out_dir / DSPIC_RUNTIME / rel, (rt / ROBOT_COPIES.get(rel, rel)).read_bytes(),
+                     only_if_changed=True)
     for source, copy in copies + headers:
         (out_dir / copy).parent.mkdir(parents=True, exist_ok=True)
         write_atomic(out_dir / copy, source.read_bytes(),
                      mode=stat.S_IMODE(source.stat().st_mode), only_if_changed=True)
-    # the robot has no trace: the name labels are not even stored
+    # the name labels are not stored on the robot (the trace's are in its table)
     defines = [d[2:] for d in _capacity_defines(program)] + ["EPUCKRT_NO_NAMES"]
+    if trace:
+        defines += trace_defines(program, "dspic", trace)
+        write_table(program, out_dir)
     write_atomic(out_dir / "Makefile", template_render(
         "dspic.mk.j2", name=program.name, generated=program.generated,
         header=program.header_name if program.generated else None,
-        runtime=DSPIC_RUNTIME, runtime_sources=[f"{DSPIC_RUNTIME}/{r}" for r in ROBOT_SOURCES],
+        runtime=DSPIC_RUNTIME, runtime_sources=[f"{DSPIC_RUNTIME}/{r}" for r in sources],
         runtime_headers=[f"{DSPIC_RUNTIME}/{r}" for r in ROBOT_HEADERS],
         user_sources=[copy for _, copy in copies], user_headers=[copy for _, copy in headers],
-        defines=defines), only_if_changed=True)
+        defines=defines, trace=bool(trace)), only_if_changed=True)
 
 
 def run_make(out_dir: Path, xc16: Path) -> None:

@@ -12,10 +12,12 @@ from pathlib import Path
 from typing import Optional
 
 from ..base.output import prepare_directory, write_atomic
-from ..base.resources import RUNTIME_CORE, RUNTIME_CORE_HEADERS, RUNTIME_DEVICES, runtime_dir
+from ..base.resources import (RUNTIME_CORE, RUNTIME_CORE_HEADERS, RUNTIME_DEVICES,
+                              RUNTIME_TRACE, RUNTIME_TRACE_CHIBIOS, runtime_dir)
 from .common import (DSPIC_RUNTIME, EXIT_NO_TOOLCHAIN, BuildError, Program, _capacity_defines,
                      _write_generated, check_outputs)
 from .dspic import dspic_user_copies, dspic_user_headers
+from .trace_table import TraceOptions, table_path, trace_defines, write_table
 
 # The runtime's files in an e-puck2 project (relative to runtime_c/): the
 # core, the robot's platform layer (its hooks and seed) with the ChibiOS
@@ -42,27 +44,33 @@ def find_firmware(given: Optional[str]) -> Optional[Path]:
 
 
 def write_epuck2_project(program: Program, out_dir: Path, template_render,
-                         firmware: Optional[Path]) -> None:
+                         firmware: Optional[Path], trace: Optional[TraceOptions] = None) -> None:
     """A self-contained project inside out_dir: the program and its
     externs header, program_main.c (the program with main renamed),
     main.c/main.h (the firmware's start), the runtime in runtime/, copies of
-    the user's C in user/, and the Makefile. Unchanged files are not
-    rewritten, so `make` rebuilds only what changed."""
+    the user's C in user/, and the Makefile; with `trace`, the robot's
+    tracer on UART3 or the USB serial port, and the trace table beside the
+    program (NAME.trace.json). Unchanged files are not rewritten, so `make`
+    rebuilds only what changed."""
     rt = runtime_dir()
     copies = dspic_user_copies(program)
     headers = dspic_user_headers(program)
     generated = [f"{program.name}.c"] if program.generated else []
     if program.generated and program.header_name:
         generated.append(program.header_name)
-    runtime_files = [f"{DSPIC_RUNTIME}/{Path(rel).name}" for rel in EPUCK2_FILES]
+    sources = EPUCK2_SOURCES + (list(RUNTIME_TRACE + RUNTIME_TRACE_CHIBIOS) if trace else [])
+    files = sources + list(RUNTIME_CORE_HEADERS)
+    runtime_files = [f"{DSPIC_RUNTIME}/{Path(rel).name}" for rel in files]
     own = ["main.c", "main.h", "program_main.c", "Makefile"]
+    if trace:
+        own.append(table_path(Path(), program.name).name)
     targets = generated + runtime_files + [copy for _, copy in copies + headers] + own
     check_outputs([out_dir / t for t in targets],
                   program.inputs + [header for header, _ in headers], inside=out_dir)
     out_dir = prepare_directory(out_dir)
     if program.generated:
         _write_generated(program, out_dir, only_if_changed=True)
-    for rel in EPUCK2_FILES:
+    for rel in files:
         write_atomic(out_dir / DSPIC_RUNTIME / Path(rel).name, (rt / rel).read_bytes(),
                      only_if_changed=True)
     for source, copy in copies + headers:
@@ -71,6 +79,9 @@ def write_epuck2_project(program: Program, out_dir: Path, template_render,
                      mode=stat.S_IMODE(source.stat().st_mode), only_if_changed=True)
     defines = [d[2:] for d in _capacity_defines(program)] + ["EPUCKRT_EPUCK2",
                                                               "EPUCKRT_NO_NAMES"]
+    if trace:
+        defines += trace_defines(program, "epuck2", trace)
+        write_table(program, out_dir)
     context = dict(name=program.name, runtime=DSPIC_RUNTIME,
                    camera=program.devices is None or "camera" in program.devices)
     write_atomic(out_dir / "main.c", template_render("epuck2_main.c.j2", **context),
@@ -81,7 +92,7 @@ def write_epuck2_project(program: Program, out_dir: Path, template_render,
                  only_if_changed=True)
     write_atomic(out_dir / "Makefile", template_render(
         "epuck2.mk.j2", firmware=str(firmware) if firmware else "",
-        runtime_sources=[f"{DSPIC_RUNTIME}/{Path(r).name}" for r in EPUCK2_SOURCES],
+        runtime_sources=[f"{DSPIC_RUNTIME}/{Path(r).name}" for r in sources],
         user_sources=[copy for _, copy in copies], defines=defines, **context),
         only_if_changed=True)
 
@@ -112,11 +123,11 @@ def make_command(make: str, out_dir: Path, firmware: Path,
 
 
 def build_epuck2(program: Program, out_dir: Path, template_render,
-                 firmware_option: Optional[str]) -> str:
+                 firmware_option: Optional[str], trace: Optional[TraceOptions] = None) -> str:
     """Write the project, then `make` it when arm-none-eabi-gcc and the
     firmware are there; otherwise BuildError with the exact next command."""
     firmware = find_firmware(firmware_option)
-    write_epuck2_project(program, out_dir, template_render, firmware)
+    write_epuck2_project(program, out_dir, template_render, firmware, trace)
     gcc = shutil.which(ARM_GCC)
     if gcc is None:
         raise BuildError(

@@ -7,17 +7,20 @@ from __future__ import annotations
 import hashlib
 import os
 import shutil
+import subprocess
 import sys
 import tempfile
 from pathlib import Path
 from typing import Optional
 
 from ..base.output import TEMP_PREFIX, OutputError, describe_os_error, prepare_directory, write_file
+from ..base import cache as _cache
 from ..base.resources import cache_dir, runtime_dir
 from .common import (BUILD_FLAGS, GENERATED_CFLAGS, HOST_INCLUDES, HOST_SOURCES, HOST_USER_FLAGS,
                      USER_CFLAGS,
                      BuildError, Program, _capacity_defines, _run_compiler, _write_generated,
                      c_compiler, check_outputs, stale_externs_header, user_headers)
+from . import dspic_asm
 from .parallel import CompileStep, cancel_jobs, compiler_pool, report_results, wait_jobs
 
 # ---- host ---------------------------------------------------------------------
@@ -65,6 +68,7 @@ def host_build_key(program: Program) -> str:
     _add(h, "cc", " ".join(c_compiler() + GENERATED_CFLAGS + USER_CFLAGS + HOST_USER_FLAGS
                            + _capacity_defines(program)).encode())
     _add(h, "compiler", _compiler_identity().encode())
+    _add(h, "asm", str(dspic_asm.FORMAT).encode())
     return h.hexdigest()[:24]
 
 
@@ -82,14 +86,42 @@ def _includes(program: Program, generated_dir: Path) -> list:
     return [f"-I{generated_dir}"] + folders + [f"-I{rt / inc}" for inc in HOST_INCLUDES]
 
 
+def _assembly(obj: Path) -> Path:
+    return obj.with_name(obj.name + ".s")
+
+
 def user_compile_command(source: Path, obj: Path, program: Program, generated_dir: Path,
                          extra_flags=()) -> list:
     """The user's own C, compiled where it is (its messages name it; its own
-    #includes are found beside it), warnings shown but not fatal."""
+    #includes are found beside it), warnings shown but not fatal; to
+    assembly, which `assemble_user` makes `obj` of."""
     return (c_compiler() + USER_CFLAGS + HOST_USER_FLAGS + list(extra_flags)
             + _capacity_defines(program)
             + _includes(program, generated_dir)
-            + BUILD_FLAGS + ["-x", "c", "-c", str(source), "-o", str(obj)])
+            + BUILD_FLAGS + ["-x", "c", "-S", str(source), "-o", str(_assembly(obj))])
+
+
+def assemble_user(source: Path, obj: Path):
+    """What follows user_compile_command, on the compiler's worker: its
+    inline dsPIC instructions carried out by the simulation and its globals
+    where a reset restores them (build/dspic_asm.py), then assembled into
+    `obj`. (status, stdout, stderr) as a compiler's."""
+    def post(out: str, err: str) -> tuple:
+        assembly = _assembly(obj)
+        try:
+            text = assembly.read_text(encoding="utf-8", errors="surrogateescape")
+            assembly.write_text(dspic_asm.rewrite(text, str(source)), encoding="utf-8",
+                                errors="surrogateescape")
+        except dspic_asm.AsmError as exc:
+            return 1, out, err + f"{exc}\n"
+        try:
+            done = subprocess.run(c_compiler() + ["-c", str(assembly), "-o", str(obj)],
+                                  stdin=subprocess.DEVNULL, capture_output=True, text=True,
+                                  errors="replace")
+        finally:
+            assembly.unlink(missing_ok=True)
+        return done.returncode, out + done.stdout, err + done.stderr
+    return post
 
 
 def program_compile_command(folder: Path, obj: Path, program: Program, extra_flags=()) -> list:
@@ -109,7 +141,10 @@ def runtime_flags(program: Program, includes=HOST_INCLUDES, extra_flags=()) -> l
 
 
 def host_link_command(objects: list, output: Path) -> list:
-    return c_compiler() + [str(o) for o in objects] + ["-o", str(output), "-lm"]
+    """--wrap=main: main starts from runtime_c/host/cmain.c's __wrap_main,
+    where a reset starts it again."""
+    return (c_compiler() + [str(o) for o in objects]
+            + ["-Wl,--wrap=main", "-o", str(output), "-lm"])
 
 
 def _include_hint(program: Program, source: Path) -> str:
@@ -146,7 +181,8 @@ def program_steps(program: Program, folder: Path, extra_flags=()) -> tuple:
     for i, source in enumerate(program.user_sources(), 1):
         obj = folder / f"user{i}.o"
         steps.append(CompileStep(user_compile_command(source, obj, program, folder, extra_flags),
-                                 str(source), _include_hint(program, source), _size(source)))
+                                 str(source), _include_hint(program, source), _size(source),
+                                 post=assemble_user(source, obj)))
         objects.append(obj)
     if program.generated:
         _write_generated(program, folder)
@@ -192,12 +228,12 @@ class RuntimeObjects:
         if cache is not None:
             self.final = cache / runtime_objects_key(sources, flags)
             self.objects = [self.final / n for n in names]
-            if all(o.is_file() for o in self.objects):
+            if self._complete(self.final):
                 self.steps = []
                 return
             cache.mkdir(parents=True, exist_ok=True)
             sweep_stale(cache)
-            self._tmp = Path(tempfile.mkdtemp(prefix=f"{TEMP_PREFIX}{os.getpid()}-", dir=cache))
+            self._tmp = _cache.temporary_folder(cache)
             folder = self._tmp
         built = [folder / n for n in names]
         self.steps = [CompileStep(c_compiler() + flags + BUILD_FLAGS
@@ -206,6 +242,10 @@ class RuntimeObjects:
                       for src, obj in zip(sources, built)]
         if self._tmp is None:
             self.objects = built
+
+    def _complete(self, final: Path) -> bool:
+        """The entry is there, whole (and marked used)."""
+        return _cache.used(final) and all((final / o.name).is_file() for o in self.objects)
 
     def start(self) -> None:
         """The compilers start (once), in the background."""
@@ -223,12 +263,9 @@ class RuntimeObjects:
         if self._tmp is None:
             return
         try:
-            os.rename(self._tmp, self.final)
-        except OSError:
-            if not all(o.is_file() for o in self.objects):     # nor a parallel build's
-                shutil.rmtree(self.final, ignore_errors=True)
-                os.rename(self._tmp, self.final)
+            _cache.commit_folder(self._tmp, self.final, self._complete)
         finally:
+            self._tmp = None
             self.discard()
 
     def discard(self) -> None:
@@ -348,7 +385,7 @@ def sweep_stale(folder: Path) -> None:
 
 def runtime_cache_dir() -> Path:
     """Where the runtime's objects are kept (see RuntimeObjects)."""
-    return cache_dir() / "runtime"
+    return _cache.area("runtime")
 
 
 def _compile_into(folder: Path, program: Program, runtime_cache: Optional[Path] = None) -> Path:
@@ -366,24 +403,24 @@ def _compile_into(folder: Path, program: Program, runtime_cache: Optional[Path] 
 def _cached_build(program: Program) -> Path:
     """The executable in the cache, built there when missing. Raises
     OSError/OutputError when the cache cannot be used."""
-    host = cache_dir() / "host"
+    host = _cache.area("host")
     final = host / host_build_key(program)
     exe = final / program.name
-    if exe.is_file():
+
+    def complete(folder: Path) -> bool:
+        return _cache.used(folder) and (folder / program.name).is_file()
+    if complete(final):
         return exe
-    host.mkdir(parents=True, exist_ok=True)
+    reason = _cache.problem(host)
+    if reason is not None:
+        raise OutputError(reason)       # (a full disk too: the compiler would fail)
     sweep_stale(host)
     # Built in a folder of its own, then renamed into place in one step: a
     # killed build leaves only a temporary folder, swept by a later run.
-    tmp = Path(tempfile.mkdtemp(prefix=f"{TEMP_PREFIX}{os.getpid()}-", dir=host))
+    tmp = _cache.temporary_folder(host)
     try:
         _compile_into(tmp, program, runtime_cache_dir())
-        try:
-            os.rename(tmp, final)
-        except OSError:
-            if not exe.is_file():           # neither a parallel build's result
-                shutil.rmtree(final, ignore_errors=True)
-                os.rename(tmp, final)
+        _cache.commit_folder(tmp, final, complete)
     finally:
         if tmp.exists():
             shutil.rmtree(tmp, ignore_errors=True)

@@ -7,7 +7,7 @@ import shlex
 import subprocess
 import sys
 from dataclasses import dataclass
-from typing import Optional
+from typing import Callable, Optional
 
 from .common import BuildError, _compiler_missing
 
@@ -16,11 +16,15 @@ from .common import BuildError, _compiler_missing
 class CompileStep:
     """One translation unit: its compiler command, what to call it in a
     message, a hint for when it fails, and its source's size (the biggest
-    start first, so that the longest compile does not start last)."""
+    start first, so that the longest compile does not start last), and
+    what follows the command once it succeeded, on the same worker
+    (`post(stdout, stderr)` -> (status, stdout, stderr): the user's C is
+    compiled to assembly, rewritten and assembled, build/dspic_asm.py)."""
     command: list
     what: str
     hint: str = ""
     size: int = 0
+    post: Optional[Callable] = None
 
 
 def compile_jobs() -> int:
@@ -101,6 +105,9 @@ class CompilerPool:
             try:
                 out, err = job.proc.communicate()
                 job.result = (job.proc.returncode, out, err)
+                if job.proc.returncode == 0 and job.step.post is not None \
+                        and not job.cancelled:
+                    job.result = job.step.post(out, err)
             except Exception as exc:        # reported to whoever waits for it
                 job.result = OSError(str(exc))
             job.done.set()

@@ -31,15 +31,14 @@ another format) is a miss: the normal path runs and records again.
 """
 from __future__ import annotations
 
-import marshal
 import os
 import sys
-import zlib
 from pathlib import Path
 from typing import Optional
 
 from .. import __version__
-from ..base.fingerprint import PACKAGE as _PACKAGE, stat_lines, store
+from ..base import cache
+from ..base.fingerprint import PACKAGE as _PACKAGE, stat_lines
 from ..base.resources import cache_dir, grammar_path, runtime_dir, templates_dir
 
 FORMAT = 2
@@ -72,7 +71,7 @@ def _input_key(path: Path, data: bytes, shown_name: str, max_actions, max_events
 
 
 def _entry_path(key: bytes) -> Path:
-    return cache_dir() / "run" / f"{zlib.crc32(key):08x}.marshal"
+    return cache.area("run") / f"{cache.key_name(key)}.marshal"
 
 
 class Entry:
@@ -89,16 +88,14 @@ class Entry:
 
 
 def lookup(key: bytes) -> Optional[Entry]:
-    try:
-        with open(_entry_path(key), "rb") as f:
-            data = marshal.load(f)
-    except (OSError, EOFError, ValueError, TypeError):
-        return None
+    data = cache.load(_entry_path(key))
     if not (isinstance(data, tuple) and len(data) == 8 and data[0] == FORMAT
             and data[1] == key):
         return None
     entry = Entry(*data[2:])
-    if not os.access(entry.exe, os.X_OK):
+    # the executable's own entry (host/ or enki/) is used too: marked, so
+    # that it is not evicted while this one is
+    if not cache.used(Path(entry.exe).parent) or not os.access(entry.exe, os.X_OK):
         return None
     for name, content in entry.user_files:
         try:
@@ -120,5 +117,5 @@ def record(key: bytes, exe: Path, user_files: list, shown: str, shown_colour: st
         files = tuple((str(Path(p).resolve()), Path(p).read_bytes()) for p in user_files)
     except (OSError, ValueError):
         return
-    store(_entry_path(key), (FORMAT, key, str(exe), files, shown, shown_colour, warnings,
+    cache.store(_entry_path(key), (FORMAT, key, str(exe), files, shown, shown_colour, warnings,
                              extra or {}))

@@ -1,10 +1,14 @@
 """The checker: names, values and units, the robot block, externs, calls,
 events and rules, modes and arbitration; the second stage.
 
-checker.py is the orchestrator: `Checker` holds the state and the order of
-work, and takes its methods from one mixin per concern (names.py,
-values.py, robot.py, externs.py, calls.py, rules.py, exprs.py,
-variables.py, ranges.py, overflow.py); modes.py and arbitration.py are
+checker.py is the orchestrator: `Checker` holds the state (as the records of
+state.py: the declarations, the facts found, the memories of what is said
+once) and the order of work, and takes its methods from one mixin per
+concern (names.py,
+externs.py, robot.py, values.py, exprs.py, variables.py, ranges.py,
+calls.py, rules.py, overflow.py, branches.py; exprs.py calls the
+functions of arrays.py, bits.py and functions.py with the checker); modes.py and
+arbitration.py are
 the whole-program analyses (modes entered, W009 races; races.py reports
 them); conditions.py reads
 conditions as comparisons of variables and readings (for W009 and guards).

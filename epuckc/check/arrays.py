@@ -1,7 +1,8 @@
 """Arrays: constants and variables of several values (`const W = [8, 4, 2]`,
 `var counts = [0, 0, 0, 0]`), the readings of several sensors (`ir`,
-`ambient`, `mic`, `acc`), their elements (`a[i]`, `a[i] = e`) and the
-functions of whole arrays (`sum`, `min`, `max`, `argmin`, `argmax`, `dot`).
+`ambient`, `mic`, `acc`, `ground`), their elements (`a[i]`, `a[i] = e`), the
+functions of whole arrays (`sum`, `min`, `max`, `argmin`, `argmax`, `dot`)
+and the constant slices they read (`sum(ir[0:3])`: the elements 0..2).
 
 An array is never a value of its own: every use is turned into ordinary
 expressions over its elements here, so that kinds, intervals, folding,
@@ -27,6 +28,7 @@ from ..stdlib import arith
 from ..stdlib.table import READING_ARRAYS, STANDARD_READINGS
 from ..stdlib.units import INT
 from ..syntax import ast
+from . import devices
 from .messages import _code, _kind_word
 from .program import Expr, VarInfo
 
@@ -95,6 +97,8 @@ def _ref(ck, ident: ast.Ident) -> Optional[ArrayRef]:
     if name in READING_ARRAYS:
         names, call = READING_ARRAYS[name]
         readings = [STANDARD_READINGS[n] for n in names]
+        # a device's readings (`ground`): E070 where the target lacks it
+        devices.require(ck, readings[0].device, name, ident.span)
         elements = [Expr("read", r.kind, r.lo, r.hi, name=r.name, node=ident) for r in readings]
         return ArrayRef(name, readings[0].kind, elements, call,
                         min(r.lo for r in readings), max(r.hi for r in readings), False)
@@ -156,15 +160,20 @@ def index_value(ck, ref: ArrayRef, index_node, where) -> Optional[Expr]:
     return i
 
 
+def _not_an_array_or_unknown(ck, name: ast.Ident):
+    """What is wrong with `name[...]` when `name` is no array: a name of one
+    value, or no name at all [E013]."""
+    if name.name in ck.vars or name.name in ck.consts or name.name in STANDARD_READINGS:
+        not_an_array(ck, name, "it holds one value")
+    else:
+        ck._name(ast.ConstRef(name, False, name.span))   # reports E013
+
+
 def element(ck, node: ast.Index) -> Optional[Expr]:
     """`a[i]` in an expression."""
     ref = _ref(ck, node.name)
     if ref is None:
-        if node.name.name in ck.vars or node.name.name in ck.consts \
-                or node.name.name in STANDARD_READINGS:
-            not_an_array(ck, node.name, "it holds one value")
-        else:
-            ck._name(ast.ConstRef(node.name, False, node.name.span))   # reports E013
+        _not_an_array_or_unknown(ck, node.name)
         return None
     i = index_value(ck, ref, node.index, node)
     if i is None:
@@ -184,10 +193,15 @@ def aggregate(ck, node: ast.FuncCall) -> Optional[Expr]:
     refs = []
     for arg in args:
         value = arg.value if isinstance(arg, ast.PositionalArg) else None
+        if isinstance(value, ast.Slice):
+            refs.append(sliced(ck, value))
+            continue
         if not isinstance(value, ast.ConstRef) or value.negative:
             refs.append(None)
             continue
         refs.append(_ref(ck, value.name))
+    if _REPORTED in refs:
+        return None
     if len(args) != want or None in refs:
         shown = "a, b" if want == 2 else "a"
         ck.diags.error("E017" if len(args) < want else "E016", node.span,
@@ -233,6 +247,127 @@ def aggregate(ck, node: ast.FuncCall) -> Optional[Expr]:
         best = pick(range(len(values)), key=lambda k: (values[k].value, -k if pick is max else k))
         return Expr("num", INT, best, best, value=best, node=node, bare=True)
     return Expr(name, INT, 0, len(values) - 1, values, node=node, bare=True)
+
+
+_REPORTED = object()     # (a slice whose problem was said)
+
+
+def sliced(ck, node: ast.Slice):
+    """`a[lo:hi]` where a whole array is read: the array of the elements
+    lo..hi-1 (lo 0 and hi the size where left out), its bounds fixed
+    numbers [E061]; _REPORTED after saying what is wrong."""
+    ref = _ref(ck, node.name)
+    if ref is None:
+        _not_an_array_or_unknown(ck, node.name)
+        return _REPORTED
+    bounds = []
+    for bound, default in ((node.lo, 0), (node.hi, ref.size)):
+        if bound is None:
+            bounds.append(default)
+            continue
+        b = ck._expr(bound)
+        if b is None:
+            return _REPORTED
+        if not b.constant or b.kind != INT:
+            ck.diags.error("E061", bound.span,
+                           f"the bounds of a slice are fixed plain numbers, but "
+                           f"`{ck._text(bound)}` is "
+                           + ("computed while the program runs" if not b.constant
+                              else _kind(b.kind)),
+                           help=f"write numbers or constants (`{node.name.name}[1:3]`); for "
+                                f"one element chosen while the program runs, index it: "
+                                f"`{node.name.name}[i]`")
+            return _REPORTED
+        bounds.append(b.value)
+    lo, hi = bounds
+    if not 0 <= lo < hi <= ref.size:
+        ck.diags.error("E061", node.span,
+                       f"`{ck._text(node)}` is outside {_code(ref.name)} or empty: "
+                       f"{_code(ref.name)} has {ref.size} element{'s' if ref.size > 1 else ''}, "
+                       f"and `{ref.name}[lo:hi]` takes elements lo..hi-1",
+                       help=f"take 0 <= lo < hi <= {ref.size}: `{ref.name}[0:{ref.size}]` is "
+                            f"all of it")
+        return _REPORTED
+    elements = ref.elements[lo:hi]
+    return ArrayRef(f"{ref.name}[{lo}:{hi}]", ref.kind, elements, ref.c_base,
+                    min(e.lo for e in elements), max(e.hi for e in elements), ref.constant)
+
+
+def bare_slice(ck, node: ast.Slice) -> None:
+    """E062: a slice where one value is wanted."""
+    ref = sliced(ck, node)
+    if ref is _REPORTED:
+        return
+    ck.diags.error("E062", node.span,
+                   f"`{ck._text(node)}` is {ref.size} elements, not one value",
+                   help=f"read them as a whole: `sum({ck._text(node)})`, "
+                        f"`max({ck._text(node)})`, `dot({ck._text(node)}, ...)`, ...")
+
+
+# ---- fill(a, v): every element of a variable array one value -----------------------
+
+_FILLS: dict = {}       # id(call) -> (call, size, its Assign): the same Assign each time
+
+
+def fill_assign(variables: dict, call) -> Optional[ast.Assign]:
+    """`fill(a, v)` as the assignment `a = [v, v, ...]` (one item per
+    element, the same node: variables.py computes it once), for the
+    checker and for the intervals (dependencies.py), which see the same
+    node each time; None when the call is not of that shape (the checker
+    says why: `fill_call`)."""
+    args = call.args or ()
+    if len(args) != 2 or not all(isinstance(a, ast.PositionalArg) for a in args):
+        return None
+    target = args[0].value
+    if not isinstance(target, ast.ConstRef) or target.negative:
+        return None
+    info = variables.get(target.name.name)
+    if info is None or not info.size:
+        return None
+    hit = _FILLS.get(id(call))
+    if hit is not None and hit[0] is call and hit[1] == info.size:
+        return hit[2]
+    if len(_FILLS) > 4096:
+        _FILLS.clear()
+    value = args[1].value
+    assign = ast.Assign(target.name, "=", ast.ArrayLit((value,) * info.size, call.span),
+                        call.span, None)
+    _FILLS[id(call)] = (call, info.size, assign)
+    return assign
+
+
+def fill_call(ck, call):
+    """The checked `fill(a, v)`, or None after saying what is wrong."""
+    assign = fill_assign(ck.vars, call)
+    if assign is not None:
+        return ck._assign(assign)
+    args = call.args or ()
+    if len(args) != 2 or not all(isinstance(a, ast.PositionalArg) for a in args):
+        ck.diags.error("E017" if len(args) < 2 else "E016", call.span,
+                       "`fill` takes a variable array and its elements' value: `fill(a, 0)`",
+                       help="name the array first, then the value every element gets")
+        return None
+    target = args[0].value
+    if isinstance(target, ast.ConstRef) and not target.negative:
+        name = target.name.name
+        if name in ck.const_arrays or name in READING_ARRAYS:
+            ck.diags.error("E051", target.span,
+                           f"{_code(name)} is {'a constant' if name in ck.const_arrays else 'a reading of the robot'}: "
+                           "`fill` gives a variable array its values",
+                           help=f"declare a variable array: `var my_{name} = [0, 0, 0]`")
+        elif name in ck.vars or name in ck.consts or name in STANDARD_READINGS:
+            ck.diags.error("E062", target.span,
+                           f"`fill` fills a variable array, but {_code(name)} holds one value",
+                           help=f"give it its value with `=`: `{name} = {ck._text(args[1].value)}`"
+                           if name in ck.vars else "name a variable array: `fill(a, 0)`")
+        else:
+            ck.diags.error("E051", target.span, f"unknown variable {_code(name)}",
+                           help=f"declare it first: `var {name} = [0, 0, 0]`")
+        return None
+    ck.diags.error("E062", target.span,
+                   f"`fill` fills a variable array, but `{ck._text(target)}` is not one",
+                   help="name the array: `fill(a, 0)`")
+    return None
 
 
 def _at(e: Expr, node) -> Expr:

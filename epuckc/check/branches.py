@@ -41,7 +41,8 @@ class Branches:
         each branch's calls resolved with the intervals its condition (and
         the failed ones before it) leave the variables."""
         ok = True
-        branches, failed = [], []           # failed: the formulas of the conditions before
+        branches = []
+        failed = conditions.TRUE_BOXES      # where the conditions before all failed
         decided_true = None                 # the first condition that always holds
         for branch in call.branches:
             start = len(self.diags.items)
@@ -61,8 +62,9 @@ class Branches:
                     help="its branch runs every time: write its actions without the `if`"
                     if condition.value else "its branch never runs: remove it, or compare "
                     "a variable or a reading")
-            here = conditions.conjoin(conditions.formula(condition), *failed)
-            failed.append(conditions.formula(condition, False))
+            # (one meet per branch: a chain of n branches is linear in n)
+            here = conditions.conjoined(failed, conditions.formula(condition))
+            failed = conditions.conjoined(failed, conditions.formula(condition, False))
             calls = self._branch(branch.body, here if decided_true is None else None)
             if calls is None:
                 ok = False
@@ -71,8 +73,7 @@ class Branches:
                 decided_true = branch
         otherwise = None
         if call.otherwise is not None:
-            otherwise = self._branch(call.otherwise, conditions.conjoin(*failed)
-                                     if decided_true is None else None)
+            otherwise = self._branch(call.otherwise, failed if decided_true is None else None)
             if otherwise is None:
                 ok = False
         if decided_true is not None:
@@ -102,7 +103,8 @@ class Branches:
 
     def _branch(self, body: ast.ActionBody, holds) -> Optional[list]:
         """A branch's calls (one step [E080]), checked with the intervals the
-        formula `holds` leaves the variables (None: none narrowed)."""
+        conjunction `holds` (conditions.conjoined's boxes) leaves the
+        variables (None: none narrowed)."""
         if len(body.steps) > 1:
             first_then = body.steps[1]
             self.diags.error(
@@ -118,10 +120,12 @@ class Branches:
         if holds is not None:
             # (only the variables compared: the language server's memo of a
             # rule then depends on those alone, ide/incremental.py)
-            base = {n: (self.vars[n].lo, self.vars[n].hi)
-                    for n in sorted(conditions.names_of(holds)) if n in self.vars}
-            bounds = {n: b for n, b in conditions.narrowed(holds, base).items()
-                      if n in self.vars}
+            base = {}
+            for n in sorted(set().union(*(bounds for bounds, _ in holds))):
+                info = self.vars.get(n)
+                if info is not None:
+                    base[n] = (info.lo, info.hi)
+            bounds = conditions.narrowed_where(holds, base)
         calls = self._calls_narrowed(body.steps[0].calls, bounds)
         ok = len(body.steps) == 1
         for resolved in calls:

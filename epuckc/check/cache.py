@@ -2,7 +2,7 @@
 checked again only when something its diagnostics depend on changed.
 
 After a rule file is checked, `check_cached` keeps its diagnostics in
-`cache_dir()/check/`, one entry per file (its path as given, its name as
+the cache's `check` area (base/cache.py), one entry per file (its path as given, its name as
 shown, the target), replaced when the file changes. The entry holds a key
 made of everything the diagnostics depend on, compared whole (the file's
 bytes are in it):
@@ -29,14 +29,12 @@ file; an entry that cannot be read or written is a miss, never an error.
 """
 from __future__ import annotations
 
-import marshal
 import os
-import zlib
 from pathlib import Path
 from typing import Optional
 
-from ..base.fingerprint import front_end_fingerprint, store
-from ..base.resources import cache_dir
+from ..base import cache
+from ..base.fingerprint import front_end_fingerprint
 from ..base.source import SourceFile, Span
 from ..diagnostics import Diagnostic, Fix, Note, Report
 
@@ -44,8 +42,8 @@ FORMAT = 1
 
 
 def check_cached(path: Path, report: Report, shown_name: str, target: str = "host",
-                 use: bool = True) -> None:
-    """check_file(path, report, shown_name, target=target), from the cache
+                 use: bool = True, world: bool = True) -> None:
+    """check_file(path, report, shown_name, target=target, world=world), from the cache
     when nothing the result depends on changed (see the module's doc), and
     kept for the next time otherwise. `use` False (or EPUCKC_NO_CACHE):
     neither read nor written."""
@@ -53,15 +51,16 @@ def check_cached(path: Path, report: Report, shown_name: str, target: str = "hos
     # whose files are all in the cache starts without it)
     if not use or os.environ.get("EPUCKC_NO_CACHE"):
         from .frontend import check_file
-        check_file(path, report, shown_name=shown_name, target=target)
+        check_file(path, report, shown_name=shown_name, target=target, world=world)
         return
     try:
         data = path.read_bytes()
     except OSError as exc:
         from .frontend import read_error
         raise read_error(shown_name, exc) from None
-    entry = _entry_path(path, shown_name, target)
-    key = _key(path, shown_name, target, data)
+    for_run = target if world else f"{target} without a world"      # (W070)
+    entry = _entry_path(path, shown_name, for_run)
+    key = _key(path, shown_name, for_run, data)
     diagnostics = _lookup(entry, key, path) if key is not None else None
     if diagnostics is not None:
         source, _ = SourceFile.from_bytes(data, shown_name)
@@ -70,7 +69,8 @@ def check_cached(path: Path, report: Report, shown_name: str, target: str = "hos
         return
     from .frontend import check_file
     first = len(report.diagnostics)
-    result = check_file(path, report, shown_name=shown_name, target=target, data=data)
+    result = check_file(path, report, shown_name=shown_name, target=target, data=data,
+                        world=world)
     if key is not None:
         _record(entry, key, path, result.program, report.diagnostics[first:])
 
@@ -79,7 +79,7 @@ def _entry_path(path: Path, shown_name: str, target: str) -> Path:
     """The file's entry (a name that is another file's too is a miss: the
     key inside is compared whole)."""
     name = f"{path}\0{shown_name}\0{target}".encode("utf-8", "surrogateescape")
-    return cache_dir() / "check" / f"{zlib.crc32(name):08x}{len(name):04x}.marshal"
+    return cache.area("check") / f"{cache.key_name(name)}.marshal"
 
 
 def _key(path: Path, shown_name: str, target: str, data: bytes) -> Optional[bytes]:
@@ -110,9 +110,7 @@ def _outside(path: Path, files) -> Optional[tuple]:
 
 def _lookup(entry: Path, key: bytes, path: Path) -> Optional[list]:
     try:
-        with open(entry, "rb") as f:
-            data = marshal.load(f)
-        fmt, stored, files, outside, diagnostics = data
+        fmt, stored, files, outside, diagnostics = cache.load(entry)
         if fmt != FORMAT or stored != key or _outside(path, files) != outside:
             return None
         return [_decode(d) for d in diagnostics]
@@ -129,7 +127,7 @@ def _record(entry: Path, key: bytes, path: Path, program, diagnostics: list) -> 
     outside = _outside(path, files)
     if outside is None:
         return
-    store(entry, (FORMAT, key, files, outside, tuple(map(_encode, diagnostics))))
+    cache.store(entry, (FORMAT, key, files, outside, tuple(map(_encode, diagnostics))))
 
 
 def _span(span) -> Optional[tuple]:

@@ -9,8 +9,8 @@ from ..base.source import Span
 from ..diagnostics import Fix, Note
 from ..stdlib.table import ACTION_ALIASES, CHOICE, STANDARD_ACTIONS
 from ..stdlib.units import ANGLE, DISTANCE, curve_wheels, round_nearest
-from ..syntax import ast
-from . import devices, modes
+from ..syntax import aseba, ast
+from . import arrays, devices, modes
 from .messages import _code, _count, _shown, _signature_help, did_you_mean
 from .program import Expr, ResolvedCall
 
@@ -174,6 +174,8 @@ class Calls:
                 return None
             return ResolvedCall("cancel", name, {}, {}, call)
         name = call.name.name
+        if name == "fill" and name not in self.actions and name not in self.externs:
+            return arrays.fill_call(self, call)         # `fill(a, v)`: a = [v, v, ...]
         canonical = ACTION_ALIASES.get(name, name)
         if canonical in STANDARD_ACTIONS:
             self.called.add(canonical)
@@ -209,6 +211,9 @@ class Calls:
             self.diags.error("E011", call.name.span,
                              f"{_code(name)} is an event, not an action",
                              notes=[Note("declared here", self.externs[name].node.span)])
+            return None
+        if name == "sort":           # Aseba's `call math.sort(a)`
+            aseba.sort_diagnostic(self.diags, call.name.span)
             return None
         candidates = set(STANDARD_ACTIONS) | set(self.actions) | {
             n for n, e in self.externs.items() if e.kind == "action"}

@@ -13,7 +13,6 @@ from pathlib import Path
 from typing import Optional
 
 from ..diagnostics import ERROR, Collector
-from ..stdlib.units import Geometry
 from ..syntax import ast
 from . import modes, races
 from .branches import Branches
@@ -27,6 +26,7 @@ from .overflow import Overflow
 from .program import CheckedProgram
 from .robot import RobotSettings
 from .rules import Rules
+from .state import Declarations, Facts, Memories, Step
 from .values import Values
 
 _START = operator.itemgetter(0, 1)     # a Span's (line, column)
@@ -36,7 +36,8 @@ class Checker(Names, Externs, RobotSettings, Values, Exprs, Variables, Ranges, C
               Overflow, Branches):
     """The checker's state and its order of work; each concern's methods live in
     the mixin of its module (names.py, externs.py, robot.py, values.py,
-    calls.py, rules.py), the whole-program analyses in modes.py and
+    exprs.py, variables.py, ranges.py, calls.py, rules.py, overflow.py,
+    branches.py), the whole-program analyses in modes.py and
     arbitration.py."""
 
     # the rules as runs (owner, resolved rules), each the same while its owner
@@ -44,36 +45,45 @@ class Checker(Names, Externs, RobotSettings, Values, Exprs, Variables, Ranges, C
     rule_groups = None
 
     def __init__(self, program: ast.Program, diags: Collector,
-                 base_dir: Optional[Path] = None, target: str = "host"):
+                 base_dir: Optional[Path] = None, target: str = "host", world: bool = True):
         self.program = program
         self.target = target             # what it is built for: the devices it has
-        self.device_reported: set = set()   # (device, name) reported [E070]
-        self.devices_used: set = set()
-        self.diags = diags
+        self.world = world               # False: run without a world (devices.py, W070)
+        self.diags = diags               # the sink, the same object throughout (Collector.capture)
         self.base_dir = base_dir
-        self.geo = Geometry()
-        self.consts: dict = {}           # name -> ConstDef
-        self.const_arrays: dict = {}     # name -> (ConstDef, element Exprs) (arrays.py)
-        self._trace_ids = 0              # the trace's ids given to variables (an array: one each)
-        self.const_used: set = set()
-        self.actions: dict = {}          # name -> ActionDef
-        self.externs: dict = {}          # name -> ExternInfo
-        self.broken_externs: dict = {}   # name -> kind, of externs with bad declarations
-        self.extern_c_names: dict = {}   # name -> first ExternDef: one C namespace
-        self.rule_names: dict = {}       # name -> Rule
-        self.used_actions: set = set()
-        self.called: set = set()         # standard actions called anywhere
+        # the state, by owner and lifetime (state.py); the tables, facts and
+        # memories read as attributes (self.vars, self.called, ...) are theirs
+        self.decls = Declarations()
+        self.facts = Facts()
+        self.memories = Memories()
+        # per check, of resolving the named actions (names.py, modes.py)
         self._cycle_calls: set = set()   # ids of calls that close a cycle of named actions
-        self._const_memo: dict = {}      # constant -> (Number, negated, problem)
-        self._const_reported: set = set()
-        self._const_diagnostics: set = set()
         self._resolved_actions: dict = {}
         self._flat_actions: dict = {}    # named action -> flattened steps (modes.flat_steps)
-        self.vars: dict = {}             # name -> VarInfo
-        self.vars_used: set = set()
-        self.vars_assigned: set = set()
-        self.modes: dict = {}            # name -> ModeDef
-        self.initial_mode: Optional[str] = None
+
+    def apart(self, decls: Optional[Declarations] = None) -> "_Apart":
+        """`with checker.apart() as step:` a step (a rule, the named actions)
+        checked with its own diagnostics, facts and memories, given back
+        in `step` (state.Step) when it ends, the checker's own as they
+        were; `decls`: the declarations it reads instead of the checker's
+        (a copy whose tables note what it looked up, ide/watch.py)."""
+        return _Apart(self, decls)
+
+    # -- asked by the language server's hover, apart from the check --
+
+    def evaluated(self, node):
+        """The Expr (unit and interval) of expression `node`, checked apart:
+        what it says and finds is not the check's."""
+        with self.apart():
+            return self._expr(node)
+
+    def converted(self, value, param):
+        """(the quantity, the runtime integer) a number or constant is where
+        `param` wants it (None, or an integer None, where it is not
+        valid), checked apart."""
+        with self.apart():
+            q = self._value(value, param.kind, param.name)
+            return None if q is None else (q, self._to_runtime(q, param, value))
 
     # -- entry point --
 
@@ -192,6 +202,48 @@ class Checker(Names, Externs, RobotSettings, Values, Exprs, Variables, Ranges, C
 
 
     # -- whole-program warnings --
+
+
+def _forward(record: str, name: str) -> property:
+    get = operator.attrgetter(f"{record}.{name}")
+
+    def put(self, value):
+        setattr(getattr(self, record), name, value)
+    return property(get, put, doc=f"{record}.{name}")
+
+
+# the records' fields, read and set as the checker's attributes by the
+# modules of each concern (`self.vars`, `self._const_memo`)
+for _record, _cls, _private in (("decls", Declarations, {"trace_ids"}),
+                                ("facts", Facts, ()),
+                                ("memories", Memories, {"const_memo", "const_reported",
+                                                        "const_diagnostics"})):
+    for _name in _cls.__match_args__:
+        setattr(Checker, f"_{_name}" if _name in _private else _name, _forward(_record, _name))
+
+
+class _Apart:
+    __slots__ = ("checker", "decls", "step", "_saved", "_said")
+
+    def __init__(self, checker: Checker, decls):
+        self.checker, self.decls = checker, decls
+
+    def __enter__(self) -> Step:
+        c = self.checker
+        self._saved = (c.facts, c.memories, c.decls)
+        c.facts, c.memories = Facts(), Memories()
+        if self.decls is not None:
+            c.decls = self.decls
+        self._said = c.diags.capture()
+        self.step = Step(self._said.__enter__())
+        return self.step
+
+    def __exit__(self, *exc):
+        c = self.checker
+        self._said.__exit__(*exc)
+        self.step.facts = c.facts.items()
+        c.facts, c.memories, c.decls = self._saved
+        return False
 
 
 def check(program: ast.Program, diags: Collector, **options) -> CheckedProgram:

@@ -24,9 +24,9 @@ from functools import lru_cache
 from pathlib import Path
 from typing import Optional
 
-from ..base.resources import cache_dir, runtime_dir
+from ..base.resources import runtime_dir
 
-FORMAT = 1
+FORMAT = 2
 
 # C's keywords (C99, C11, C23) and GNU C's plain-named ones: the language,
 # not a header, so they are listed here.
@@ -176,15 +176,27 @@ def _runtime_headers() -> list:
     """The runtime's headers, relative to runtime_c/, in include order."""
     rt = runtime_dir()
     found = ["utility.h", "epuckrt.h", "rt_internal.h", "rt_platform.h", "host/epuck_stub.h",
-             "host/host_harness.h"]
+             "host/stub_ground.h", "host/host_harness.h", "host/library_sim.h"]
     found += sorted(p.relative_to(rt / "epuck_api").as_posix()
                     for p in (rt / "epuck_api").rglob("*.h"))
     return found
 
 
+def _unsimulated_headers() -> list:
+    """The headers of what the simulation does not model but links
+    (host/unsimulated.c defines their functions and objects), relative to
+    runtime_c/: their names with external linkage are taken too (an extern
+    of that name would not link); their macros are not where an extern is
+    declared."""
+    rt = runtime_dir()
+    return sorted(p.relative_to(rt).as_posix()
+                  for p in (rt / "epuck_api_unsimulated").rglob("*.h")
+                  if b"#error" not in p.read_bytes())
+
+
 def _include_dirs() -> list:
     rt = runtime_dir()
-    return [rt, rt / "epuck_api", rt / "host"]
+    return [rt, rt / "epuck_api", rt / "host", rt / "epuck_api_unsimulated"]
 
 
 def _compiler() -> list:
@@ -220,6 +232,8 @@ def _cache_key(compiler: list) -> str:
     for rel in _runtime_headers():
         base = rt / "epuck_api" if (rt / "epuck_api" / rel).is_file() else rt
         h.update(rel.encode() + b"\0" + (base / rel).read_bytes())
+    for rel in _unsimulated_headers():
+        h.update(rel.encode() + b"\0" + (rt / rel).read_bytes())
     return h.hexdigest()[:24]
 
 
@@ -244,8 +258,32 @@ def _extract_with_compiler(compiler: list) -> Optional[CNames]:
     if declared.returncode != 0 or predefined.returncode != 0:
         return None
     scan(declared.stdout, names, label)
+    linked = _linked_names(compiler, flags, label)
+    if linked is None:
+        return None
+    for name, where in linked.ordinary.items():
+        names.ordinary.setdefault(name, where)
     for m in re.finditer(_DEFINE_RE, predefined.stdout):
         names.macros.setdefault(m.group(1), "the compiler (predefined)")
+    return names
+
+
+def _linked_names(compiler: list, flags: list, label) -> Optional[CNames]:
+    """The names of _unsimulated_headers(), scanned on their own."""
+    import subprocess
+    import tempfile
+    names = CNames()
+    with tempfile.TemporaryDirectory() as tmp:
+        src = Path(tmp) / "linked.c"
+        src.write_text("".join(f'#include "{h}"\n' for h in _unsimulated_headers()))
+        try:
+            done = subprocess.run(compiler + flags + ["-E", str(src)], capture_output=True,
+                                  text=True)
+        except OSError:
+            return None
+    if done.returncode != 0:
+        return None
+    scan(done.stdout, names, label)
     return names
 
 
@@ -271,24 +309,23 @@ def visible_names() -> CNames:
     """The names, from the cache when the headers and compiler are the
     same as when they were extracted."""
     import json
+    from ..base import cache
     compiler = _compiler()
     key = _cache_key(compiler)
-    path = cache_dir() / "cnames" / f"{key}.json"
+    path = cache.area("cnames") / f"{key}.json"
     try:
         data = json.loads(path.read_text(encoding="utf-8"))
-        return CNames(data["ordinary"], data["typedefs"], data["macros"], data["complete"])
+        names = CNames(data["ordinary"], data["typedefs"], data["macros"], data["complete"])
+        cache.used(path)
+        return names
     except (OSError, ValueError, KeyError, TypeError):
         pass
     names = _extract_with_compiler(compiler)
     if names is None:
         return _extract_from_runtime_headers()      # not cached: a compiler may come
-    try:
-        from ..base.output import write_atomic
-        write_atomic(path, json.dumps({"ordinary": names.ordinary, "typedefs": names.typedefs,
-                                       "macros": names.macros, "complete": names.complete},
-                                      sort_keys=True))
-    except OSError:
-        pass
+    cache.write_entry(path, json.dumps({"ordinary": names.ordinary, "typedefs": names.typedefs,
+                                        "macros": names.macros, "complete": names.complete},
+                                       sort_keys=True).encode("utf-8"))
     return names
 
 

@@ -105,28 +105,14 @@ def _clause_bounds(clause, base) -> Optional[dict]:
     satisfies it); `base`: name -> the interval its values lie in."""
     bounds, excluded = {}, {}
     for _, name, op, v in clause:
-        lo, hi = bounds.get(name) or base.get(name, (-32768, 32767))
-        if op == ">":
-            lo = max(lo, v + 1)
-        elif op == ">=":
-            lo = max(lo, v)
-        elif op == "<":
-            hi = min(hi, v - 1)
-        elif op == "<=":
-            hi = min(hi, v)
-        elif op == "==":
-            lo, hi = max(lo, v), min(hi, v)
-        else:
+        lo, hi = _bound(*(bounds.get(name) or base.get(name, _WHOLE)), op, v)
+        if op == "!=":
             excluded.setdefault(name, set()).add(v)
         if lo > hi:
             return None
         bounds[name] = (lo, hi)
     for name, points in excluded.items():
-        lo, hi = bounds.get(name) or base.get(name, (-32768, 32767))
-        while lo <= hi and lo in points:
-            lo += 1
-        while hi >= lo and hi in points:
-            hi -= 1
+        lo, hi = _trim(*(bounds.get(name) or base.get(name, _WHOLE)), points)
         if lo > hi:
             return None
         bounds[name] = (lo, hi)
@@ -221,5 +207,125 @@ def narrowed(f: tuple, base: dict) -> dict:
         return {}
     for name in set().union(*live):
         ranges = [b.get(name, base.get(name, (-32768, 32767))) for b in live]
+        hull[name] = (min(r[0] for r in ranges), max(r[1] for r in ranges))
+    return hull
+
+
+# A conjunction built one formula at a time (an `if` chain's branches: the
+# conditions before a branch failed, its own held), as boxes over the whole
+# 16-bit range: each formula's disjunctive form met with the boxes so far,
+# so that a chain of n branches costs n meets, not n²/2 (issue 42). The
+# intervals the names have where it is evaluated are met last
+# (`narrowed_where`). A box is (bounds, excluded): each name's interval and
+# the values `!=` excludes from it, at most MAX_EXCLUDED per name (beyond,
+# an exclusion is forgotten: it may hold). More than MAX_BOXES boxes are
+# replaced by the one box that holds them all (their hull: it may hold
+# where none of them did), so that each meet costs at most 2 x MAX_BOXES.
+TRUE_BOXES = (({}, {}),)
+MAX_EXCLUDED = 64
+MAX_BOXES = 16
+_WHOLE = (-32768, 32767)
+
+
+def _bound(lo: int, hi: int, op: str, v: int) -> tuple:
+    """lo..hi where `x OP v` holds too (`!=` leaves it: its points are
+    trimmed off the ends, _trim)."""
+    if op == ">":
+        return max(lo, v + 1), hi
+    if op == ">=":
+        return max(lo, v), hi
+    if op == "<":
+        return lo, min(hi, v - 1)
+    if op == "<=":
+        return lo, min(hi, v)
+    if op == "==":
+        return max(lo, v), min(hi, v)
+    return lo, hi
+
+
+def _trim(lo: int, hi: int, points) -> tuple:
+    if points:
+        while lo <= hi and lo in points:
+            lo += 1
+        while hi >= lo and hi in points:
+            hi -= 1
+    return lo, hi
+
+
+def _met(box: tuple, clause: list) -> Optional[tuple]:
+    """`box` and a clause (a list of atoms): None when no value satisfies both."""
+    bounds, excluded = box
+    bounds, touched = dict(bounds), set()
+    for _, name, op, v in clause:
+        lo, hi = _bound(*bounds.get(name, _WHOLE), op, v)
+        if op == "!=":
+            points = excluded.get(name, frozenset())
+            if lo <= v <= hi and v not in points and len(points) < MAX_EXCLUDED:
+                if excluded is box[1]:
+                    excluded = dict(excluded)
+                excluded[name] = points | {v}
+        if lo > hi:
+            return None
+        bounds[name] = (lo, hi)
+        touched.add(name)
+    for name in touched:
+        points = excluded.get(name)
+        lo, hi = _trim(*bounds[name], points)
+        if lo > hi:
+            return None
+        bounds[name] = (lo, hi)
+    return bounds, excluded
+
+
+def conjoined(boxes: tuple, f: tuple) -> tuple:
+    """The boxes of the conjunction `boxes` stands for and `f`: each box met
+    with each clause of `f`'s disjunctive form, those no value satisfies
+    dropped; `boxes` alone when `f` is too large to tell (it may hold);
+    their hull when they are more than MAX_BOXES."""
+    clauses = _clauses(f)
+    if clauses is None or clauses == [[]]:
+        return boxes
+    out = []
+    for box in boxes:
+        for clause in clauses:
+            met = _met(box, clause)
+            if met is not None:
+                out.append(met)
+    if len(out) > MAX_BOXES:
+        return (_hull_box(out),)
+    return tuple(out)
+
+
+def _hull_box(boxes: list) -> tuple:
+    """The one box that holds `boxes`: the names all of them bound, each
+    within the hull of its intervals (the others unbounded), no exclusion."""
+    names = set(boxes[0][0]).intersection(*(b[0] for b in boxes[1:]))
+    return ({n: (min(b[0][n][0] for b in boxes), max(b[0][n][1] for b in boxes))
+             for n in sorted(names)}, {})
+
+
+def narrowed_where(boxes: tuple, base: dict) -> dict:
+    """Each name of `base` (name -> the interval its values lie in) that a
+    box constrains: its interval where the conjunction of `boxes` holds,
+    the hull over the boxes that some values within `base` satisfy; {} when
+    none does (nothing is narrowed where the conjunction cannot hold)."""
+    live = []
+    for bounds, excluded in boxes:
+        met = {}
+        for name, (lo, hi) in bounds.items():
+            within = base.get(name)
+            if within is None:
+                continue
+            lo, hi = _trim(max(lo, within[0]), min(hi, within[1]), excluded.get(name))
+            if lo > hi:
+                break
+            met[name] = (lo, hi)
+        else:
+            live.append(met)
+    if not live:
+        return {}
+    hull: dict = {}
+    for name in sorted(set().union(*live)):
+        ranges = [b.get(name, base[name]) for b in live]
         hull[name] = (min(r[0] for r in ranges), max(r[1] for r in ranges))
     return hull

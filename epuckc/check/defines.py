@@ -92,6 +92,21 @@ def apply_defines(text: str, defines: dict, name: str = "<program>") -> str:
     return out
 
 
+def declared_of(text: str, name: str = "<program>") -> tuple:
+    """The constants and the variables a program's text declares (those
+    that parse), a variable as the trace names it (an array's elements:
+    `counts[2]`), as two sets."""
+    source = SourceFile(name, text)
+    consts, variables = set(), set()
+    for s in parse(source, Collector(source)).statements:
+        if isinstance(s, ast.ConstDef):
+            consts.add(s.name.name)
+        elif isinstance(s, ast.VarDef):
+            variables.update([f"{s.name.name}[{k}]" for k in range(len(s.value.items))]
+                             if isinstance(s.value, ast.ArrayLit) else [s.name.name])
+    return consts, variables
+
+
 def constants_of(text: str, name: str = "<program>") -> list:
     """The names of the constants a program's text defines (`const` lines
     that parse), in order."""

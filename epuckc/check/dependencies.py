@@ -3,10 +3,20 @@ statement's assignments (those inside `if` branches too, with the
 conditions that hold where they run and the variables assigned before them
 since), the names each reads, which variables each variable's assignments
 read, and the graph's strongly connected components (Tarjan, without
-recursion), dependencies first."""
+recursion), dependencies first.
+
+The conditions that hold where an assignment runs are a chain of `Held`
+links shared by the assignments after them: the branches of an `else if`
+chain of n branches make n links, not the n²/2 a list for each would
+hold, and what is computed of a link (the names it reads, its text's
+digest, ranges.py's boxes) is computed once."""
 from __future__ import annotations
 
+import hashlib
+
 from ..syntax import ast
+from .arrays import fill_assign
+from .messages import _shown
 
 
 _ANY = object()     # (a statement whose assignments do not depend on its mode)
@@ -35,39 +45,88 @@ def _names_read(value) -> frozenset:
             todo.append(node.expr)
         elif cls is ast.FuncCall:
             todo += [a.value for a in node.args or () if hasattr(a, "value")]
+        elif cls is ast.Slice:          # `sum(a[1:3])`: a constant slice of a
+            found.add(node.name.name)
+        elif cls is ast.ArrayLit:       # `a = [e0, e1, ...]`
+            todo += node.items
     return frozenset(found)
 
 
-def _assignments(calls, context: tuple, actions, spoiled=frozenset()) -> list:
+class Held:
+    """Where an assignment runs, `condition` held (`held` True) or failed,
+    after the conditions of `parent` (None: the first): an enclosing
+    branch's condition, a rule's guard, a branch before in the same chain.
+    `names`: what all of them read."""
+    __slots__ = ("parent", "condition", "held", "names", "_key")
+
+    def __init__(self, parent, condition, held: bool):
+        self.parent, self.condition, self.held = parent, condition, held
+        names = _names_read(condition)
+        if parent is not None:
+            names = parent.names if names <= parent.names else parent.names | names
+        self.names, self._key = names, None
+
+    def pairs(self) -> list:
+        """The (condition, held) pairs, the first one first."""
+        out, link = [], self
+        while link is not None:
+            out.append((link.condition, link.held))
+            link = link.parent
+        return out[::-1]
+
+    def key(self) -> bytes:
+        """A digest of the conditions' text and whether each held (what the
+        language server compares between analyses): each link's from its
+        parent's, so that a chain's are computed once each."""
+        todo, link = [], self
+        while link is not None and link._key is None:
+            todo.append(link)
+            link = link.parent
+        for link in reversed(todo):
+            above = link.parent._key if link.parent is not None else b""
+            link._key = hashlib.blake2b(
+                above + (b"+" if link.held else b"-") + _shown(link.condition).encode(),
+                digest_size=16).digest()
+        return self._key
+
+
+def _assignments(calls, context, actions, spoiled=frozenset(), variables=None) -> list:
     """(Assign, context, spoiled) for each assignment of a step's `calls`,
-    those inside `if` branches too: `context` the (condition, held) pairs
-    that hold where it runs (its branch's condition held, the ones before
-    it did not), `spoiled` the variables a call before it in those branches
-    may have assigned since (True: any, after a named action)."""
+    those inside `if` branches too: `context` the conditions that hold
+    where it runs (a Held chain: its branch's condition held, the ones
+    before it did not; None: none), `spoiled` the variables a call before
+    it in those branches may have assigned since (True: any, after a named
+    action)."""
     out = []
     spoiled = spoiled if spoiled is True else set(spoiled)
     for call in calls:
         cls = call.__class__
+        if cls is ast.Call and call.name.name == "fill" and "fill" not in actions:
+            call = fill_assign(variables or {}, call) or call      # `a = [v, v, ...]`
+            cls = call.__class__
         if cls is ast.Assign:
             out.append((call, context, spoiled if spoiled is True else frozenset(spoiled)))
             if spoiled is not True:
                 spoiled.add(call.target.name)
         elif cls is ast.IfAction:
-            failed = ()
+            failed = context
             for branch in call.branches:
-                here = context + failed + ((branch.condition, True),)
+                here = Held(failed, branch.condition, True)
                 for k, step in enumerate(branch.body.steps):
-                    out += _assignments(step.calls, here if k == 0 else (), actions,
-                                        spoiled if k == 0 else frozenset())
-                failed += ((branch.condition, False),)
+                    out += _assignments(step.calls, here if k == 0 else None, actions,
+                                        spoiled if k == 0 else frozenset(), variables)
+                failed = Held(failed, branch.condition, False)
             if call.otherwise is not None:
                 for k, step in enumerate(call.otherwise.steps):
-                    out += _assignments(step.calls, context + failed if k == 0 else (),
-                                        actions, spoiled if k == 0 else frozenset())
+                    out += _assignments(step.calls, failed if k == 0 else None,
+                                        actions, spoiled if k == 0 else frozenset(), variables)
             if spoiled is not True:
                 for inner in ast.calls_within((call,)):
                     if inner.__class__ is ast.Assign:
                         spoiled.add(inner.target.name)
+                    elif inner.__class__ is ast.Call and inner.name.name == "fill" \
+                            and "fill" not in actions and fill_assign(variables or {}, inner):
+                        spoiled.add(fill_assign(variables or {}, inner).target.name)
                     elif inner.__class__ is ast.Call and inner.name.name in actions:
                         spoiled = True
                         break
@@ -93,12 +152,12 @@ def statement_assignments(checker, known: dict, stmt) -> tuple:
     calls = []
     for k, step in enumerate(() if body is None else body.steps):
         # (an `if`'s assignments may run, where its conditions held)
-        start = ((guard, True),) if guard is not None and k == 0 else ()
-        calls += _assignments(step.calls, start, checker.actions)
+        start = Held(None, guard, True) if guard is not None and k == 0 else None
+        calls += _assignments(step.calls, start, checker.actions, variables=checker.vars)
     hit = known[id(stmt)] = (stmt, stmt.mode if calls and isinstance(stmt, ast.Rule) else _ANY,
-                             tuple((c.target.name, [c, runs_once, _names_read(c.value).union(
-                                 *(_names_read(cond) for cond, _ in context)), None, id(stmt), j,
-                                 context, spoiled])
+                             tuple((c.target.name, [c, runs_once, _names_read(c.value) | (
+                                 context.names if context is not None else frozenset()),
+                                 None, id(stmt), j, context, spoiled])
                                    for j, (c, context, spoiled) in enumerate(calls)))
     return hit
 

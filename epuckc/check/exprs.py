@@ -16,14 +16,14 @@ from __future__ import annotations
 
 from typing import Optional
 
-from ..diagnostics import Collector, Fix
+from ..diagnostics import Fix
 from ..stdlib import arith, imath
 from ..stdlib.table import READING_ARRAYS, STANDARD_READINGS
 from . import devices
 from ..stdlib.units import (ANGLE, DISTANCE, DURATION, INT, INT16_MAX, INT16_MIN, SPEED,
                             UNITS, describe_kind, quantity, round_nearest)
 from ..syntax import ast
-from . import arrays, functions
+from . import arrays, bits, convert, functions
 from .messages import _code, _kind_word, _shown, did_you_mean
 from .program import BOOL, Expr
 
@@ -32,7 +32,7 @@ COMPARISONS = ("<", "<=", ">", ">=", "==", "!=")
 
 
 _EXACT = dict(arith.BINARY, neg=arith.neg, abs=arith.absolute, clamp=arith.clamp, sat=arith.sat,
-              **imath.FUNCTIONS)
+              **arith.BITS, **{"~": arith.bit_not}, **imath.FUNCTIONS)
 
 
 def _interval(e: Expr) -> str:
@@ -51,7 +51,8 @@ def _difference(a: Expr, b: Expr) -> Optional[int]:
     folds such a comparison itself (`X - c <= X`) and warns, on the
     dsPIC's and the AVR's gcc, that it assumes no overflow: the checker
     decides it first, so the C never holds one."""
-    fa, fb = _linear(a), _linear(b)
+    table: dict = {}
+    fa, fb = _linear(a, table), _linear(b, table)
     if fa is None or fb is None:
         return None
     terms = dict(fa[1])
@@ -73,13 +74,18 @@ def _decided_by_intervals(op: str, a: Expr, b: Expr) -> Optional[int]:
 _LINEAR = ("+", "-", "neg", "*")
 
 
-def _linear(e: Expr):
+def _linear(e: Expr, table: dict):
     """`e` as (number, {part: factor}): the sum of its parts times their
     factors plus the number, computed as the runtime does (exactly) where
     no sum or product in it can leave 32 bits, and a part where one can
-    (it saturates); None with a `random` in it. A loop, not recursion
+    (it saturates); None with a `random` in it. A part is a number that
+    stands for its tree: `table` gives each tree (its operation and the
+    numbers of its operands) its number, the same for equal trees of the
+    two sides compared (a key of its own that held its operands' keys
+    grew with each level, their quotes escaped again, twice as long: a
+    depth of 200 did not fit in memory). A loop, not recursion
     (limits.py)."""
-    keys: dict = {}     # id -> the tree's key, None with a random
+    keys: dict = {}     # id -> the tree's number in `table`, None with a random
     forms: dict = {}    # id -> (number, parts), None with a random
     stack = [(e, False)]
     while stack:
@@ -94,7 +100,11 @@ def _linear(e: Expr):
             continue
         if x.op in _COMMUTATIVE:
             parts.sort()
-        keys[id(x)] = key = repr((x.op, x.value, x.name, tuple(parts)))
+        shape = (x.op, repr(x.value), x.name, tuple(parts))
+        key = table.get(shape)
+        if key is None:
+            key = table[shape] = len(table)
+        keys[id(x)] = key
         args = [forms[id(arg)] for arg in x.args]
         exact = arith.exact(x.op, *[(arg.lo, arg.hi) for arg in x.args]) \
             if x.op in _LINEAR else None
@@ -159,13 +169,9 @@ class Exprs:
                     self._const_value(node, INT, name)      # reports the problem
                     return None
                 # a problem of the definition is said once, at its first use
-                inner = Collector(self.diags.source)
-                saved, self.diags = self.diags, inner
-                try:
+                with self.diags.capture() as inner:
                     value = self._literal(number)
-                finally:
-                    self.diags = saved
-                for d in inner.items:
+                for d in inner:
                     if d not in self._const_diagnostics:
                         self._const_diagnostics.add(d)
                         self.diags.items.append(d)
@@ -257,8 +263,10 @@ class Exprs:
             operand = self._expr(node.operand)
             if operand is None:
                 return None
-            return self._unary("not" if node.op == "not" else "neg", operand, node)
+            return self._unary({"not": "not", "~": "~"}.get(node.op, "neg"), operand, node)
         if cls is ast.BinOp:
+            if convert.is_fraction(node.left) or convert.is_fraction(node.right):
+                return convert.fraction_beside(self, node)
             left, right = self._expr(node.left), self._expr(node.right)
             if left is None or right is None:
                 return None
@@ -267,6 +275,9 @@ class Exprs:
             return functions.call(self, node)
         if cls is ast.Index:
             return arrays.element(self, node)
+        if cls is ast.Slice:
+            arrays.bare_slice(self, node)
+            return None
         self.diags.error("E024", node.span, "a condition such as `ir0 > 300` cannot go here",
                          help="conditions go after `when` or `if`")
         return None
@@ -276,6 +287,8 @@ class Exprs:
             if not self._is_bool(e, "`not`"):
                 return None
             return self._fold(Expr("not", BOOL, 0, 1, (e,), node=node))
+        if op == "~":
+            return bits.operation(self, "~", (e,), node)
         if not self._is_number(e, "`-`"):
             return None
         lo, hi = arith.interval(op, (e.lo, e.hi))
@@ -339,15 +352,22 @@ class Exprs:
             unit = EXAMPLE_UNIT.get(quantity_kind, "")
             help = (f"a plain number times a quantity is that quantity: multiply by "
                     f"`1 {unit}`, or give the number a unit (`300 {unit}`)")
+        elif left is None:          # a value stored where another kind is wanted
+            help = convert.conversion(getattr(node, "value", node), got, want)
         else:
-            help = "both sides must be of one kind: convert one of them, or compare like with like"
-        self.diags.error("E048", node.span, message, help=help, notes=notes or [])
+            help = convert.mixed(getattr(node, "op", "+"), left.node, right.node, left.kind,
+                                 right.kind)
+        self.diags.error("E048", node.span, message, notes=notes or [],
+                         help=help or "both sides must be of one kind: convert one of them, "
+                                      "or compare like with like")
 
     def _binary(self, op: str, a: Expr, b: Expr, node) -> Optional[Expr]:
         if op in ("and", "or"):
             if not (self._is_bool(a, f"`{op}`") and self._is_bool(b, f"`{op}`")):
                 return None
             return self._fold(Expr(op, BOOL, 0, 1, (a, b), node=node))
+        if op in arith.BITWISE:
+            return bits.operation(self, op, (a, b), node)
         where = f"`{op}`"
         if not (self._is_number(a, where) and self._is_number(b, where)):
             return None
@@ -482,7 +502,8 @@ class Exprs:
             self.diags.error("E019", value.span,
                              f"{_code(p.name)} expects {describe_kind(p.kind)}, but "
                              f"`{self._text(value)}` is {_kind_word(e.kind)}",
-                             help=self._kind_help(p.kind, p.name))
+                             help=convert.conversion(value, e.kind, p.kind)
+                             or self._kind_help(p.kind, p.name))
             return None
         exact = e
         e = self._store(e)

@@ -45,11 +45,13 @@ def read_error(name: str, exc: OSError) -> InputError:
 
 def check_file(path: Path, report: Report, shown_name: Optional[str] = None,
                text: Optional[str] = None, target: str = "host",
-               data: Optional[bytes] = None) -> FrontEndResult:
+               data: Optional[bytes] = None, world: bool = True) -> FrontEndResult:
     """Parse and check one rule file, adding its diagnostics to `report`.
     `text` replaces the file's contents (an editor's unsaved buffer);
     `data` is the file's bytes when they were read already (check/cache.py);
-    `target` the robot it is for (devices it lacks are E070)."""
+    `target` the robot it is for (devices it lacks are E070); `world`
+    False: it is to run without a world (devices only a world gives are
+    W070)."""
     name = shown_name if shown_name is not None else str(path)
     if text is not None:
         source, problem = SourceFile(name, text), None
@@ -83,7 +85,7 @@ def check_file(path: Path, report: Report, shown_name: Optional[str] = None,
         program = parse(source, diags)
         checked = check(program, diags,
                         base_dir=path.parent if text is None or path.exists() else None,
-                        target=target)
+                        target=target, world=world)
     finally:
         if collecting:
             gc.enable()

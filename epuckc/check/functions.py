@@ -10,7 +10,7 @@ from typing import Optional
 from ..stdlib import arith, imath
 from ..stdlib.table import AGGREGATES, CHOICE_READINGS, FUNCTIONS
 from ..stdlib.units import ANGLE, INT
-from ..syntax import ast
+from ..syntax import aseba, ast
 from . import arrays, readings
 from .messages import _code, _kind_word, did_you_mean
 from .program import Expr
@@ -27,6 +27,9 @@ def call(self, node: ast.FuncCall) -> Optional[Expr]:
         return readings.choice_reading(self, node)
     if name in AGGREGATES or (name in ("min", "max") and len(node.args or ()) == 1):
         return arrays.aggregate(self, node)
+    if name == "sort":               # Aseba's: E096 says what to write
+        aseba.sort_diagnostic(self.diags, node.name.span)
+        return None
     if name not in FUNCTIONS:
         self.diags.error("E054", node.name.span, f"unknown function {_code(name)}",
                          help=did_you_mean(node.name, FUNCTIONS) or

@@ -41,7 +41,7 @@ def _shown(value) -> str:
         return f"{_shown(value.left)} {value.op} {_shown(value.right)}"
     if cls is ast.UnaryOp:
         return f"not {_shown(value.operand)}" if value.op == "not" \
-            else f"-{_shown(value.operand)}"
+            else f"{value.op}{_shown(value.operand)}"
     if cls is ast.Paren:
         return f"({_shown(value.expr)})"
     if cls is ast.FuncCall:
@@ -50,6 +50,9 @@ def _shown(value) -> str:
         return value.name
     if cls is ast.Index:
         return f"{value.name.name}[{_shown(value.index)}]"
+    if cls is ast.Slice:
+        return (f"{value.name.name}[{'' if value.lo is None else _shown(value.lo)}:"
+                f"{'' if value.hi is None else _shown(value.hi)}]")
     if cls is ast.ArrayLit:
         return f"[{', '.join(_shown(item) for item in value.items)}]"
     if cls is ast.Assign:

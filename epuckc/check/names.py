@@ -6,7 +6,7 @@ from ..base.source import Span
 from ..diagnostics import Fix, Note
 from ..stdlib.table import ACTION_ALIASES, EVENT_ALIASES, STANDARD_ACTIONS, STANDARD_EVENTS
 from ..syntax import ast
-from . import arrays, modes
+from . import arrays, modes, splice
 from .messages import _code
 
 
@@ -67,10 +67,7 @@ class Names:
     def _named_calls(self, name: str) -> list:
         """The calls of named actions in action `name`'s body (inside its
         `if`s too)."""
-        return [call for step in self.actions[name].body.steps
-                for call in ast.calls_within(step.calls)
-                if isinstance(call, ast.Call) and not call.args
-                and call.name.name in self.actions and call.name.name not in self.externs]
+        return splice.named_calls(self, self.actions[name].body)
 
     def _resolve_named_actions(self):
         """Resolve every named action, the actions it runs first. A
@@ -98,6 +95,7 @@ class Names:
                     stack.pop()
                     state[name] = "done"
                     order.append(name)
+        splice.action_depths(self, order)
         for name in order:
             self._resolved_actions[name] = self._body(self.actions[name].body)
 

@@ -34,7 +34,6 @@ import heapq
 import itertools
 
 from ..base.views import MISSING, NotingView
-from ..diagnostics import Collector
 from ..stdlib.units import INT16_MAX, INT16_MIN
 from . import conditions
 from .dependencies import _needs, order_components, regraph_in_place
@@ -76,8 +75,6 @@ class RangeMemo:
         self.values: dict = {}      # what each assignment gave, by what it read (_assigned_where)
 
 
-_SAID_ONCE = ("_const_reported", "_const_diagnostics", "device_reported")
-
 
 def _copy(info: VarInfo, bounds=None) -> VarInfo:
     """A VarInfo of its own (with the interval `bounds`)."""
@@ -93,7 +90,7 @@ def _inputs(checker, entries: list, members: tuple, outside) -> tuple:
     for entry in entries:
         if entry[3] is None:        # (and the conditions that hold where it runs)
             entry[3] = (entry[0].op, _shown(entry[0].value),
-                        tuple((_shown(cond), held) for cond, held in entry[6]), entry[7])
+                        entry[6].key() if entry[6] is not None else None, entry[7])
     variables = checker.vars
     return (tuple((e[3], e[1]) for e in entries),
             tuple((m, variables[m].kind, variables[m].init) for m in members),
@@ -284,7 +281,7 @@ class Ranges:
         else:
             for m in members:           # (solved from the declared intervals)
                 variables[m] = _copy(pristine[m])
-            self._contexts = {id(e[0]): (e[6], e[7]) for e in entries if e[6]}
+            self._contexts = {id(e[0]): (e[6], e[7]) for e in entries if e[6] is not None}
             result = self._solve([e[0] for e in entries], {id(e[0]) for e in entries if e[1]})
         results[members] = (inputs, result)
         return self._give(result, variables, pristine, last, old_ranges)
@@ -341,22 +338,19 @@ class Ranges:
         # (what is said here is dropped: the rules say it; so the memories
         # of what was said once must not keep it either, or a rule would
         # not say it: an unknown constant behind a constant was lost so)
-        saved = self.diags
-        said = {f: getattr(self, f) for f in _SAID_ONCE if hasattr(self, f)}
-        self.diags = Collector(saved.source)
-        for f, value in said.items():
-            setattr(self, f, set(value))
+        memories = self.memories
+        self.memories = memories.copy()
         try:
-            self._join_assigned(repeated)
-            for _ in single:
-                if not self._join_assigned(single, widen=False):
-                    break
+            with self.diags.capture():
+                self._held_boxes(calls)
                 self._join_assigned(repeated)
-            self._narrow_ranges(repeated + single)
+                for _ in single:
+                    if not self._join_assigned(single, widen=False):
+                        break
+                    self._join_assigned(repeated)
+                self._narrow_ranges(repeated + single)
         finally:
-            self.diags = saved
-            for f, value in said.items():
-                setattr(self, f, value)
+            self.memories = memories
         return {name: (self.vars[name].lo, self.vars[name].hi)
                 for name in dict.fromkeys(c.target.name for c in calls)}
 
@@ -386,6 +380,40 @@ class Ranges:
         return grew
 
     _contexts = None        # id(Assign) -> (conditions that hold where it runs, spoiled)
+    _boxes = None           # id(Held) -> (it, the boxes where its conditions hold)
+
+    def _held_boxes(self, calls) -> None:
+        """The boxes where each chain of conditions (dependencies.Held) of
+        `calls`' assignments holds, a link's from its parent's (each link
+        once: a chain of n branches costs n). A condition's formula is read
+        with the component's variables (those `calls` assign) over the whole
+        16-bit range, so that it holds for every interval the fixpoint gives
+        them (folded with a narrower one, a comparison could be decided where
+        a wider one leaves it open); the intervals are met where the
+        assignment is evaluated (_evaluated_where)."""
+        boxes = self._boxes = {}
+        members = [self.vars[n] for n in dict.fromkeys(c.target.name for c in calls)]
+        members = [info for info in members if info.kind != BOOL]
+        saved = [(info, info.lo, info.hi) for info in members]
+        try:
+            for info in members:
+                info.lo, info.hi = INT16_MIN, INT16_MAX
+            for call in calls:
+                link = (self._contexts or {}).get(id(call), (None,))[0]
+                todo = []
+                while link is not None and id(link) not in boxes:
+                    todo.append(link)
+                    link = link.parent
+                for link in reversed(todo):
+                    above = boxes[id(link.parent)][1] if link.parent is not None \
+                        else conditions.TRUE_BOXES
+                    e = self._expr(link.condition)
+                    if e is not None and e.kind == BOOL:
+                        above = conditions.conjoined(above, conditions.formula(e, link.held))
+                    boxes[id(link)] = (link, above)
+        finally:
+            for info, lo, hi in saved:
+                info.lo, info.hi = lo, hi
 
     _values = None      # id(Assign) -> (it, [(what it read, its value)]): see _assigned_where
 
@@ -428,18 +456,18 @@ class Ranges:
         step), as the checker narrows them for the call (branches.py):
         except those a call before it, since those conditions were
         evaluated, may have assigned (`spoiled`; True: every one)."""
-        context, spoiled = (self._contexts or {}).get(id(call), ((), ()))
-        if not context or spoiled is True:
+        context, spoiled = (self._contexts or {}).get(id(call), (None, ()))
+        if context is None or spoiled is True:
             return self._assigned(call, info)
-        parts = []
-        for cond, held in context:
-            e = self._expr(cond)
-            if e is not None and e.kind == BOOL:
-                parts.append(conditions.formula(e, held))
-        f = conditions.conjoin(*parts)
-        base = {n: (self.vars[n].lo, self.vars[n].hi)
-                for n in sorted(conditions.names_of(f)) if n in self.vars and n not in spoiled}
-        bounds = {n: b for n, b in conditions.narrowed(f, base).items() if n in base}
+        variables, base = self.vars, {}
+        for n in sorted(context.names):     # (what the conditions read, noted: _Reads)
+            found = variables.get(n)
+            if found is not None and n not in spoiled:
+                base[n] = (found.lo, found.hi)
+        held = (self._boxes or {}).get(id(context))
+        if held is None or held[0] is not context:
+            return self._assigned(call, info)
+        bounds = conditions.narrowed_where(held[1], base)
         if not bounds:
             return self._assigned(call, info)
         saved = {n: (self.vars[n].lo, self.vars[n].hi) for n in bounds}

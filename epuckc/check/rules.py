@@ -9,7 +9,7 @@ from ..stdlib.table import (EVENT_ALIASES, MOTION_ACTIONS, SENSOR_NAMES, STANDAR
                             THRESHOLD_MAX)
 from ..stdlib.units import INT
 from ..syntax import ast
-from . import devices, modes
+from . import devices, modes, splice
 from .messages import _code, _shown, _then, did_you_mean
 from .program import CheckedProgram, ResolvedEvent, ResolvedRule
 
@@ -21,6 +21,7 @@ class Rules:
     """The checker's events and rules (a part of Checker)."""
 
     def _rule(self, rule: ast.Rule) -> Optional[ResolvedRule]:
+        splice.check_depth(self, rule)      # (its named actions spliced in: E056)
         if rule.trigger == "on":
             event = self._event(rule.event)
         else:

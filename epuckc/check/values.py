@@ -5,12 +5,13 @@ from __future__ import annotations
 from typing import Optional
 
 from ..base.source import Span
-from ..diagnostics import Collector, Fix, Note
+from ..diagnostics import Fix, Note
 from ..stdlib.table import Param
 from ..stdlib.units import (ANGLE, ARTICLE, DISTANCE, DURATION, INT, INT16_MAX, INT16_MIN,
                             INT32_MAX, KIND_UNITS, SPEED, UNITS, Quantity, describe_kind, quantity,
                             round_nearest)
 from ..syntax import ast
+from . import convert
 from .messages import _article, _code, _either, _example, _shown, _then, did_you_mean
 
 # A duration written without a unit is in ms; below this many it was very
@@ -209,14 +210,10 @@ class Values:
             return None
         # Check the number where it is used: a constant's kind is that of
         # its unit, or whatever its use wants when it has none.
-        inner = Collector(self.diags.source)
-        saved, self.diags = self.diags, inner
-        try:
+        with self.diags.capture() as inner:
             q = self._value(number, kind, param)
-        finally:
-            self.diags = saved
         if q is None:
-            first = inner.items[0] if inner.items else None
+            first = inner[0] if inner else None
             if first is not None and first.code == "E019":
                 const = self.consts[name]
                 self.diags.error("E019", ref.span,
@@ -226,7 +223,7 @@ class Values:
                                  notes=[Note(f"{_code(name)} is defined here", const.span)])
                 return None
         seen = self._const_diagnostics
-        for d in inner.items:       # each problem of a definition, said once
+        for d in inner:       # each problem of a definition, said once
             if d not in seen:
                 seen.add(d)
                 self.diags.items.append(d)
@@ -236,13 +233,21 @@ class Values:
             q = Quantity(q.kind, -q.value, q.in_steps)
         return q
 
-    def _whole(self, node, value: float) -> bool:
+    def _whole(self, node, value: float, kind: Optional[str] = None) -> bool:
+        """E038 unless `value` is whole; `kind`: what a bare number is
+        taken as where it stands, whose unit the help names (convert.py)."""
         if value != int(value):
             whole = round_nearest(value)
+            said = convert.fraction(value, kind) if getattr(node, "unit", None) is None else None
+            if said is not None:
+                help = said
+            elif isinstance(node, ast.Number):
+                help = Fix(node.span, f"{whole} {node.unit}" if node.unit else str(whole),
+                           f"write {whole}")
+            else:
+                help = f"write {whole}"
             self.diags.error("E038", node.span, f"`{_shown(node)}` is not a whole number",
-                             help=Fix(node.span, f"{whole} {node.unit}" if node.unit else str(whole),
-                                      f"write {whole}") if isinstance(node, ast.Number)
-                             else f"write {whole}")
+                             help=help)
             return False
         return True
 

@@ -85,14 +85,39 @@ def _duration_ms(value: str) -> int:
     return scaled // denominator
 
 
-def _add_program_options(p: argparse.ArgumentParser):
-    p.add_argument("file", metavar="FILE", help="a rule file (.epk) or a C program using the runtime")
+def _add_program_options(p: argparse.ArgumentParser, file_optional: bool = False):
+    if file_optional:       # `run --world`: a world may name every robot's program
+        p.add_argument("file", metavar="FILE", nargs="?",
+                       help="a rule file (.epk) or a C program using the runtime; with "
+                            "--world, the program of the robots the world names none for "
+                            "(left out when the world names every robot's)")
+    else:
+        p.add_argument("file", metavar="FILE",
+                       help="a rule file (.epk) or a C program using the runtime")
+    _add_program_settings(p)
+
+
+def _add_program_settings(p: argparse.ArgumentParser):
+    """The options of a program read from a file (after its FILE)."""
     _add_capacity_options(p)
     p.add_argument("--werror", action="store_true", help="treat warnings as errors")
     p.add_argument("-D", dest="defines", action="append", type=_define, metavar="NAME=VALUE",
                    help="give the constant NAME the value VALUE (a number with its unit, e.g. "
                         "-D SPEED=400steps/s) instead of its `const` line's; checked as if "
                         "written there")
+
+
+def add_trace_options(p: argparse.ArgumentParser):
+    """The robot's trace, an option of every command that builds for a robot
+    (`build`, and what builds before it uploads)."""
+    p.add_argument("--trace", action="store_true",
+                   help="dspic, epuck2: build the robot's tracer in: the trace the host "
+                        "harness gives, compact, on the robot's serial link (the e-puck's "
+                        "Bluetooth; the e-puck2's UART3 through its programmer), for "
+                        "`epuckc monitor`; writes NAME.trace.json beside the program")
+    p.add_argument("--trace-link", choices=("uart", "usb"), metavar="LINK",
+                   help="epuck2 with --trace: uart (UART3, the programmer's second serial "
+                        "port; the default) or usb (the main processor's own USB serial port)")
 
 
 def _define(text: str) -> tuple:
@@ -127,6 +152,10 @@ def _check_parser(sub):
     p.add_argument("--target", choices=("host", "dspic", "epuck2"), default="host",
                    help="the robot it is for: a device the target lacks is an error (E070); "
                         "host (the simulation) has every device")
+    p.add_argument("--no-world", action="store_true",
+                   help="the files are to run without a world (`epuckc run FILE` alone): a "
+                        "device only a world gives (IR messages, the camera's colours, the "
+                        "ToF sensor's obstacles) is a warning, W070, as at run time")
     p.add_argument("--no-cache", action="store_true",
                    help="check every file again (by default a file is checked again only when "
                         "it, its extern C files or epuckc changed; the results are kept in "
@@ -171,6 +200,31 @@ def _lsp_parser(sub):
     p.set_defaults(run=cmd_lsp)
 
 
+def _studio_parser(sub):
+    from .commands import cmd_studio
+    p = sub.add_parser("studio", help="write, check, run and replay programs in the browser",
+                       description="Serve a page on 127.0.0.1 (a random token in its URL) with "
+                                   "an editor of DIR's rule files (diagnostics as you type, "
+                                   "quick fixes, hover, completion, formatting, saving), Run in "
+                                   "a world or scenario streamed into an arena, replay, the "
+                                   "generated C, and a class folder's exercises with Check "
+                                   "(docs/studio.md).")
+    p.add_argument("dir", nargs="?", default=".", metavar="DIR",
+                   help="the folder of the programs (default: the current folder)")
+    p.add_argument("--port", type=_port, default=None, metavar="N",
+                   help="the port on 127.0.0.1 (default 8743, or a free one when it is taken)")
+    p.add_argument("--no-browser", action="store_true",
+                   help="print the URL only; do not open a browser")
+    p.set_defaults(run=cmd_studio)
+
+
+def _port(text: str) -> int:
+    if not (text.isascii() and text.isdigit()) or not 0 <= int(text) <= 65535:
+        raise argparse.ArgumentTypeError(f"{_clip(text)} is not a port: give 0 to 65535 "
+                                         "(0: any free port)")
+    return int(text)
+
+
 def _compile_parser(sub):
     p = sub.add_parser("compile", help="compile a rule file to C",
                        description="Compile a rule file to one C file for the runtime. Nothing is "
@@ -194,11 +248,19 @@ def _build_parser(sub):
                                    "exit status 3 when a toolchain or the firmware is missing.")
     _add_program_options(p)
     p.add_argument("--target", choices=("host", "dspic", "epuck2"), default="host")
+    add_build_options(p)
+    p.set_defaults(run=cmd_build)
+
+
+def add_build_options(p: argparse.ArgumentParser):
+    """The options of how `build` builds, besides the program's and the
+    target: `epuckc flash` takes them too (it builds a rule file first,
+    through cmd_build), so a build option added here works for both."""
     p.add_argument("--firmware", metavar="DIR",
                    help="epuck2: the e-puck2_main-processor folder (default: $EPUCK2_FIRMWARE)")
     p.add_argument("-o", "--output", metavar="DIR",
                    help="output directory (default: build/NAME-TARGET)")
-    p.set_defaults(run=cmd_build)
+    add_trace_options(p)
 
 
 def _seed(text: str) -> int:
@@ -226,7 +288,7 @@ def _run_parser(sub):
                        description="Build for the host harness (cached) and run, printing the trace. "
                                    "Exit status: 0 when the program reached exit_main, 3 on a "
                                    "time-out, 1 when it does not build.")
-    _add_program_options(p)
+    _add_program_options(p, file_optional=True)
     p.add_argument("more", nargs="*", metavar="MORE.c",
                    help="the C program's other files, when FILE is a C main written against "
                         "the e-puck library (docs/runtime.md, C programs)")
@@ -239,14 +301,22 @@ def _run_parser(sub):
                    help="run on the 16-bit path (avr-gcc and simavr: int is 16 bits, as on the "
                         "dsPIC) against the scenario, so that the extern C's int overflows wrap "
                         "as on the robot")
+    p.add_argument("--robot-trace", action="store_true",
+                   help="with --int16: the trace from the robot's own tracer (the build's "
+                        "--trace) over the simulated UART, decoded as `epuckc monitor` decodes "
+                        "a robot's, in the robot's time (each poll within its ms)")
     p.add_argument("--time-limit", type=_duration_ms, default=60000, metavar="DURATION",
                    help="virtual time limit with its unit, e.g. 60s, 500ms or 2min (default 60s)")
     p.add_argument("--trace", metavar="OUT.jsonl",
                    help="also write the trace as JSON lines; `-`: to standard output, "
                         "instead of the readable trace")
+    p.add_argument("--trace-vars", metavar="NAMES",
+                   help="the variables whose changes the trace writes, separated by commas (an "
+                        "array's name for its elements); `none`: none (default: all)")
     p.add_argument("--seed", type=_seed, metavar="N",
                    help="seed of `random` (default 1: every run is the same); in a world, "
-                        "robot k gets N + k")
+                        "robot k gets N + k, and Enki's noise comes from the world's own "
+                        "`seed` line")
     from . import world as world_cli
     world_cli.add_run_options(p, _duration_ms)
     p.set_defaults(run=cmd_run)
@@ -281,13 +351,34 @@ def _plot_parser(sub):
     world_cli.add_plot_parser(sub, world_cli.cmd_plot)
 
 
+def _monitor_parser(sub):
+    from . import monitor
+    monitor.add_parser(sub, monitor.cmd_monitor, _duration_ms)
+
+
 def _experiment_parser(sub):
     from . import experiment
     experiment.add_parser(sub, experiment.cmd_experiment)
+
+
+def _flash_parser(sub):
+    from . import flash
+    flash.add_parser(sub, flash.cmd_flash, _add_program_settings, add_build_options)
+
+
+def _tune_parser(sub):
+    from . import tune
+    tune.add_parser(sub, tune.cmd_tune)
+
+
+def _cache_parser(sub):
+    from . import cache
+    cache.add_parser(sub, cache.cmd_cache)
 
 
 # The commands in the order `epuckc --help` lists them.
 _COMMANDS = {"check": _check_parser, "explain": _explain_parser, "fmt": _fmt_parser,
              "lsp": _lsp_parser, "compile": _compile_parser, "build": _build_parser,
              "run": _run_parser, "test": _test_parser, "plot": _plot_parser,
-             "experiment": _experiment_parser}
+             "monitor": _monitor_parser, "experiment": _experiment_parser, "tune": _tune_parser,
+             "flash": _flash_parser, "studio": _studio_parser, "cache": _cache_parser}

@@ -72,7 +72,7 @@ def cmd_check(args) -> int:
             continue
         try:
             check_cached(Path(name), report, shown, target=args.target,
-                         use=not args.no_cache)
+                         use=not args.no_cache, world=not args.no_world)
         except InputError as exc:
             unreadable = True
             report.diagnostics.append(exc.diagnostic(shown))
@@ -144,8 +144,70 @@ def cmd_lsp(args) -> int:
     return serve()
 
 
+def cmd_studio(args) -> int:
+    gc.enable()     # a long-running server, as lsp
+    folder = Path(args.dir)
+    if not folder.is_dir():
+        _error(f"{display_name(args.dir)} is not a folder: `epuckc studio DIR` opens the rule "
+               "files of a folder")
+        return EXIT_USAGE
+    try:
+        from ..studio.server import DEFAULT_PORT, serve
+    except ImportError as exc:
+        _error(f"`epuckc studio` needs aiohttp and pygls ({exc}); install them with: "
+               "pip install aiohttp 'pygls>=2'")
+        return EXIT_USAGE
+    try:
+        return serve(folder, DEFAULT_PORT if args.port is None else args.port,
+                     open_browser=not args.no_browser)
+    except OSError as exc:
+        _error(f"cannot serve on 127.0.0.1 port {args.port}: {exc.strerror or exc}")
+        return EXIT_USAGE
+
+
 def _error(message: str):
     print(f"epuckc: error: {message}", file=sys.stderr)
+
+
+def _defines_of(args, path: Path) -> dict:
+    """The -D a program takes: all of them, but in a world (whose robots may
+    run other programs) only those its rule file declares (a C program:
+    none); _world_defines_problem checks that each is some program's."""
+    defines = dict(getattr(args, "defines", None) or ())
+    if not defines or not getattr(args, "world", None):
+        return defines
+    if path.suffix == ".c":
+        return {}
+    from ..check.defines import constants_of
+    try:
+        declared = set(constants_of(path.read_text(encoding="utf-8"), str(path)))
+    except (OSError, UnicodeDecodeError):
+        return defines          # the front end says why it cannot be read
+    return {name: value for name, value in defines.items() if name in declared}
+
+
+def _world_defines_problem(args):
+    """Why a -D of a world run applies to no program of it (FILE and the
+    world's own), or None."""
+    defines = dict(getattr(args, "defines", None) or ())
+    if not defines or not args.world:
+        return None
+    from ..sim.world import WorldError, parse_world
+    try:
+        world = parse_world(Path(args.world), shown=args.world)
+    except WorldError:
+        return None             # the world's own diagnostics come after
+    programs = [Path(args.file)] + [r.program for r in world.robots if r.program is not None]
+    taken = set()
+    for program in programs:
+        taken.update(_defines_of(args, program))
+    missing = [name for name in defines if name not in taken]
+    if not missing:
+        return None
+    rules = [display_name(str(p)) for p in dict.fromkeys(programs) if p.suffix != ".c"]
+    which = ("the rule files: " + ", ".join(rules) if rules
+             else "its programs are C, which has no constants")
+    return f"-D {missing[0]}: no program of the run declares a constant {missing[0]} ({which})"
 
 
 def _load(args, report=None):
@@ -156,12 +218,19 @@ def _load(args, report=None):
     from ..check.frontend import InputError
     from ..check.defines import DefineError
     report = Report() if report is None else report
+    problem = _world_defines_problem(args) if getattr(args, "world", None) else None
+    if problem:
+        _error(problem)
+        return None, EXIT_USAGE
     try:
         program = load_program(Path(args.file), report, args.max_actions, args.max_events,
                                shown_name=display_name(args.file),
-                               defines=dict(getattr(args, "defines", None) or ()),
+                               defines=_defines_of(args, Path(args.file)),
                                target=getattr(args, "target", "host"),
-                               more_c=getattr(args, "more", None) or ())
+                               more_c=getattr(args, "more", None) or (),
+                               # `run` alone: what only a world gives is W070
+                               world=getattr(args, "command", None) != "run"
+                               or bool(getattr(args, "world", None)))
     except (InputError, DefineError) as exc:
         _error(str(exc))
         return None, EXIT_USAGE
@@ -194,7 +263,9 @@ def cmd_compile(args) -> int:
     return EXIT_OK
 
 
-def cmd_build(args) -> int:
+def cmd_build(args, on_built=None) -> int:
+    """`epuckc build`; `on_built(program)` is called after a build that
+    worked (`epuckc flash` goes on from there)."""
     from ..base.output import is_stdout
     if args.output is not None and is_stdout(args.output):
         _error("`build -o -`: build writes a folder (the executable and its C, or the dspic "
@@ -203,21 +274,43 @@ def cmd_build(args) -> int:
     if args.target == "host":
         _start_runtime_early(Path(args.file), None, args)
     try:
-        return _load_and_build(args)
+        return _load_and_build(args, on_built)
     finally:
         _stop_runtime_started()
 
 
-def _load_and_build(args) -> int:
+def trace_options(args):
+    """`--trace [--trace-link L]` as the build takes them (None: off);
+    BuildError for a link without --trace."""
+    from ..build.common import BuildError
+    from ..build.trace_table import TraceOptions
+    link = getattr(args, "trace_link", None)
+    if not getattr(args, "trace", False):
+        if link:
+            raise BuildError(f"--trace-link {link} chooses the link of the robot's trace: "
+                             "give --trace with it", status=EXIT_USAGE)
+        return None
+    return TraceOptions(link=link or "uart")
+
+
+def _load_and_build(args, on_built=None) -> int:
     from ..build.common import BuildError
     from .driver import build
     from ..base.output import OutputError, describe_os_error
+    try:
+        trace = trace_options(args)
+        if trace is not None:
+            from ..build.trace_table import check_trace_target
+            check_trace_target(args.target, trace)
+    except BuildError as exc:
+        _error(str(exc))
+        return exc.status
     program, status = _load(args)
     if program is None:
         return status
     try:
         message = build(program, args.target, Path(args.output) if args.output else None,
-                        getattr(args, "firmware", None))
+                        getattr(args, "firmware", None), trace)
     except BuildError as exc:
         _error(str(exc))
         return exc.status
@@ -228,20 +321,39 @@ def _load_and_build(args) -> int:
         _error(describe_os_error(exc, exc.filename, "use"))
         return EXIT_USAGE
     print(message)
+    if on_built is not None:
+        on_built(program)
     return EXIT_OK
 
 
 def cmd_run(args) -> int:
     from . import world as world_cli
     wants_world = world_cli.wants_extension(args)
+    problem = world_cli.file_problem(args)      # FILE and the world's own programs
+    if problem is not None:
+        _error(problem)
+        return EXIT_USAGE
     if args.seed is not None:       # the harness reads it (host/platform_host.c)
         os.environ["EPUCK_SEED"] = str(args.seed)
     if args.watchdog is not None:   # and this (host/cmain.c)
         os.environ["EPUCK_WATCHDOG_MS"] = str(args.watchdog)
+    from . import outputs
+    from ..sim.tracevars import TraceVarsError
+    try:
+        outputs.selection(args)
+    except TraceVarsError as exc:
+        _error(str(exc))
+        return EXIT_USAGE
+    if args.file is None:           # the world names every robot's program
+        return world_cli.run(args, None, _robot_program_loader(args), None)
     # A rule file built before goes straight to its executable, or in a
     # world to its robot (runcache.py).
     path, key, data = Path(args.file), None, None
     in_world = bool(args.world)     # (pictures of a run without a world: not cached)
+    if args.robot_trace and not args.int16:
+        _error("--robot-trace runs the 16-bit build with the robot's tracer: give --int16 "
+               "with it")
+        return EXIT_USAGE
     if path.suffix != ".c" and (in_world or not wants_world) and not args.defines \
             and not args.more and not args.int16:
         from ..build import runcache
@@ -253,6 +365,9 @@ def cmd_run(args) -> int:
             key = runcache.input_key(path, data, args.file, args.max_actions, args.max_events,
                                      kind="world" if in_world else "host")
             entry = runcache.lookup(key) if key is not None else None
+            if entry is not None and args.trace_vars is not None and not in_world \
+                    and "variables" not in entry.extra:
+                entry = None            # recorded before its variables were: built again
             if entry is not None:
                 _show_report_text(entry.shown_colour if _colour_wanted(sys.stderr)
                                   else entry.shown, "human")
@@ -265,9 +380,14 @@ def cmd_run(args) -> int:
                     _error(problem)
                     return EXIT_USAGE
                 from ..sim.harness import run_executable
+                bad = outputs.set_trace_vars(args, [entry.extra.get("variables")])
+                if bad is not None:
+                    return bad
                 try:
-                    return run_executable(Path(entry.exe), scenario=args.scenario,
-                                          time_limit_ms=args.time_limit, trace=args.trace)
+                    status = run_executable(Path(entry.exe), scenario=args.scenario,
+                                            time_limit_ms=args.time_limit, trace=args.trace)
+                    outputs.warn_if_large(args.trace, [args.trace])
+                    return status
                 except OSError:
                     pass        # gone since: build it again below
     if not wants_world:
@@ -343,6 +463,9 @@ def _load_and_run(args, path: Path, key, data, wants_world: bool) -> int:
         if problem:
             _error(problem)
             return EXIT_USAGE
+    if args.int16 and args.robot_trace:
+        from .monitor import run_robot_trace
+        return run_robot_trace(args, program)
     if args.int16:
         return _run_int16(args, program)
     if wants_world:
@@ -356,10 +479,17 @@ def _load_and_run(args, path: Path, key, data, wants_world: bool) -> int:
             runcache.record(key, exe, program.user_files
                             + [header for _, header, _ in user_headers(program)],
                             render_report(report, "human"),
-                            render_report(report, "human", colour=True), report.warning_count)
+                            render_report(report, "human", colour=True), report.warning_count,
+                            {"variables": list(program.variables)})
+    from . import outputs
+    bad = outputs.set_trace_vars(args, [program.variables])
+    if bad is not None:
+        return bad
     try:
-        return run_host(program, scenario=args.scenario, time_limit_ms=args.time_limit,
-                        trace=args.trace, on_built=remember)
+        status = run_host(program, scenario=args.scenario, time_limit_ms=args.time_limit,
+                          trace=args.trace, on_built=remember)
+        outputs.warn_if_large(args.trace, [args.trace])
+        return status
     except BuildError as exc:
         _error(str(exc))
         return exc.status
@@ -399,11 +529,12 @@ def _robot_program_loader(args):
         from ..diagnostics import Report
         from .driver import load_program
         from ..check.frontend import InputError
+        from ..check.defines import DefineError
         report = Report()
         try:
             program = load_program(path, report, args.max_actions, args.max_events,
-                                   more_c=more_c)
-        except InputError as exc:
+                                   more_c=more_c, defines=_defines_of(args, path))
+        except (InputError, DefineError) as exc:
             raise BuildError(str(exc), status=EXIT_USAGE) from None
         _print_report(report, "human")
         if program is None or _failed(report, getattr(args, "werror", False)):

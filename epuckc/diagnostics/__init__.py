@@ -102,5 +102,28 @@ class Collector:
     def has_errors(self) -> bool:
         return ERROR in map(_SEVERITY, self.items)       # (at C speed)
 
+    def capture(self) -> "_Captured":
+        """`with sink.capture() as said:` what is reported to this collector
+        meanwhile goes to the list `said` instead (a step whose diagnostics
+        are looked at, kept or dropped before any is said); the collector
+        stays the one object its holders were given."""
+        return _Captured(self)
+
+
+class _Captured:
+    __slots__ = ("_sink", "_outer")
+
+    def __init__(self, sink: Collector):
+        self._sink = sink
+
+    def __enter__(self) -> list:
+        self._outer = self._sink.items
+        said = self._sink.items = []
+        return said
+
+    def __exit__(self, *exc):
+        self._sink.items = self._outer
+        return False
+
 
 # ---- renderings -------------------------------------------------------------

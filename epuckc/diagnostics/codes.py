@@ -15,6 +15,7 @@ CODES = {
     "E006": "a C file given to `check`",
     "E007": "number written with an exponent",
     "E008": "name with letters that are not ASCII",
+    "E009": "hexadecimal or binary number with a bad digit",
     # names
     "E010": "unknown event",
     "E011": "unknown action",
@@ -61,12 +62,20 @@ CODES = {
     "E052": "a changing value where a fixed one is needed",
     "E054": "unknown function",
     "E055": "`repeat` on `every` or `after`",
-    "E056": "expression nested too deeply",
+    "E056": "nested too deeply (operators, calls, indexes, `if`s, named actions spliced in)",
     "E061": "array index outside the array, or an array of no (or too many) elements",
     "E062": "an array where one value is wanted, or an index of what is not an array",
     "E063": "`dot` of arrays of different sizes",
     "E070": "a device the target does not have",
     "E080": "`then` inside an `if` branch",
+    # Aseba's constructs (syntax/aseba.py)
+    "E090": "Aseba's `while` or `for` loop",
+    "E091": "`++` or `--`",
+    "E092": "Aseba's `sub` or `callsub`",
+    "E093": "Aseba's `onevent`",
+    "E094": "Aseba's `emit`",
+    "E095": "Aseba's `call` of a native function",
+    "E096": "`sort`",
     # warnings
     "W001": "timer rule that can never fire",
     "W002": "sensor rule that can never fire",
@@ -88,6 +97,7 @@ CODES = {
     "W020": "a value that can leave its range and saturate",
     "W022": "an array index that can leave the array",
     "W030": "a value that can leave the range its action carries",
+    "W070": "a device only a world gives, in a run without one",
     "W080": "an `if` branch that never runs",
 }
 

@@ -34,6 +34,48 @@ class GeneratedC:
     c_text: str
     header_name: Optional[str] = None      # `<program>_externs.h`, when there are externs
     header_text: Optional[str] = None
+    # the names the host's trace shows (name_event, name_action, ...), for
+    # the table of the robot's trace (build/trace_table.py): trace_names()
+    names: Optional[dict] = None
+
+
+def c_string_value(literal: str) -> str:
+    """The text of a C string literal as lower.program.c_string writes
+    them (printable ASCII, escaped quotes, backslashes and `?`, octal escapes of UTF-8
+    bytes)."""
+    body, out, i = literal[1:-1], bytearray(), 0
+    while i < len(body):
+        if body[i] == "\\":
+            if body[i + 1] in "01234567":
+                out.append(int(body[i + 1:i + 4], 8))
+                i += 4
+                continue
+            out += body[i + 1].encode("ascii")
+            i += 2
+            continue
+        out += body[i].encode("ascii")
+        i += 1
+    return out.decode("utf-8", "replace")
+
+
+def trace_names(cprogram) -> dict:
+    """What the program names in the host's trace, by id: its events,
+    actions, the steps of each sequence (by the id of the action that runs
+    it), modes and variables; and the geometry of its robot block (None:
+    the runtime's defaults)."""
+    geometry = None
+    if cprogram.geometry:
+        wheel, axle, steps = (int(v.strip().rstrip("L")) for v in cprogram.geometry.split(","))
+        geometry = {"wheel_circumference_um": wheel, "axle_um": axle, "steps_per_rev": steps}
+    return {
+        "events": [c_string_value(e.event_label) for e in cprogram.events],
+        "actions": [c_string_value(a.action_label) for a in cprogram.actions],
+        "steps": {str(s.action_id): [c_string_value(label) for label in s.labels]
+                  for s in cprogram.sequences if s.action_id >= 0},
+        "modes": {str(i): c_string_value(label) for i, label in cprogram.modes},
+        "variables": [c_string_value(v.label) for v in cprogram.variables],
+        "geometry": geometry,
+    }
 
 
 def emit_program(program: CheckedProgram, source_text: str, program_name: str) -> GeneratedC:
@@ -54,7 +96,7 @@ def emit_program(program: CheckedProgram, source_text: str, program_name: str) -
     finally:
         if collecting:
             gc.enable()
-    return GeneratedC(c_text, cprogram.externs_header, header)
+    return GeneratedC(c_text, cprogram.externs_header, header, trace_names(cprogram))
 
 
 def emit_c(program: CheckedProgram, source_text: str, program_name: str = "program") -> str:

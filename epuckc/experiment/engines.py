@@ -1,15 +1,21 @@
 """Where the runs run. `local`: a process pool on this machine's cores (in
 this process with one worker); `dask`: a Dask distributed cluster, at a
 scheduler's address or, without one, a local cluster of `workers`
-processes. Either calls `done(task, result)` in this process as each run
+processes; `slurm` (slurm.py): a job array of a batch scheduler. Each
+takes batches (plan.Batch: runs of one job, which travel together) and
+calls `done(task, result)` in this process for each run as its batch
 ends, in the order they end; the results do not depend on it (results.py
-sorts them). A worker lost with its run (a crash, a kill) gives a result
-with the error, marked to run again when the experiment resumes."""
+sorts them). A worker lost with its batch (a crash, a kill) gives each of
+its runs a result with the error, marked to run again when the experiment
+resumes. `open_engine` keeps a pool or a cluster's client open across
+several rounds of batches (a tune's); `run` is one round (launch.py
+chooses among these and slurm.py's).
+"""
 from __future__ import annotations
 
 import os
 
-from .task import execute, lost, worker_started
+from .task import execute_batch, lost, worker_started
 
 DASK_MISSING = ("--engine dask needs Dask's distributed scheduler, which is not installed; "
                 "install it with: pip install 'epuckc[cluster]' (or: pip install dask distributed)")
@@ -29,31 +35,50 @@ def default_workers() -> int:
         return os.cpu_count() or 1
 
 
-def run_local(tasks: list, workers: int, done):
-    if workers <= 1 or len(tasks) <= 1:
-        for task in tasks:
-            done(task, execute(task))
-        return
-    from concurrent.futures import ProcessPoolExecutor, as_completed
-    from concurrent.futures.process import BrokenProcessPool
-    pool = ProcessPoolExecutor(max_workers=min(workers, len(tasks)), mp_context=_pool_context(),
-                               initializer=worker_started)
-    try:
-        futures = {pool.submit(execute, task): task for task in tasks}
-        for future in as_completed(futures):
-            task = futures[future]
-            try:
-                result = future.result()
-            except BrokenProcessPool:
-                result = lost(task, "the worker process running this run died")
-            except Exception as exc:        # pickling and the like: this run only
-                result = lost(task, f"{type(exc).__name__}: {exc}")
-            done(task, result)
-    except BaseException:
-        pool.shutdown(wait=False, cancel_futures=True)
-        raise
-    pool.shutdown()
-    _stop_fork_server()
+class LocalEngine:
+    """A process pool, started at the first round with more than one batch
+    and kept for the next rounds; one worker runs in this process."""
+
+    def __init__(self, workers: int):
+        self.workers = workers
+        self.pool = None
+
+    def run(self, batches: list, done):
+        if self.workers <= 1 or (len(batches) <= 1 and self.pool is None):
+            for batch in batches:
+                for task, result in zip(batch.tasks, execute_batch(batch)):
+                    done(task, result)
+            return
+        from concurrent.futures import ProcessPoolExecutor, as_completed
+        from concurrent.futures.process import BrokenProcessPool
+        if self.pool is None:
+            self.pool = ProcessPoolExecutor(max_workers=self.workers, mp_context=_pool_context(),
+                                            initializer=worker_started)
+        try:
+            futures = {self.pool.submit(execute_batch, batch): batch for batch in batches}
+            for future in as_completed(futures):
+                batch = futures[future]
+                try:
+                    results = future.result()
+                except BrokenProcessPool:
+                    results = [lost(t, "the worker process running this run died")
+                               for t in batch.tasks]
+                    self.close()
+                except Exception as exc:        # pickling and the like: this batch only
+                    results = [lost(t, f"{type(exc).__name__}: {exc}") for t in batch.tasks]
+                for task, result in zip(batch.tasks, results):
+                    done(task, result)
+        except BaseException:
+            if self.pool is not None:
+                self.pool.shutdown(wait=False, cancel_futures=True)
+                self.pool = None
+            raise
+
+    def close(self):
+        if self.pool is not None:
+            self.pool.shutdown()
+            self.pool = None
+            _stop_fork_server()
 
 
 def _pool_context():
@@ -102,44 +127,51 @@ def dask_available() -> bool:
     return True
 
 
-def run_dask(tasks: list, workers: int, scheduler, done):
-    try:
-        from distributed import Client, LocalCluster, as_completed
-    except ImportError:
-        raise EngineError(DASK_MISSING) from None
-    cluster = None
-    try:
-        if scheduler:
-            client = Client(scheduler, timeout=f"{CONNECT_TIMEOUT_S}s")
-        else:
-            cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                                   dashboard_address=None)
-            client = Client(cluster)
-    except (OSError, TimeoutError) as exc:
-        raise EngineError(f"cannot reach the Dask scheduler {scheduler or '(local)'} within "
-                          f"{CONNECT_TIMEOUT_S} s: {exc}") from None
-    try:
-        futures = client.map(execute, tasks, key=[f"epuckc-run-{t.key}" for t in tasks],
-                             pure=False)
-        by_key = {f.key: t for f, t in zip(futures, tasks)}
-        for future in as_completed(futures):
-            task = by_key[future.key]
-            try:
-                result = future.result()
-            except Exception as exc:        # KilledWorker, a lost connection, ...
-                result = lost(task, f"the Dask worker was lost ({type(exc).__name__}: "
-                                    f"{str(exc).splitlines()[0] if str(exc) else ''})")
-            done(task, result)
-    except BaseException:
-        client.cancel(futures) if "futures" in locals() else None
-        raise
-    finally:
-        client.close()
-        if cluster is not None:
-            cluster.close()
+class DaskEngine:
+    """A client of a Dask cluster (at `scheduler`, or a local one of
+    `workers` processes), kept for the next rounds."""
 
+    def __init__(self, workers: int, scheduler):
+        try:
+            from distributed import Client, LocalCluster
+        except ImportError:
+            raise EngineError(DASK_MISSING) from None
+        self.cluster = None
+        try:
+            if scheduler:
+                self.client = Client(scheduler, timeout=f"{CONNECT_TIMEOUT_S}s")
+            else:
+                self.cluster = LocalCluster(n_workers=workers, threads_per_worker=1,
+                                            processes=True, dashboard_address=None)
+                self.client = Client(self.cluster)
+        except (OSError, TimeoutError) as exc:
+            if self.cluster is not None:
+                self.cluster.close()
+            raise EngineError(f"cannot reach the Dask scheduler {scheduler or '(local)'} within "
+                              f"{CONNECT_TIMEOUT_S} s: {exc}") from None
 
-def run(engine: str, tasks: list, workers: int, scheduler, done):
-    if engine == "dask":
-        return run_dask(tasks, workers, scheduler, done)
-    return run_local(tasks, workers, done)
+    def run(self, batches: list, done):
+        from distributed import as_completed
+        futures = []
+        try:
+            futures = self.client.map(execute_batch, batches,
+                                      key=[f"epuckc-batch-{b.key}" for b in batches], pure=False)
+            by_key = {f.key: b for f, b in zip(futures, batches)}
+            for future in as_completed(futures):
+                batch = by_key[future.key]
+                try:
+                    results = future.result()
+                except Exception as exc:        # KilledWorker, a lost connection, ...
+                    why = (f"the Dask worker was lost ({type(exc).__name__}: "
+                           f"{str(exc).splitlines()[0] if str(exc) else ''})")
+                    results = [lost(t, why) for t in batch.tasks]
+                for task, result in zip(batch.tasks, results):
+                    done(task, result)
+        except BaseException:
+            self.client.cancel(futures)
+            raise
+
+    def close(self):
+        self.client.close()
+        if self.cluster is not None:
+            self.cluster.close()

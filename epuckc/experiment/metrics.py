@@ -3,7 +3,7 @@ counts: per robot, and for the swarm.
 
 | metric | columns | per robot | swarm |
 |---|---|---|---|
-| contacts | contacts, contacts_walls, contacts_objects, contacts_robots | physics steps touching walls, obstacles, robots | sum |
+| contacts | contacts, contacts_walls, contacts_objects, contacts_robots | physics steps touching anything; walls, obstacles, robots | sum |
 | distance | distance_mm | length of the path through the poses (every 100 ms) | sum |
 | coverage | coverage_cells | 5 cm cells of the floor the path crossed | cells of all paths |
 | still | still_s | time still, as the pictures' band (< 5 mm in any 1 s, for more than 2 s) | mean |
@@ -16,6 +16,8 @@ from __future__ import annotations
 
 import json
 import math
+from dataclasses import dataclass
+from typing import Optional
 
 CELL_MM = 50.0
 SAMPLE_MM = 5.0
@@ -35,27 +37,41 @@ def columns(metrics: list) -> list:
 def _cells(poses: list) -> set:
     """The 5 cm cells a path crosses (the segments between poses sampled
     every 5 mm)."""
-    cells = set()
-    for i, (_, x, y, _h) in enumerate(poses):
-        cells.add((math.floor(x / CELL_MM), math.floor(y / CELL_MM)))
+    return {cell for _, cell in crossed(poses)}
+
+
+def crossed(poses: list):
+    """(t_ms, cell) for each 5 cm cell the path reaches, at the pose that
+    ends the segment where it does (a cell may come more than once)."""
+    for i, (t, x, y, _h) in enumerate(poses):
         if i:
             _, x0, y0, _ = poses[i - 1]
             n = int(math.hypot(x - x0, y - y0) // SAMPLE_MM)
             for k in range(1, n + 1):
                 f = k / (n + 1)
-                cells.add((math.floor((x0 + (x - x0) * f) / CELL_MM),
-                           math.floor((y0 + (y - y0) * f) / CELL_MM)))
-    return cells
+                yield t, (math.floor((x0 + (x - x0) * f) / CELL_MM),
+                          math.floor((y0 + (y - y0) * f) / CELL_MM))
+        yield t, (math.floor(x / CELL_MM), math.floor(y / CELL_MM))
 
 
-def measure(trace: str, result, start: tuple, metrics: list, duration_ms: int,
-            variables: list) -> tuple:
-    """(values, cells): one robot's metrics (column -> number) and the set
-    of cells it covered. `start` is its (x_mm, y_mm, heading) at 0 ms;
-    `variables` its program's (name, initial value)."""
+@dataclass
+class Track:
+    """What one robot's trace says for the metrics: its poses (t_ms, x, y,
+    heading; the first its start), each variable's changes (t_ms, value,
+    from its initial value at 0) and when it exited (None: it did not)."""
+    poses: list
+    changes: dict
+    exit_ms: Optional[int]
+
+    def end_ms(self, duration_ms: int) -> int:
+        return self.exit_ms if self.exit_ms is not None else duration_ms
+
+
+def track(trace: str, start: tuple, variables: list) -> Track:
+    """One robot's Track from its trace; `start` is its (x_mm, y_mm,
+    heading) at 0 ms, `variables` its program's (name, initial value)."""
     poses = [(0, start[0], start[1], start[2])]
     exit_ms = None
-    values = dict(variables)
     changes = {name: [(0, v)] for name, v in variables}
     for line in trace.splitlines():
         if not line.startswith("{"):
@@ -63,14 +79,20 @@ def measure(trace: str, result, start: tuple, metrics: list, duration_ms: int,
         rec = json.loads(line)
         kind = rec.get("kind")
         if kind == "set":
-            values[rec["var"]] = rec["value"]
             changes.setdefault(rec["var"], [(0, 0)]).append((rec["t_ms"], rec["value"]))
             continue
         if "x_mm" in rec:
             poses.append((rec["t_ms"], rec["x_mm"], rec["y_mm"], rec["heading_deg"]))
         if kind == "exit" and exit_ms is None:
             exit_ms = rec["t_ms"]
-    end_ms = exit_ms if exit_ms is not None else duration_ms
+    return Track(poses, changes, exit_ms)
+
+
+def measure(robot: Track, result, metrics: list, duration_ms: int) -> tuple:
+    """(values, cells): one robot's metrics (column -> number) and the set
+    of cells it covered; `result` is its sim.enki.RobotResult."""
+    poses = robot.poses
+    end_ms = robot.end_ms(duration_ms)
     out = {}
     cells = set()
     for m in metrics:
@@ -79,7 +101,7 @@ def measure(trace: str, result, start: tuple, metrics: list, duration_ms: int,
             out["contacts_walls"] = result.wall_contacts
             out["contacts_objects"] = result.object_contacts
             out["contacts_robots"] = result.robot_contacts
-            out["contacts"] = result.wall_contacts + result.object_contacts + result.robot_contacts
+            out["contacts"] = result.contact_steps
         elif m == "distance":
             out["distance_mm"] = sum(math.hypot(b[1] - a[1], b[2] - a[2])
                                      for a, b in zip(poses, poses[1:]))
@@ -95,13 +117,14 @@ def measure(trace: str, result, start: tuple, metrics: list, duration_ms: int,
             _, x, y, h = poses[-1]
             out.update(final_x_mm=x, final_y_mm=y, final_heading_deg=h)
         elif kind == "var":
-            out[m] = values.get(name, "")
+            changes = robot.changes.get(name)
+            out[m] = changes[-1][1] if changes else ""
         elif kind == "mean":
-            out[m] = _time_mean(changes.get(name), end_ms)
+            out[m] = time_mean(robot.changes.get(name), end_ms)
     return out, cells
 
 
-def _time_mean(changes, end_ms: int):
+def time_mean(changes, end_ms: int):
     """The time average over [0, end_ms] of a value that holds from each
     change to the next."""
     if not changes:

@@ -1,6 +1,8 @@
 """Experiment files: TOML, read with the standard library (tomllib), every
 problem reported as `file:line:col: error: what is wrong` with the line, a
-caret and how to fix it. tomllib gives no positions for the values it
+caret and how to fix it (a misspelt key, table or metric: the name meant),
+all of them at once in the file's order, a constant or a variable no program
+declares among them. tomllib gives no positions for the values it
 reads, so the line of a key is found by scanning the text (`_Positions`).
 
     program = "brait.epk"          # or a list: one more axis of the grid
@@ -13,6 +15,8 @@ reads, so the line of a key is found by scanning the text (`_Positions`).
     [params]                       # a grid over the programs' constants
     GAIN = [1, 3]
 
+and the axes of axes.py (a list of worlds, the robot count `robots`, the
+`[placement]` of its copies, `series` over time at a `period`).
 docs/experiments.md is the reference.
 """
 from __future__ import annotations
@@ -22,7 +26,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Optional
 
-KEYS = ("program", "world", "duration", "seeds", "metrics", "params", "traces", "timeout")
+KEYS = ("program", "world", "duration", "seeds", "metrics", "params", "traces", "timeout",
+        "series", "period", "placement")
 SIMPLE_METRICS = ("contacts", "distance", "coverage", "still", "exit", "pose")
 DEFAULT_METRICS = ["contacts", "distance", "coverage"]
 MAX_SEEDS = 1_000_000
@@ -53,6 +58,11 @@ class Experiment:
     timeout_s: float = 300.0
     lines: dict = field(default_factory=dict)      # key -> (line, col), for later errors
     shown: str = ""                                # the file's name as the user gave it
+    worlds: list = field(default_factory=list)     # Paths; more than one: an axis of the grid
+    series: list = field(default_factory=list)     # metrics over time (axes.py)
+    period_ms: int = 1000                          # ... sampled every period
+    placement: object = None                       # swarm.Placement of the robots' copies
+    extra: dict = field(default_factory=dict)      # key -> what an extension's reader gave
 
     def where(self, key: str) -> tuple:
         return self.lines.get(key, (1, 1))
@@ -85,7 +95,10 @@ class _Positions:
         return ExperimentError(out + (f"\nhelp: {help}" if help else ""))
 
     def key(self, key: str, table: str = "") -> tuple:
-        return self.at.get((table, key), (1, 1))
+        """Where a key's value is written; a table's `[name]` for a key that
+        is a table (`[param]`); the file's start when neither is found."""
+        return self.at.get((table, key)) or (self.at.get((key, None)) if not table else None) \
+            or (1, 1)
 
     def item(self, key: str, value, table: str = "", nth: int = 0) -> tuple:
         """Where an element of a key's list is written (the nth one equal
@@ -97,7 +110,9 @@ class _Positions:
         for text in texts:
             at = [m.start() for m in re.finditer(re.escape(text), raw)
                   if m.start() >= col - 1 and (text[0] in "\"'"
-                                                or not raw[m.end():m.end() + 1].isalnum())]
+                                                or not (raw[m.end():m.end() + 1].isalnum()
+                                                        or raw[m.start() - 1:m.start()]
+                                                        .isalnum()))]
             if len(at) > nth:
                 return line, at[nth] + 1
         return line, col
@@ -114,8 +129,16 @@ def parse_duration(value) -> Optional[int]:
     return int(ms) if ms == int(ms) else None
 
 
-def read_experiment(path: Path, shown: Optional[str] = None) -> Experiment:
-    import tomllib
+def read_experiment(path: Path, shown: Optional[str] = None,
+                    extensions: Optional[dict] = None) -> Experiment:
+    """`extensions`: more top-level keys (a table such as `tune`'s
+    [search]), each KEY -> read(data, pos, fail) whose value is
+    `Experiment.extra[KEY]`; its errors join the file's others."""
+    try:
+        import tomllib
+    except ModuleNotFoundError:         # Python before 3.11: the same parser, as tomli
+        import tomli as tomllib
+    from . import axes
     shown = shown or str(path)
     try:
         text = Path(path).read_text(encoding="utf-8")
@@ -141,21 +164,29 @@ def read_experiment(path: Path, shown: Optional[str] = None) -> Experiment:
     errors = []
 
     def fail(where, message, help=""):
-        errors.append(str(pos.error(shown, where, message, help)))
+        errors.append((where, str(pos.error(shown, where, message, help))))
 
     base = Path(path).parent
+    extensions = extensions or {}
+    keys = KEYS + tuple(extensions)
     for key in data:
-        if key not in KEYS:
-            fail(pos.key(key), f"unknown key `{key}`",
-                 f"an experiment file has {', '.join(KEYS)}")
+        if key not in keys:
+            what = "table" if isinstance(data[key], dict) else "key"
+            fail(pos.key(key), f"unknown {what} `{key}`",
+                 _did_you_mean(key, keys) or f"an experiment file has {', '.join(keys)}")
     programs = _programs(data, pos, base, fail)
     world = None
+    worlds = []
     if "world" not in data:
         fail((1, 1), "the experiment names no world", 'add a line: world = "arena.world"')
+    elif isinstance(data["world"], list):
+        worlds = axes.worlds(data, pos, base, fail)
+        world = worlds[0] if worlds else None
     elif not isinstance(data["world"], str):
         fail(pos.key("world"), "the world is a file name in quotes", 'world = "arena.world"')
     else:
         world = base / data["world"]
+        worlds = [world]
         if not world.is_file():
             fail(pos.key("world"), f"the world file {data['world']} does not exist",
                  "the path is relative to the experiment file's folder")
@@ -170,6 +201,15 @@ def read_experiment(path: Path, shown: Optional[str] = None) -> Experiment:
     seeds = _seeds(data, pos, fail)
     metrics = _metrics(data, pos, fail)
     params = _params(data, pos, fail)
+    if isinstance(data.get("params"), dict) and axes.ROBOTS in data["params"]:
+        value = data["params"][axes.ROBOTS]
+        params[axes.ROBOTS] = axes.robot_counts(value if isinstance(value, list) else [value],
+                                                pos, fail)
+    series, period_ms = axes.series(data, pos, fail, duration, parse_duration)
+    placement = axes.placement(data, pos, fail)
+    extra = {key: read(data, pos, fail) for key, read in extensions.items()}
+    if not errors or programs or worlds:        # what the programs define, with the rest
+        _defined(params, metrics, programs, worlds, pos, fail)
     traces = data.get("traces", False)
     if not isinstance(traces, bool):
         fail(pos.key("traces"), "traces is true or false", "traces = true")
@@ -182,11 +222,14 @@ def read_experiment(path: Path, shown: Optional[str] = None) -> Experiment:
             timeout_ms = 300_000
     if errors:
         count = f"{len(errors)} error{'s' if len(errors) > 1 else ''}"
-        raise ExperimentError("\n\n".join(errors) + f"\n\n{count} in {shown}")
-    lines = {key: pos.key(key) for key in KEYS}
+        # all at once, in the file's order
+        errors.sort(key=lambda e: e[0])
+        raise ExperimentError("\n\n".join(text for _, text in errors) + f"\n\n{count} in {shown}")
+    lines = {key: pos.key(key) for key in keys}
     lines.update({f"params.{k}": pos.key(k, "params") for k in params})
     return Experiment(Path(path), programs, world, duration, seeds, metrics, params,
-                      traces, timeout_ms / 1000, lines, shown)
+                      traces, timeout_ms / 1000, lines, shown, worlds, series, period_ms,
+                      placement, extra)
 
 
 def _programs(data, pos, base, fail) -> list:
@@ -247,13 +290,69 @@ def _metrics(data, pos, fail) -> list:
             if m not in out:
                 out.append(m)
         elif m in ("messages", "sent", "received"):
-            fail(pos.item("metrics", m), f"`{m}`: the rule language has no messages between "
-                 "robots yet, so there are none to count")
+            fail(pos.item("metrics", m), f"`{m}`: messages are not a metric of their own",
+                 "count them in a variable of the program (`on message do heard += 1`) and "
+                 "ask for it: var:heard")
         else:
             fail(pos.item("metrics", m), f"unknown metric `{m}`",
+                 _did_you_mean(m, SIMPLE_METRICS) or
                  f"the metrics are {', '.join(SIMPLE_METRICS)}, var:NAME (a variable's final "
                  "value) and mean:NAME (its time average)")
     return out
+
+
+def _did_you_mean(word: str, names) -> str:
+    """`did you mean `seeds`?` for `seed`, or ""."""
+    import difflib
+    close = difflib.get_close_matches(word, list(names), n=1, cutoff=0.6)
+    return f"did you mean `{close[0]}`?" if close else ""
+
+
+def _names(path: Path) -> tuple:
+    """The constants and the traced variables a rule file declares, or
+    None when it cannot be read."""
+    from ..check.defines import declared_of
+    try:
+        return declared_of(path.read_text(encoding="utf-8"), str(path))
+    except (OSError, UnicodeDecodeError):
+        return None
+
+
+def _defined(params: dict, metrics: list, programs: list, worlds: list, pos, fail) -> None:
+    """A parameter no program of the experiment (its own, the world's
+    robots') defines, a metric of a variable none declares: said with the
+    file's other problems (plan.py finds them too, but only once the rest
+    is right)."""
+    from .axes import ROBOTS
+    wanted = [m for m in metrics if m.partition(":")[0] in ("var", "mean")]
+    if not set(params) - {ROBOTS} and not wanted:
+        return
+    from ..sim.world import WorldError, parse_world
+    paths = list(programs)
+    for world in worlds:
+        if not world.is_file():
+            continue
+        try:
+            paths += [r.program for r in parse_world(world).robots if r.program is not None]
+        except WorldError:
+            return              # plan.py says what is wrong with the world
+    consts, variables = set(), set()
+    for path in paths:
+        found = _names(path) if path.suffix == ".epk" else (set(), set())
+        if found is None:
+            return              # and plan.py (the checker) why it cannot be read
+        consts |= found[0]
+        variables |= found[1]
+    for name in params:
+        if name != ROBOTS and name not in consts:
+            fail(pos.key(name, "params"), f"no program of the experiment has a constant {name}",
+                 _did_you_mean(name, sorted(consts)) or "a parameter is a `const` of a program")
+    for m in wanted:
+        name = m.partition(":")[2]
+        if name not in variables:
+            fail(pos.item("metrics", m), f"`{m}`: no program of the experiment declares a "
+                 f"variable {name}", _did_you_mean(name, sorted(variables))
+                 or f"declared: {', '.join(sorted(variables)) or 'none'}")
 
 
 def _params(data, pos, fail) -> dict:
@@ -266,7 +365,7 @@ def _params(data, pos, fail) -> dict:
     out = {}
     for name, values in table.items():
         where = pos.key(name, "params")
-        if not _NAME.match(name) or name == "program":
+        if not _NAME.match(name) or name in ("program", "world"):
             fail(where, f"`{name}` cannot name a constant of the language")
             continue
         values = values if isinstance(values, list) else [values]

@@ -14,7 +14,7 @@ from ..stdlib.table import (ACTION_ALIASES, AGGREGATES, CHOICE, EVENT_ALIASES, F
                             STANDARD_EVENTS, STANDARD_READINGS, kind_name)
 from ..stdlib.units import KIND_UNITS, UNITS
 from ..syntax import ast
-from ..syntax.lexer import KEYWORDS
+from ..syntax.lexer import KEYWORDS, STATEMENT_STARTS
 from .hover import _line_of
 from .incremental import Analysis
 
@@ -156,11 +156,12 @@ def _value_items(analysis: Analysis, kind: Optional[str] = None) -> list:
                for name, (params, doc) in {**FUNCTIONS, **AGGREGATES}.items()])
 
 
-_STARTS = {"_ROBOT", "_CONST", "_VAR", "_ACTION", "_EXTERN", "_ON", "_RULE", "_WHEN", "_EVERY",
-           "_AFTER"}
+# what may start a statement: the lexer's own list (where the parser restarts)
+_STARTS = STATEMENT_STARTS
 # after these, an expression's operand comes
 _OPERAND_BEFORE = {"_PLUS", "_STAR", "_SLASH", "_PERCENT", "CMP", "_AND", "_OR", "_NOT", "_WHEN",
-                   "_IF", "_PLUSEQ", "_MINUSEQ", "_LBRACK"}
+                   "_IF", "_PLUSEQ", "_MINUSEQ", "_LBRACK", "_AMP", "_PIPE", "_CARET",
+                   "_TILDE", "_SHL", "_SHR"}
 
 
 def _unit_items(kind: Optional[str]) -> list:

@@ -106,7 +106,8 @@ def _collect_comments(text: str, tokens: list) -> _Comments:
 
 _ASSIGN_TOKENS = {"=": "_EQUAL", "+=": "_PLUSEQ", "-=": "_MINUSEQ"}
 _OPERATOR_TOKENS = {"+": "_PLUS", "-": "MINUS", "*": "_STAR", "/": "_SLASH", "%": "_PERCENT",
-                    "and": "_AND", "or": "_OR"}
+                    "and": "_AND", "or": "_OR", "&": "_AMP", "|": "_PIPE", "^": "_CARET",
+                    "<<": "_SHL", ">>": "_SHR"}
 
 
 class _Builder:
@@ -296,7 +297,10 @@ class _Builder:
             self.sep(" ")
             self.token(_ASSIGN_TOKENS[node.op])
             self.sep(" ")
-            self.expr(node.value)
+            if isinstance(node.value, ast.ArrayLit):        # `a = [e0, e1, ...]`
+                self.arguments(node.value.items, self.expr, ("_LBRACK", "_RBRACK"))
+            else:
+                self.expr(node.value)
             return
         if isinstance(node, (ast.CancelCall, ast.EnterCall)):
             self.token("_CANCEL" if isinstance(node, ast.CancelCall) else "_ENTER")
@@ -390,7 +394,7 @@ class _Builder:
                 self.token("_NOT")
                 self.sep(" ")
             else:
-                self.token("MINUS")
+                self.token("_TILDE" if node.op == "~" else "MINUS")
             self.expr(node.operand)
         elif cls is ast.Paren:
             self.token("_LPAR")
@@ -403,6 +407,15 @@ class _Builder:
             self.token("NAME")
             self.token("_LBRACK")
             self.expr(node.index)
+            self.token("_RBRACK")
+        elif cls is ast.Slice:          # `a[1:4]`, `a[:4]`, `a[1:]`
+            self.token("NAME")
+            self.token("_LBRACK")
+            if node.lo is not None:
+                self.expr(node.lo)
+            self.token("_COLON")
+            if node.hi is not None:
+                self.expr(node.hi)
             self.token("_RBRACK")
         else:
             self.value(node)

@@ -5,12 +5,11 @@ from __future__ import annotations
 from typing import Iterator, Optional
 
 from ..check.messages import _shown
-from ..diagnostics import Collector
 from ..stdlib.table import (ACTION_ALIASES, AGGREGATES, CHOICE, EVENT_ALIASES, FUNCTIONS,
                             READING_ARRAYS, SENSOR_CONDITION_DOC, STANDARD_ACTIONS, STANDARD_EVENTS,
                             STANDARD_READINGS, Param)
-from ..stdlib.units import (ANGLE, ARTICLE, DISTANCE, DURATION, INT, KIND_UNITS, NATURAL_UNIT,
-                            SPEED, UNITS)
+from ..stdlib.units import (ANGLE, ARTICLE, DISTANCE, DURATION, INT, KIND_UNITS, KINDS,
+                            NATURAL_UNIT, SPEED, UNITS)
 from ..syntax import ast
 from .incremental import Analysis
 from .navigate import ACTION, _inside, _text_of, occurrences, resolve, statement_at
@@ -100,21 +99,15 @@ def on_robot(analysis: Analysis, value, param) -> Optional[str]:
     """What a value becomes on the robot where `param` wants it, computed
     by the checker's own conversion ("50 cm = 3,882 steps at this robot's
     geometry"); None when the value is not valid there."""
-    if param.kind == CHOICE:
-        return None         # a name of the set: nothing to convert
+    if param.kind == CHOICE or param.kind not in KINDS:
+        return None         # a name of the set, `fill`'s array: nothing to convert
     if not isinstance(value, (ast.Number, ast.ConstRef)):
         return None         # an expression: its hover gives its unit and interval
     checker = analysis.checker
-    # (on copies: the checker's own sets may be frozen, passes.FactCounts)
-    saved, saved_used = checker.diags, checker.const_used
-    checker.diags, checker.const_used = Collector(checker.diags.source), set(saved_used)
-    try:
-        q = checker._value(value, param.kind, param.name)
-        v = checker._to_runtime(q, param, value) if q is not None else None
-    finally:
-        checker.diags, checker.const_used = saved, saved_used
-    if v is None:
+    found = checker.converted(value, param)
+    if found is None or found[1] is None:
         return None
+    q, v = found
     shown = _shown(value)
     geo = checker.geo
     if param.kind == DISTANCE:
@@ -170,6 +163,11 @@ def _children(node) -> Iterator:
     elif isinstance(node, ast.Index):
         yield node.name
         yield node.index
+    elif isinstance(node, ast.Slice):
+        yield node.name
+        yield from (bound for bound in (node.lo, node.hi) if bound is not None)
+    elif isinstance(node, ast.ArrayLit):
+        yield from node.items
     elif isinstance(node, ast.IfAction):
         for branch in node.branches:
             yield branch.condition
@@ -243,14 +241,7 @@ def _expression_hover(analysis: Analysis, node) -> Optional[str]:
         return None
     if isinstance(node, ast.Number) or isinstance(node, ast.ConstRef):
         return None
-    saved, saved_used = checker.diags, (checker.const_used, checker.vars_used)
-    checker.diags = Collector(checker.diags.source)
-    checker.const_used, checker.vars_used = set(saved_used[0]), set(saved_used[1])
-    try:
-        e = checker._expr(node)
-    finally:
-        checker.diags = saved
-        checker.const_used, checker.vars_used = saved_used
+    e = checker.evaluated(node)
     if e is None:
         return None
     text = _shown(node)

@@ -104,12 +104,12 @@ class Analysis:
         ident = line // VLINE
         if ident == 0:
             return line
-        return self._starts[ident] + line % VLINE - 1
+        return self.statement_lines[ident] + line % VLINE - 1
 
     def real_words(self, d: Diagnostic) -> Diagnostic:
         """A diagnostic whose words name lines (`(line 12)`, `the rules of
         lines 14, 15`: W009 names rules so) with those lines made real."""
-        return real_words(d, self._starts)
+        return real_words(d, self.statement_lines)
 
     def real(self, span: Span) -> Span:
         """A span of the AST (virtual lines) in the text's lines."""
@@ -167,7 +167,7 @@ class Analysis:
 
     def __post_init__(self):
         self._source = None
-        self._starts = None         # statement id -> its first line (pieces.FirstLines)
+        self.statement_lines = None         # statement id -> its first line (pieces.FirstLines)
         self._line_starts = None
         self._pieces = None         # (the analyser's pieces and their index, statements_on)
         self._piece_of = None
@@ -341,7 +341,7 @@ class Analyzer:
     def _finish(self, text, layout, first_lines, program, checker, checked, items,
                 changed=None, segments=None, dropped=()) -> Analysis:
         analysis = Analysis(self.name, text, layout, program, checker, checked)
-        analysis._starts = first_lines
+        analysis.statement_lines = first_lines
         analysis.diagnostics = self._shown.show(analysis, items, changed, segments, dropped)
         analysis.delta = self._shown.delta
         return analysis

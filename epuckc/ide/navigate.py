@@ -51,6 +51,17 @@ def _value_names(value, statement) -> Iterator[Occurrence]:
         yield from _value_names(value.expr, statement)
     elif cls is ast.FuncCall:
         yield from _arg_names(value.args, statement)
+    elif cls is ast.Index:          # an array's element: the array, then the index
+        yield Occurrence(CONST, value.name, False, statement, "ref")
+        yield from _value_names(value.index, statement)
+    elif cls is ast.Slice:          # `a[1:4]`: the array, then its constant bounds
+        yield Occurrence(CONST, value.name, False, statement, "ref")
+        for bound in (value.lo, value.hi):
+            if bound is not None:
+                yield from _value_names(bound, statement)
+    elif cls is ast.ArrayLit:
+        for item in value.items:
+            yield from _value_names(item, statement)
 
 
 def _arg_names(args, statement) -> Iterator[Occurrence]:
@@ -74,6 +85,8 @@ def _body_names(body: ast.ActionBody, statement) -> Iterator[Occurrence]:
                 yield Occurrence(MODE, call.mode, False, statement, "enter")
             elif isinstance(call, ast.Assign):
                 yield Occurrence(CONST, call.target, False, statement, "assign")
+                if call.index is not None:
+                    yield from _value_names(call.index, statement)
                 yield from _value_names(call.value, statement)
             else:
                 yield Occurrence(ACTION, call.name, False, statement, "call")

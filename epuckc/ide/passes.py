@@ -36,24 +36,34 @@ _DECLS, _EXTERNS, _RULES = (operator.attrgetter("decls"), operator.attrgetter("e
 _SEVERITY = operator.attrgetter("severity")
 _START = operator.itemgetter(0, 1)     # a Span's (line, column)
 
-# What declaring leaves in the checker that is not a declaration's: the
-# language server's own, and what the checker is given.
-_NOT_DECLARED = frozenset({"program", "diags", "base_dir", "target", "memo", "range_memo",
-                           "race_memo", "pieces", "piece_of", "_known", "_env_now", "_maybe",
-                           "_compared", "_declared_same", "_env_before", "_moved", "_marks",
-                           "segments", "dropped", "_error_flags", "_errors_upto",
-                           "_errors_found", "_unknown"})
+class Declared:
+    """What declaring came to, kept while the declaring statements are the
+    same (`key`): the records it left (check/state.py), its diagnostics,
+    whether the program describes the robot."""
+    __slots__ = ("key", "decls", "facts", "memories", "diags", "robot_given")
+
+    def __init__(self, key, decls, facts, memories, diags, robot_given):
+        self.key, self.decls, self.facts, self.memories = key, decls, facts, memories
+        self.diags, self.robot_given = diags, robot_given
 
 
-def _copy(value):
-    cls = value.__class__
-    if cls is dict:
-        return dict(value)
-    if cls is set:
-        return set(value)
-    if cls is list:
-        return list(value)
-    return value
+class Unused:
+    """What `_unused` said (`diags`), and what it read: the declarations
+    (a Declared) and the names used (`key`)."""
+    __slots__ = ("declared", "key", "diags")
+
+    def __init__(self, declared, key, diags):
+        self.declared, self.key, self.diags = declared, key, diags
+
+
+class PieceAssigns:
+    """A piece's assignments (`_assignments_by_variable`): the piece (kept
+    alive, so that its id stays its own), its entries by variable, and
+    each assigning statement's place in it (by id)."""
+    __slots__ = ("piece", "by_name", "order")
+
+    def __init__(self, piece, by_name: dict, order: dict):
+        self.piece, self.by_name, self.order = piece, by_name, order
 
 
 class PiecePasses:
@@ -73,25 +83,25 @@ class PiecePasses:
         key = (decls, self.base_dir, self.target, externs)
         memo = self.memo
         hit = memo.declared
-        if hit is not None and hit[0] == key:
-            for name, value in hit[1].items():
-                setattr(self, name, _copy(value))
-            self._mark(hit[2])
-            self.diags.items.extend(hit[2])
+        if hit is not None and hit.key == key:
+            self.decls, self.facts = hit.decls.copy(), hit.facts.copy()
+            self.memories = hit.memories.copy()
+            self._mark(hit.diags)
+            self.diags.items.extend(hit.diags)
             self._declared_same = True
-            return hit[3]
+            return hit.robot_given
         self._mark()
         start = len(self.diags.items)
         robot_given = super()._declarations()
-        state = {name: _copy(value) for name, value in vars(self).items()
-                 if name not in _NOT_DECLARED}
-        memo.declared = (key, state, self.diags.items[start:], robot_given)
+        # (what declaring leaves: its records, check/state.py)
+        memo.declared = Declared(key, self.decls.copy(), self.facts.copy(),
+                                 self.memories.copy(), self.diags.items[start:], robot_given)
         return robot_given
 
     def _assignments_by_variable(self, memo, same_names: bool) -> tuple:
         if self.pieces is None:
             return super()._assignments_by_variable(memo, same_names)
-        old = memo.pieces           # id(piece) -> (piece, variable -> entries, id(stmt) -> place)
+        old = memo.pieces           # id(piece) -> PieceAssigns
         known, where = memo.statements, memo.where
         pieces, last = self.pieces, memo.piece_list if old else []
         # (the old pieces are kept alive by `old`: an id in both is the same piece)
@@ -115,7 +125,7 @@ class PiecePasses:
                     where[id(stmt)] = piece
                     for name, entry in found:
                         by_name.setdefault(name, []).append(entry)
-            hit = new[id(piece)] = (piece, by_name, order)
+            hit = new[id(piece)] = PieceAssigns(piece, by_name, order)
             fresh.append(hit)
         first_fresh = fresh_at[0] if fresh_at else None
         first_gone = gone_at[0] if gone_at else None
@@ -127,7 +137,7 @@ class PiecePasses:
         if not same_names or not old or len(fresh) > 8:
             assigns = {name: [] for name in self.vars}
             for piece in self.pieces:
-                for name, entries in new[id(piece)][1].items():
+                for name, entries in new[id(piece)].by_name.items():
                     found = assigns.get(name)
                     if found is not None:
                         found.extend(entries)
@@ -138,11 +148,12 @@ class PiecePasses:
         in_place = first_gone == first_fresh and len(gone) == len(fresh) and (
             not fresh_at or fresh_at[-1] - fresh_at[0] == len(fresh_at) - 1) and (
             not gone_at or gone_at[-1] - gone_at[0] == len(gone_at) - 1)
-        touched = set().union(*(h[1].keys() for h in gone), *(h[1].keys() for h in fresh))
+        touched = set().union(*(h.by_name.keys() for h in gone),
+                              *(h.by_name.keys() for h in fresh))
         changed, spliced = set(), {}
         for name in touched:
-            before = [e for h in gone for e in h[1].get(name, ())]
-            after = [e for h in fresh for e in h[1].get(name, ())]
+            before = [e for h in gone for e in h.by_name.get(name, ())]
+            after = [e for h in fresh for e in h.by_name.get(name, ())]
             if name in memo.assigns and (not in_place or len(before) != len(after) or any(
                     x is not y for x, y in zip(before, after))):
                 changed.add(name)
@@ -157,7 +168,7 @@ class PiecePasses:
                 found = spliced.get(name)
                 found = _spliced(assigns[name], *found) if found is not None else None
                 assigns[name] = found if found is not None else [
-                    e for piece in self.pieces for e in new[id(piece)][1].get(name, ())]
+                    e for piece in self.pieces for e in new[id(piece)].by_name.get(name, ())]
         return assigns, changed, self._place_of(new)
 
     def _unused(self):
@@ -172,17 +183,17 @@ class PiecePasses:
         # (sets compare with the frozen copies kept; the big ones are
         # FactCounts' frozensets, the same objects while no name came or
         # went, and compare by identity)
-        if said is None or said[0] is not declared or said[1] != key:
+        if said is None or said.declared is not declared or said.key != key:
             self._mark()
             start = len(self.diags.items)
             super()._unused()
             diags = self.diags.items[start:]
         else:
-            diags = said[2]
+            diags = said.diags
             self._mark(diags)
             self.diags.items.extend(diags)
-        self.memo.unused = (declared, tuple(frozenset(k) if k.__class__ is set else k
-                                            for k in key), diags)
+        self.memo.unused = Unused(declared, tuple(frozenset(k) if k.__class__ is set else k
+                                                  for k in key), diags)
 
     # ---- the diagnostics in segments (for showing.py) ----
 
@@ -333,7 +344,7 @@ class PiecePasses:
             if not index:
                 index.update((id(p), i) for i, p in enumerate(self.pieces))
             piece = where[entry[4]]
-            return index[id(piece)], kept[id(piece)][2][entry[4]], entry[5]
+            return index[id(piece)], kept[id(piece)].order[entry[4]], entry[5]
         return place
 
 
@@ -400,19 +411,19 @@ class FactCounts:
                 found = names.get(fact)
                 if found is None:
                     found = names[fact] = frozenset(counted)
-                current = getattr(checker, fact)
+                current = getattr(checker.facts, fact)
                 # (the same frozenset as long as no name came or went and what
                 # the other steps found is in it, or is what they found last
                 # time: no copy, and the unused names' key compares it by
                 # identity, _unused)
                 if current <= found:
-                    setattr(checker, fact, found)
+                    setattr(checker.facts, fact, found)
                     continue
                 extra = current - found
                 last = self.merged.get(fact)
                 if last is None or last[0] is not found or last[1] != extra:
                     last = self.merged[fact] = (found, extra, found | extra)
-                setattr(checker, fact, last[2])
+                setattr(checker.facts, fact, last[2])
 
     def _count(self, block, by: int) -> None:
         for fact, values in block.facts:

@@ -16,6 +16,7 @@ from typing import Optional
 
 from ..check import conditions as cond, modes
 from ..check.checker import Checker
+from ..check.state import Declarations
 from ..check.program import CheckedProgram
 from ..check.races import RaceMemo
 from ..check.rules import may_never_fire
@@ -24,7 +25,7 @@ from ..diagnostics import ERROR, Diagnostic
 from ..syntax import ast
 from .passes import _SEVERITY, FactCounts, PiecePasses
 from .pieces import PIECE
-from .watch import _ALL, _MISSING, _Capture, _Narrowing, _Watch, _Watched  # noqa: F401
+from .watch import _ALL, _MISSING, _Narrowing, _Watched, watched  # noqa: F401
 from .statements import VLINE
 
 # ---- checking, reusing results ----------------------------------------------
@@ -33,8 +34,8 @@ class _Memo:
     """What the incremental checker keeps between two analyses."""
     def __init__(self):
         self.env = None
-        self.actions = None     # the result of resolving the named actions
-        self.rules: dict = {}   # id(rule node) -> what the rule came to (see _rule)
+        self.actions = None     # ActionsHit: the result of resolving the named actions
+        self.rules: dict = {}   # id(rule node) -> RuleHit
         self.ranges = RangeMemo()   # the variables' intervals by component (check/ranges.py)
         self.races = RaceMemo()     # W009's facts of each rule and its last pairs (check/races.py)
         self.blocks: dict = {}  # id(piece) -> _Block of its rules (IncrementalChecker._rules)
@@ -43,6 +44,35 @@ class _Memo:
         self.unused = None      # (what _unused read, what it said)
         self.errors: dict = {}  # id(a list of diagnostics) -> (it, has an error) (passes.py)
         self.beside: dict = {}  # id(a list of diagnostics) -> passes._SegmentIndex of it
+
+
+class RuleHit:
+    """What checking one rule came to, kept by the rule node's id: the
+    node (kept alive, so that its id stays its own), the geometry and the
+    names it looked up (watch.py: (table, name, what was found)), its
+    result, the diagnostics it said that another step may say too (said
+    once for the file) and those within its own statement, its facts
+    (Facts.items()), the declarations (env) it was last found valid with,
+    and the variables it read (None: it looked at all of them)."""
+    __slots__ = ("node", "geo", "lookups", "resolved", "said_once", "facts", "env", "own",
+                 "variables")
+
+    def __init__(self, node, geo, lookups, resolved, said_once, facts, env, own, variables):
+        self.node, self.geo, self.lookups, self.resolved = node, geo, lookups, resolved
+        self.said_once, self.facts, self.env, self.own = said_once, facts, env, own
+        self.variables = variables
+
+
+class ActionsHit:
+    """What resolving the named actions came to (kept while no declaration
+    changed): the out.actions and action_nodes it gave, the checker's
+    resolved bodies, its diagnostics and facts, and the actions' depths
+    once spliced (Declarations.action_depths)."""
+    __slots__ = ("actions", "nodes", "resolved", "diags", "facts", "depths")
+
+    def __init__(self, actions, nodes, resolved, diags, facts, depths):
+        self.actions, self.nodes, self.resolved = actions, nodes, resolved
+        self.diags, self.facts, self.depths = diags, facts, depths
 
 
 # A block of rules is a piece's (ide/pieces.py), which ends after an entry
@@ -66,17 +96,17 @@ class _Block:
     def __init__(self, piece, env, geo, hits):
         self.piece, self.env, self.geo, self.hits, self._deps = piece, env, geo, hits, None
         # the variables its rules looked up (None: one looked at all of them)
-        read = [h[8] for h in hits]
+        read = [h.variables for h in hits]
         self.read = None if None in read else frozenset().union(*read)
-        self.resolved = [h[3] for h in hits if h[3] is not None]
+        self.resolved = [h.resolved for h in hits if h.resolved is not None]
         self.maybe = by_event(self.resolved)        # (see _never_fire)
         self.in_modes = [r for r in self.resolved if r.mode is not None]
         self.entered = None     # (the named actions, the modes entered), when there are modes
-        self.own = [d for h in hits for d in h[7]]
+        self.own = [d for h in hits for d in h.own]
         self.error = ERROR in map(_SEVERITY, self.own)
         facts: dict = {}
         for h in hits:
-            for f, values in h[5]:
+            for f, values in h.facts:
                 facts.setdefault(f, set()).update(values)
         self.facts = tuple(facts.items())
 
@@ -87,7 +117,7 @@ class _Block:
         when a declaration changed, see _Watched), found when first asked."""
         if self._deps is None:
             self._deps = list({(attr, name, id(found)): (attr, name, found)
-                               for h in self.hits for attr, name, found in h[2]}.values())
+                               for h in self.hits for attr, name, found in h.lookups}.values())
         return self._deps
 
 
@@ -164,13 +194,11 @@ class IncrementalChecker(PiecePasses, Checker):
 
     def _env(self):
         """Everything a rule or a named action can depend on besides itself:
-        the geometry and every declaration (AST nodes compare by identity
-        first, so this is cheap when nothing changed)."""
-        return (self.geo, tuple(self.consts.items()), tuple(self.const_arrays.items()),
-                tuple(self.actions.items()),
-                tuple((n, e.kind, e.params, e.node) for n, e in self.externs.items()),
-                tuple(self.broken_externs.items()), tuple(self.rule_names),
-                tuple(self.modes.items()), tuple(self.vars.items()))
+        the geometry and every name table a rule reads (Declarations.TABLES;
+        the variables last; AST nodes compare by identity first, so this is
+        cheap when nothing changed)."""
+        d = self.decls
+        return (d.geo, *(_ENV.get(t, _items)(getattr(d, t)) for t in Declarations.TABLES))
 
     def _replay(self, diags, facts, own=()):
         """Put a step's diagnostics and facts back. `own`: diagnostics
@@ -187,8 +215,7 @@ class IncrementalChecker(PiecePasses, Checker):
                 if d not in known:
                     known.add(d)
                     self.diags.items.append(d)
-        for f, values in facts:
-            getattr(self, f).update(values)
+        self.facts.update(facts)
 
     def _resolve_actions(self, out: CheckedProgram):
         self._mark()
@@ -206,15 +233,17 @@ class IncrementalChecker(PiecePasses, Checker):
             memo.env, memo.actions = env, None
         self._env_now = memo.env    # the same object as long as nothing changes
         if memo.actions is None:
-            with _Capture(self) as cap:
+            with self.apart() as step:
                 super()._resolve_actions(out)
-            memo.actions = (dict(out.actions), dict(out.action_nodes),
-                            dict(self._resolved_actions), cap.diags, cap.facts)
-        actions, nodes, resolved, diags, facts = memo.actions
-        out.actions.update(actions)
-        out.action_nodes.update(nodes)
-        self._resolved_actions.update(resolved)
-        self._replay(diags, facts)
+            memo.actions = ActionsHit(dict(out.actions), dict(out.action_nodes),
+                                      dict(self._resolved_actions), step.diags, step.facts,
+                                      dict(self.action_depths))
+        hit = memo.actions
+        out.actions.update(hit.actions)
+        out.action_nodes.update(hit.nodes)
+        self._resolved_actions.update(hit.resolved)
+        self.action_depths.update(hit.depths)
+        self._replay(hit.diags, hit.facts)
 
     def _still_valid(self, geo, deps) -> bool:
         """Does everything a rule looked up still say the same?"""
@@ -222,7 +251,7 @@ class IncrementalChecker(PiecePasses, Checker):
             return False
         compared = self._compared
         for attr, name, found in deps:
-            table = getattr(self, attr)
+            table = getattr(self.decls, attr)
             if name is _ALL:
                 if tuple(table.items()) != found:
                     return False
@@ -342,47 +371,54 @@ class IncrementalChecker(PiecePasses, Checker):
         hits = [self.memo.rules.get(id(rule)) for rule in run]
         geo, same_geo = self.geo, set()
         for rule, hit in zip(run, hits):
-            if hit is None or hit[0] is not rule or hit[6] is not env or hit[4]:
+            if hit is None or hit.node is not rule or hit.env is not env or hit.said_once:
                 return None
-            if hit[1] is not geo and id(hit[1]) not in same_geo:
-                if hit[1] != geo:       # (each check has its own Geometry object)
+            if hit.geo is not geo and id(hit.geo) not in same_geo:
+                if hit.geo != geo:      # (each check has its own Geometry object)
                     return None
-                same_geo.add(id(hit[1]))
+                same_geo.add(id(hit.geo))
         return _Block(piece, env, geo, hits)
 
     def _rule(self, rule: ast.Rule):
-        # hit: [node, geometry, lookups, result, diagnostics said once,
-        # facts, the declarations (env) it was last found valid with, its
-        # own diagnostics (see _replay)]
         hit = self.memo.rules.get(id(rule))
-        if hit is not None and hit[0] is rule and hit[6] is self._env_now and not hit[4]:
-            if hit[7]:          # (the common case, inline: most rules are replayed)
-                self.diags.items.extend(hit[7])
-            for f, values in hit[5]:
-                getattr(self, f).update(values)
-            return hit[3]
-        if hit is None or hit[0] is not rule:
+        env = self._env_now
+        if hit is not None and hit.node is rule and hit.env is env and not hit.said_once:
+            if hit.own:         # (the common case, inline: most rules are replayed)
+                self.diags.items.extend(hit.own)
+            self.facts.update(hit.facts)
+            return hit.resolved
+        if hit is None or hit.node is not rule:
             hit = None
-        elif hit[6] is not self._env_now:
+        elif hit.env is not env:
             moved = self._moved
-            if moved is not None and hit[6] is self._env_before and hit[8] is not None \
-                    and hit[8].isdisjoint(moved):
-                hit[6] = self._env_now      # (only intervals it does not read moved)
-            elif self._still_valid(hit[1], hit[2]):
-                hit[6] = self._env_now
+            if moved is not None and hit.env is self._env_before and hit.variables is not None \
+                    and hit.variables.isdisjoint(moved):
+                hit.env = env       # (only intervals it does not read moved)
+            elif self._still_valid(hit.geo, hit.lookups):
+                hit.env = env
             else:
                 hit = None
         if hit is None:
-            with _Capture(self) as cap, _Watch(self) as watch:
+            deps = []
+            with self.apart(watched(self.decls, deps)) as step:
                 resolved = super()._rule(rule)
             ident = rule.span.line // VLINE
-            own = [d for d in cap.diags if ident and _within(d, ident)]
-            shared = [d for d in cap.diags if not (ident and _within(d, ident))]
-            hit = [rule, self.geo, watch.deps, resolved, shared, cap.facts, self._env_now, own,
-                   _variables_read(watch.deps)]
+            own = [d for d in step.diags if ident and _within(d, ident)]
+            shared = [d for d in step.diags if not (ident and _within(d, ident))]
+            hit = RuleHit(rule, self.geo, deps, resolved, shared, step.facts, env, own,
+                          _variables_read(deps))
             self.memo.rules[id(rule)] = hit
-        self._replay(hit[4], hit[5], hit[7])
-        return hit[3]
+        self._replay(hit.said_once, hit.facts, hit.own)
+        return hit.resolved
+
+
+def _items(table) -> tuple:
+    return tuple(table.items())
+
+
+# what of a table the environment compares, where it is not every entry
+_ENV = {"externs": lambda t: tuple((n, e.kind, e.params, e.node) for n, e in t.items()),
+        "rule_names": tuple}
 
 
 def _variables_read(deps) -> Optional[frozenset]:

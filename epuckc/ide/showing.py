@@ -120,7 +120,7 @@ class Shown:
                 self.segments, self.dropped = segments, set(dropped)
                 return spliced
         cache, kept = self.real, {}
-        starts = analysis._starts
+        starts = analysis.statement_lines
         get = starts.get
         shown = []
         for d in items:
@@ -153,7 +153,7 @@ class Shown:
     def _hit(analysis, d: Diagnostic) -> tuple:
         found = idents(d)
         real = real_diagnostic(analysis, d) if found else d
-        return (d, found, first_lines(analysis._starts, found), (real.sort_key(), real))
+        return (d, found, first_lines(analysis.statement_lines, found), (real.sort_key(), real))
 
     def _splice(self, analysis, segments: list, dropped: set, changed: set):
         """The last sorted list with the diagnostics that went taken out and
@@ -184,7 +184,7 @@ class Shown:
         for i in added_ids:
             hit = cache.get(i)
             d = present[i]
-            if hit is None or hit[0] is not d or first_lines(analysis._starts, hit[1]) \
+            if hit is None or hit[0] is not d or first_lines(analysis.statement_lines, hit[1]) \
                     != hit[2]:
                 hit = self._hit(analysis, d)
             hits.append(hit)
@@ -198,7 +198,7 @@ class Shown:
         moved = []
         for i in again:
             hit = cache[i]
-            if first_lines(analysis._starts, hit[1]) != hit[2]:
+            if first_lines(analysis.statement_lines, hit[1]) != hit[2]:
                 moved.append(i)
                 hits.append(self._hit(analysis, hit[0]))
         out = list(self.shown)

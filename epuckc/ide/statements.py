@@ -12,6 +12,7 @@ from typing import Optional
 from ..base.source import SourceFile, Span
 from ..diagnostics import Collector, Diagnostic
 from ..syntax.lexer import KEYWORDS, STATEMENT_STARTS, iter_statements, iter_tokens
+from ..syntax import aseba
 from ..syntax.parser import parse_statement
 
 VLINE = 1 << 20          # lines per statement in virtual coordinates
@@ -162,8 +163,10 @@ def _parse_chunk(name: str, padded: str, following: Optional[str], ident: int) -
         statement = parse_statement(group, after, source, syntax)
         if statement is not None:
             statements.append(statement)
-    diags = [_shift_diag(d, base) for d in lexical.items] + syntax.items
-    bad_runs = sum(d.code == "E002" for d in lexical.items)
+    # (the `.` of Aseba's `call math.dot`: said by its E095, syntax/aseba.py)
+    shifted = aseba.uncovered([_shift_diag(d, base) for d in lexical.items], syntax.items)
+    diags = shifted + syntax.items
+    bad_runs = sum(d.code == "E002" for d in shifted)
     once = any(d.code in _ONCE for d in lexical.items)
     return Entry(ident, statements, diags, bad_runs, source.line_count, once)
 

@@ -25,11 +25,11 @@ _CALLS = {"+": "rt_add", "-": "rt_sub", "*": "rt_mul", "/": "rt_div", "%": "rt_m
           "neg": "rt_neg", "abs": "rt_abs", "min": "rt_min", "max": "rt_max",
           "clamp": "rt_clamp", "random": "rt_random", "sat": "rt_sat16",
           "atan2": "rt_atan2", "hypot": "rt_hypot", "sqrt": "rt_sqrt", "sin": "rt_sin",
-          "cos": "rt_cos"}
+          "cos": "rt_cos", "<<": "rt_shl", ">>": "rt_shr"}
 _C_OPS = {"<": "<", "<=": "<=", ">": ">", ">=": ">=", "==": "==", "!=": "!=",
           "and": "&&", "or": "||", "+": "+", "-": "-", "*": "*", "/": "/", "%": "%"}
 # functions whose result is an int whatever their arguments
-_INT_RESULT = {"random", "sat", "atan2", "sin", "cos", "argmin", "argmax"}
+_INT_RESULT = {"random", "sat", "atan2", "sin", "cos", "argmin", "argmax", "<<", ">>"}
 
 
 CONST_PREFIX = "epk_c_"
@@ -65,11 +65,13 @@ def c_expr(e: Expr, top: bool = True, readings: dict = None, consts=(),
 
 
 _MUL, _ADD = ("*", "/", "%"), ("+", "-")
+_BITS = ("&", "|", "^", "~", "<<", ">>")
 
 
 class _Printer:
     """Prints an Expr; each part gives (text, is_long, level): level 0 an
-    operand that needs no parentheses, 1 a product, 2 a sum (C's
+    operand that needs no parentheses, 1 a product, 2 a sum, 3 a bitwise
+    operation (C's
     precedence: a part is parenthesised where its parent binds tighter)."""
 
     def __init__(self, readings, index_name=None, consts=()):
@@ -102,6 +104,8 @@ class _Printer:
             return f"{var_name(e.name)}[{self.index_name}]", False, 0
         if op == "index":
             return self._element(e), False, 0
+        if op in _BITS:
+            return self._bits(e, top)
         if op in ("argmin", "argmax"):      # over ints where every element fits one
             items = ", ".join(self.c(a, True)[0] for a in e.args)
             if all(arith.fits16(a.lo, a.hi) for a in e.args):
@@ -128,6 +132,32 @@ class _Printer:
             return f"{READING_ARRAYS[e.name][1]}({index})"
         prefix = CONST_PREFIX if e.name in self.consts else VAR_PREFIX
         return f"{prefix}{e.name}[{index}]"
+
+    def _bits(self, e: Expr, top: bool) -> tuple:
+        """The bitwise operators on operands of 16 bits (the checker
+        saturated any that could leave them): C's own `&`, `|`, `^`, `~`
+        (two's complement ints give the same bits on every target), and
+        `<<`, `>>` where C's gives the language's value (a count 0..15, a
+        value >= 0 whose shifted bits stay below the sign), else the
+        runtime's rt_shl, rt_shr (defined for every value and count). C
+        binds these below a comparison: the operation is parenthesised
+        unless it is the whole expression (level 3: any parent that
+        takes it as it is parenthesises it)."""
+        op, args = e.op, e.args
+        if op in ("<<", ">>"):
+            a, n = args
+            plain = a.lo >= 0 and n.lo >= 0 and (
+                n.hi <= 15 if op == ">>" else arith.fits16(a.hi << n.hi, a.hi << n.hi))
+            if not plain:       # (each operand printed once: a chain is linear)
+                return f"{_CALLS[op]}({self.c(a, True)[0]}, {self.c(n, True)[0]})", False, 0
+        parts = []
+        for a in args:
+            text, is_long, level = self.c(a, False)
+            parts.append(f"({text})" if level else text)
+        if op == "~":
+            return f"~{parts[0]}", False, 0
+        text = f"{parts[0]} {op} {parts[1]}"
+        return (text, False, 3) if top else (f"({text})", False, 0)
 
     @staticmethod
     def _plain(e: Expr) -> bool:

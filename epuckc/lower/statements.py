@@ -8,7 +8,7 @@ each. `lw` is the lowerer (program.py), whose `expr` prints expressions."""
 from __future__ import annotations
 
 from ..stdlib.table import STANDARD_ACTIONS
-from .exprs import proximity_read, var_name
+from .exprs import proximity_read, var_name, variables_of
 
 PREFIX = "epk_"
 
@@ -37,6 +37,8 @@ def assignment(lw, call) -> str:
     lw.variables_in_c.add(call.name)
     value = call.values["value"]
     index = call.values.get("index")
+    if value.op in ("elements", "fill"):
+        return _whole_array(lw, call.name, info, value)
     if index is None:
         readings, head, tail = proximity(value)
         return (f"{head}rt_assign(&{var_name(call.name)}, {info.index}, "
@@ -52,6 +54,29 @@ def assignment(lw, call) -> str:
     trace_id = f"{info.index} + {PREFIX}k" if info.index else f"{PREFIX}k"
     return (f"{{ const int {PREFIX}k = {k}; rt_assign(&{var_name(call.name)}[{PREFIX}k], "
             f"{trace_id}, {lw.expr(value, index_name=f'{PREFIX}k')}); }}")
+
+
+def _whole_array(lw, name: str, info, value) -> str:
+    """`a = [e0, e1, ...]`: the values computed first (in order), then
+    stored, each element with its trace id, so that an element read on
+    the right is the one before the assignment (`a = [a[1], a[0]]` swaps);
+    `fill(a, v)`: v once, into every element."""
+    target = var_name(name)
+    readings, head, tail = proximity(value)
+    values = [lw.expr(e, readings=readings) for e in value.args]
+    if value.op == "fill":          # the table's runtime call, its struct's fields
+        function, ctype, fields = STANDARD_ACTIONS["fill"].dynamic
+        init = ", ".join(f.format(array=target, id=info.index, count=value.value,
+                                  value=values[0]) for f in fields)
+        return f"{head}{{ {ctype} {PREFIX}arg = {{{init}}}; {function}(&{PREFIX}arg); }}{tail}"
+    reads_itself = name in variables_of(value)
+    if not reads_itself:
+        return head + " ".join(f"rt_assign(&{target}[{k}], {info.index + k}, {v});"
+                               for k, v in enumerate(values)) + tail
+    temps = " ".join(f"const int {PREFIX}e{k} = {v};" for k, v in enumerate(values))
+    stores = " ".join(f"rt_assign(&{target}[{k}], {info.index + k}, {PREFIX}e{k});"
+                      for k in range(len(values)))
+    return f"{head}{{ {temps} {stores} }}{tail}"
 
 
 def dynamic_call(lw, call) -> str:

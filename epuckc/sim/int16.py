@@ -20,8 +20,12 @@ import tempfile
 from pathlib import Path
 from typing import Optional
 
-from ..base.resources import RUNTIME_CORE, cache_dir, runtime_dir
+from ..base import cache
+from ..base.records import record
+from ..base.resources import (LIBRARY_SIMULATION, RUNTIME_CORE, RUNTIME_TRACE,
+                              RUNTIME_TRACE_UART1, runtime_dir)
 from ..build.common import USER_CFLAGS, BuildError, Program, _capacity_defines, _run_compiler
+from ..build.trace_table import TraceOptions, trace_defines
 from .scenario import _BLANKS, _time
 
 MCU = "atmega1284p"
@@ -31,7 +35,7 @@ MISSING = ("--int16 needs avr-gcc, avr-libc and simavr with its headers "
 AVR_FLAGS = ["-std=c99", "-Os", "-DEPUCK_STUB_NO_POSE", "-DEPUCKRT_NO_NAMES"]
 CYCLES_PER_MS = 16000 * 400         # generous: the AVR's 16 MHz, 400 times a ms's work
 INPUTS = {"ir": (0, 8), "amb": (1, 8), "mic": (2, 3), "acc": (3, 3), "selector": (4, 0),
-          "key": (5, 0)}
+          "key": (5, 0), "ground": (6, 3), "rot": (7, 3)}
 KEY_NAMES = {"standby": 12, "mute": 13, "vol_up": 16, "vol_down": 17, "chan_up": 32,
              "chan_down": 33}
 SETTERS = ["stub_set_prox", "stub_set_ambient", "stub_set_micro", "stub_set_acc"]
@@ -56,11 +60,11 @@ def scenario_items(path: Optional[str]) -> list:
         for text, _ in tokens[used:]:
             name, value = text.split("=", 1)
             name = name.lower()
-            value = KEY_NAMES.get(value.lower(), None) if not value.isdigit() else int(value)
-            m = re.match(r"(ir|amb|mic|acc|selector|key)([0-9xyz]?)\Z", name)
+            value = int(value) if value.lstrip("-").isdigit() else KEY_NAMES.get(value.lower())
+            m = re.match(r"(ir|amb|mic|acc|rot|selector|key|ground)([0-9xyz]?)\Z", name)
             kind, index = m.group(1), m.group(2)
-            if kind == "acc":
-                items.append((ms, 3, "xyz".index(index), value))
+            if kind in ("acc", "rot"):
+                items.append((ms, INPUTS[kind][0], "xyz".index(index), value))
             elif kind == "mic" and index == "":
                 items.extend((ms, 2, n, value) for n in range(3))
             else:
@@ -73,6 +77,7 @@ def scenario_c(items: list) -> str:
     rows = ",\n".join(f"    {{{ms}L, {inp}, {idx}, {val}}}" for ms, inp, idx, val in items)
     return f"""/* written by epuckc run --int16 from the scenario */
 #include "epuck_stub.h"
+#include "stub_ground.h"
 static const struct {{ long t; unsigned char input, index; int value; }} lines[] = {{
 {rows or "    {0L, 255, 0, 0}"}
 }};
@@ -89,6 +94,8 @@ void int16_scenario(long t_ms)
         case 3: stub_set_acc(n, v); break;
         case 4: stub_set_selector(v); break;
         case 5: stub_press_key(v); break;
+        case 6: stub_set_ground(n, v); break;
+        case 7: stub_set_hand_rate(n, v); break;
         default: break;
         }}
         next++;
@@ -102,28 +109,53 @@ def _runner() -> Path:
     source = runtime_dir() / "int16" / "simavr_run.c"
     cc = [os.environ.get("CC") or "cc"]
     key = hashlib.sha256(source.read_bytes() + " ".join(cc).encode()).hexdigest()[:24]
-    exe = cache_dir() / "int16" / f"runner-{key}" / "simavr_run"
-    if exe.is_file():
+    exe = cache.area("int16") / f"runner-{key}" / "simavr_run"
+
+    def complete(folder: Path) -> bool:
+        return cache.used(folder) and (folder / exe.name).is_file()
+    if complete(exe.parent):
         return exe
-    exe.parent.mkdir(parents=True, exist_ok=True)
-    with tempfile.TemporaryDirectory(dir=exe.parent) as tmp:
-        out = Path(tmp) / "simavr_run"
-        _run_compiler(cc + ["-std=c99", "-O2", str(source), "-o", str(out), "-lsimavr"],
-                      "the simavr runner")
-        os.replace(out, exe)
+    exe = cache.writable_area("int16") / exe.parent.name / exe.name
+    if complete(exe.parent):
+        return exe
+    tmp = cache.temporary_folder(exe.parent.parent)     # built aside, renamed whole
+    try:
+        _run_compiler(cc + ["-std=c99", "-O2", str(source), "-o", str(tmp / exe.name),
+                            "-lsimavr"], "the simavr runner")
+        cache.commit_folder(tmp, exe.parent, complete)
+    finally:
+        if tmp.exists():
+            shutil.rmtree(tmp, ignore_errors=True)
     return exe
 
 
-def build_int16(program: Program, folder: Path, items: list, time_limit_ms: int) -> Path:
-    """The program as an AVR executable in `folder`."""
+def build_int16(program: Program, folder: Path, items: list, time_limit_ms: int,
+                robot: Optional[str] = None) -> Path:
+    """The program as an AVR executable in `folder`. `robot`: the robot's
+    time (platform_int16.c, INT16_ROBOT_TIME) with its tracer on the UART1
+    ("trace": rt_trace.c, int16/uart1_avr.c) or without any trace ("time")."""
     rt = runtime_dir()
+    robot_trace = robot is not None
     if program.generated:
         (folder / f"{program.name}.c").write_text(program.c_text, encoding="utf-8")
         sources = [str(folder / f"{program.name}.c"), *(str(p) for p in program.user_files)]
         mode, more = [], []
+        if robot == "trace":
+            # the UART1 is the AVR's USART0 (uart1_avr.c), not the simulated
+            # one of host/epuck_more.c
+            mode = [f"-D{d}" for d in trace_defines(program, "int16", TraceOptions())]
+            mode.append("-DEPUCK_STUB_UART1_ELSEWHERE")
+            more = [str(rt / n) for n in RUNTIME_TRACE + RUNTIME_TRACE_UART1]
+            more.append(str(rt / "int16" / "uart1_avr.c"))
+        elif robot == "time":
+            mode = ["-DINT16_ROBOT_TIME"]
+    elif robot_trace:
+        raise BuildError("--robot-trace takes a rule file: a C program's main drives the "
+                         "e-puck library itself (its UART1 among it), and the 16-bit path runs "
+                         "it with the host's trace (leave out --robot-trace)", status=2)
     else:           # a C main: Timer1 is the simulator's ms (platform_int16.c)
         sources = [str(p) for p in program.user_sources()]
-        mode, more = ["-DINT16_C_MAIN"], [str(rt / "host" / "epuck_more.c")]
+        mode, more = ["-DINT16_C_MAIN"], []
         mode += [f"-I{os.path.dirname(os.path.abspath(s))}" for s in sources]
     if program.header_name:
         (folder / program.header_name).write_text(program.header_text, encoding="utf-8")
@@ -134,10 +166,16 @@ def build_int16(program: Program, folder: Path, items: list, time_limit_ms: int)
                + [f"-DINT16_LIMIT_MS={time_limit_ms}L", f"-DINT16_SEED={int(seed)}UL"] + mode
                + [f"-I{folder}", f"-I{rt}", f"-I{rt / 'epuck_api'}", f"-I{rt / 'host'}",
                   f"-I{rt / 'epuck_api_unsimulated'}", *sources,
-                  *(str(rt / n) for n in RUNTIME_CORE), str(rt / "host" / "epuck_stub.c"), *more,
+                  *(str(rt / n) for n in RUNTIME_CORE), *(str(rt / n) for n in LIBRARY_SIMULATION),
+                  # the ground-sensor module's readings (LIBRARY_SIMULATION has its stub)
+                  str(rt / "rt_ground.c"), *more,
                   str(rt / "int16" / "platform_int16.c"), str(folder / "scenario.c"),
                   "-o", str(elf)])
-    _run_compiler(command, f"{program.name} for the 16-bit path (avr-gcc)")
+    inline = any(re.search(rb"\basm\b|__asm__|\b(NOP|RESET|CLRWDT|SLEEP|IDLE)\(\)",
+                           Path(p).read_bytes()) for p in sources[int(bool(program.generated)):])
+    _run_compiler(command, f"{program.name} for the 16-bit path (avr-gcc)",
+                  "\nhelp: the dsPIC's instructions written inline (reset, pwrsav, ...) are "
+                  "carried out on the host's path only: run it without --int16" if inline else "")
     return elf
 
 
@@ -203,6 +241,48 @@ def _readable(r: dict) -> str:
         return f"[{r['t_ms']:6d} ms] led       {r['name']:<5} {'on' if r['state'] else 'off'}"
     return (f"[{r['t_ms']:6d} ms] {r['kind']:<9} {r['name']} "
             f"(steps {r['left_steps']}, {r['right_steps']})")
+
+
+@record
+class RobotRun:
+    """A run of the 16-bit build with the robot's tracer: the bytes its
+    UART sent, how its polls went (`P` line: polls, the most cycles one
+    took of its 16000, how many overran their ms, the ms of the longest,
+    the cycles of all), simavr's status."""
+    uart: bytes
+    polls: int
+    max_cycles: int
+    overruns: int
+    max_ms: int
+    total_cycles: int
+    status: int
+
+
+def run_int16_robot(program: Program, scenario: Optional[str], time_limit_ms: int,
+                    tracer: bool = True) -> RobotRun:
+    """`run --int16 --robot-trace`: build with the tracer, run on simavr in
+    the robot's time, the UART's bytes for the monitor's decoder
+    (epuckc/link/); without `tracer`, the same without any trace (what the
+    tracer's cost is measured against)."""
+    if not int16_available():
+        raise BuildError(MISSING)
+    items = scenario_items(scenario)
+    runner = _runner()
+    with tempfile.TemporaryDirectory(prefix="epuckc-int16-") as tmp:
+        elf = build_int16(program, Path(tmp), items, time_limit_ms,
+                          robot="trace" if tracer else "time")
+        uart = Path(tmp) / "uart.bin"
+        # the robot's own time: each ms is 16000 cycles (most of them asleep)
+        run = subprocess.run([str(runner), str(elf), MCU, str(16000 * (time_limit_ms + 1000)),
+                              str(uart)], capture_output=True, text=True)
+        data = uart.read_bytes() if uart.is_file() else b""
+    stats = re.search(r"^P (\d+) (\d+) (\d+) (\d+) (\d+)$", run.stdout, re.M)
+    if run.returncode != 0 or stats is None:
+        why = {1: "it crashed", 4: "it ran out of cycles (a loop that never ends?)"}.get(
+            run.returncode, f"simavr said {run.stderr.strip() or run.returncode}")
+        raise BuildError(f"the 16-bit build of {program.name} with the robot's tracer did not "
+                         f"finish on simavr: {why}")
+    return RobotRun(data, *(int(v) for v in stats.groups()), run.returncode)
 
 
 def run_int16(program: Program, scenario: Optional[str], time_limit_ms: int,

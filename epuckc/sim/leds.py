@@ -66,7 +66,7 @@ def _turn(point, heading_deg: float):
 
 def draw_leds(dwg, cx: float, cy: float, radius_px: float, heading_deg: float, state):
     """The LEDs of a robot drawn at (cx, cy) px with its heading, lit as
-    `state` (t_ms, ring, body, front) says: an svgwrite group."""
+    `state` (t_ms, ring, body, front) says: a group (svg.py)."""
     geo = local_geometry(radius_px)
     t_ms, ring, body, front = state
     g = dwg.g(class_="leds")

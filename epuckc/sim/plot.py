@@ -1,4 +1,4 @@
-"""Pictures of a run: a trace (JSON lines) drawn as SVG with svgwrite.
+"""Pictures of a run: a trace (JSON lines) drawn as SVG (svg.py).
 
 Above, the map (world frame, millimetres, +y up): the arena's walls, boxes
 and cylinders (from the trace's `world` record, when the run had a world),
@@ -14,7 +14,8 @@ free place is left to the marker's tooltip); tests/sim/test_plot_layout.py
 measures that in a browser.
 
 The drawing is made of named pieces that tests and tools can find again:
-`g#world` (`rect.arena`, `rect.box`, `circle.cylinder`, `g.scale-bar`),
+`g#world` (`rect.arena`, `image.floor`, `rect.box`, `circle.cylinder`,
+`g.sound`, `g.scale-bar`),
 `g.robot-run` (`data-robot`) with `polyline.path`, `circle.firing`
 (`data-t-ms`, `data-label`: the rule's `file:line`; `text.firing-label`),
 `polygon.mode-change`, `circle.led-change`, `path.contact`,
@@ -37,10 +38,13 @@ import re
 from dataclasses import dataclass, field
 from typing import Optional
 
-import svgwrite
-
+from . import floor as floor_lines
 from . import leds as leds_mod
+from . import sound as sound_lines
 from . import timeline as bands
+from .contacts import contact_words
+from .svg import Drawing
+from .thin import thin_points
 from .world import COLOURS as WORLD_COLOURS
 
 MAP_WIDTH_PX = 640.0
@@ -177,9 +181,8 @@ def parse_trace(text: str, source: str = "trace"):
         # where the robot was at its first contact: the last pose before it
         before = [p for p in run.poses if p[0] <= first_ms] or run.poses[:1]
         t, x, y, _ = before[-1]
-        what = ", ".join(f"{rec.get(k, 0)} {k}" for k in ("walls", "objects", "robots")
-                         if rec.get(k))
-        run.marks.append(Mark("contact", first_ms, f"contact ({what})" if what else "contact",
+        words = contact_words(rec)
+        run.marks.append(Mark("contact", first_ms, "contact" if words == "no contact" else words,
                               x, y))
     return world, list(runs.values()), end_ms
 
@@ -269,6 +272,24 @@ def _fill(obstacle: dict) -> str:
     return "#%02x%02x%02x" % WORLD_COLOURS[colour]
 
 
+def robot_colours(world: Optional[dict], runs: list) -> list:
+    """Each run's colour: its robot's world `colour` (darkened where it
+    would not show on the white map, as white and yellow), else the
+    palette's."""
+    given = {r.get("name"): r.get("colour") for r in (world or {}).get("robots", [])}
+    out = []
+    for i, run in enumerate(runs):
+        colour = given.get(run.name)
+        if colour in WORLD_COLOURS and colour != "grey":
+            rgb = WORLD_COLOURS[colour]
+            light = (0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]) / 255
+            k = 0.55 / light if light > 0.7 else 1.0       # white, yellow: darker
+            out.append("#%02x%02x%02x" % tuple(round(c * k) for c in rgb))
+        else:
+            out.append(COLOURS[i % len(COLOURS)])
+    return out
+
+
 def _draw_messages(dwg, runs: list, px):
     """A line from sender to receiver for each pair of robots that
     exchanged messages, once per MESSAGE_BUCKET_MS (where they were at the
@@ -326,7 +347,7 @@ def plot_trace(text: str, title: str = "", source: str = "trace") -> str:
     timeline_h = (max(len(rows), 1) + n_bands) * ROW_PX
     width = max(MARGIN_PX * 2 + map_w, MARGIN_PX * 2 + LABEL_COLUMN_PX + 360.0)
     height = timeline_top + timeline_h + 40.0
-    dwg = svgwrite.Drawing(size=(f"{_r(width)}", f"{_r(height)}"), debug=False)
+    dwg = Drawing(size=(f"{_r(width)}", f"{_r(height)}"))
     dwg.viewbox(0, 0, _r(width), _r(height))
     dwg.add(dwg.rect(insert=(0, 0), size=(_r(width), _r(height)), fill="white", class_="background"))
     if title:
@@ -343,8 +364,11 @@ def plot_trace(text: str, title: str = "", source: str = "trace") -> str:
     if world is not None and world.get("arena"):
         a = world["arena"]
         (ax, ay), (bx, by) = px(0, a["height_mm"]), px(a["width_mm"], 0)
+        wall = a.get("colour", "grey")
         g.add(dwg.rect(insert=(ax, ay), size=(_r(bx - ax), _r(by - ay)), class_="arena",
-                       fill="#fafafa", stroke="#444", stroke_width=4))
+                       fill="#fafafa", stroke="#%02x%02x%02x" % WORLD_COLOURS[wall]
+                       if wall in WORLD_COLOURS and wall != "grey" else "#444", stroke_width=4))
+        floor_lines.draw(dwg, g, world, px)         # under everything else
     else:
         g.add(dwg.rect(insert=(MARGIN_PX, top), size=(_r(map_w), _r(map_h)), class_="ground",
                        fill="#fafafa", stroke="#ccc", stroke_width=1, stroke_dasharray="4,4"))
@@ -359,6 +383,7 @@ def plot_trace(text: str, title: str = "", source: str = "trace") -> str:
     for c in (world or {}).get("cylinders", []):
         g.add(dwg.circle(center=px(c["x_mm"], c["y_mm"]), r=_r(c["radius_mm"] * scale),
                          class_="cylinder", fill=_fill(c), stroke="#6b5b45"))
+    sound_lines.draw(dwg, g, world or {}, px, scale)
     # a scale bar in the map's lower left corner
     bar_mm = _scale_length(scale)
     bx0, by0 = MARGIN_PX + 8, _r(top + map_h - 10)
@@ -393,8 +418,9 @@ def plot_trace(text: str, title: str = "", source: str = "trace") -> str:
             name_boxes[run.name] = box
             placed_labels.append(box)
     base_labels = list(placed_labels)
+    colours = robot_colours(world, runs)
     for i, run in enumerate(runs):
-        colour = COLOURS[i % len(COLOURS)]
+        colour = colours[i]
         rg = dwg.g(class_="robot-run")
         rg["data-robot"] = run.name or "robot"
         # many robots: each one's labels on demand, laid out among its own
@@ -406,6 +432,7 @@ def plot_trace(text: str, title: str = "", source: str = "trace") -> str:
             p = px(x, y)
             if not points or points[-1] != p:
                 points.append(p)
+        points = thin_points(points)        # what can be seen of a dense path (thin.py)
         if len(points) == 1:
             points.append(points[0])
         path = dwg.polyline(points, class_="path", fill="none", stroke=colour, stroke_width=1.5,
@@ -500,7 +527,7 @@ def plot_trace(text: str, title: str = "", source: str = "trace") -> str:
     tl.add(dwg.text("rules fired over time", insert=(MARGIN_PX, _r(timeline_top - 12)),
                     font_family="sans-serif", font_size=11, class_="timeline-title"))
     bands.draw_bands(dwg, tl, runs, end_ms, rows, bands.rule_colours(runs, rows), timeline_top,
-                     ROW_PX, MARGIN_PX, tx, [COLOURS[i % len(COLOURS)] for i in range(len(runs))])
+                     ROW_PX, MARGIN_PX, tx, colours)
     for row, label in enumerate(rows):
         y = timeline_top + (row + n_bands) * ROW_PX
         rowg = dwg.g(class_="timeline-row")
@@ -521,7 +548,7 @@ def plot_trace(text: str, title: str = "", source: str = "trace") -> str:
                 # one band from the first firing to the last, not thousands of ticks
                 band = dwg.rect(insert=(tx(times[0]), _r(y + 4)),
                                 size=(_r(max(tx(times[-1]) - tx(times[0]), 1.5)), ROW_PX - 8),
-                                fill=COLOURS[i % len(COLOURS)], class_="dense")
+                                fill=colours[i], class_="dense")
                 band["data-count"] = str(len(times))
                 band.set_desc(title=f"{len(times)} firings from {times[0]} ms to {times[-1]} ms")
                 if run.name:
@@ -530,7 +557,7 @@ def plot_trace(text: str, title: str = "", source: str = "trace") -> str:
                 continue
             for t_ms in times:
                 tick = dwg.line(start=(tx(t_ms), _r(y + 3)), end=(tx(t_ms), _r(y + ROW_PX - 3)),
-                                stroke=COLOURS[i % len(COLOURS)], stroke_width=1.5, class_="tick")
+                                stroke=colours[i], stroke_width=1.5, class_="tick")
                 tick["data-t-ms"] = str(t_ms)
                 if run.name:
                     tick["data-robot"] = run.name

@@ -6,9 +6,15 @@ values (every declared variable from 0 s with its initial value, when the
 run passes them, then the trace's `set` records); each robot's LEDs (ring,
 body, front: leds.py) lit as they were at the cursor. `#t=MS` after the
 page's address opens it at that moment (`#t=MS&select=NAME` with that
-robot selected), `#play` plays it. Each message
+robot selected), `#play` plays it. Each robot is drawn once, moving, in
+its world colour, with its name beside it (the picture's final pose gives
+way); the rules fired last are listed each once, with how often it fired
+since it began (`every 20 ms` is one line); the picture and the panel sit
+side by side in a 1200 x 800 window; the poses are thinned to those it can
+show (thin.py). Each message
 delivered in the last MESSAGE_SHOWN_MS is a line from its sender to its
-receiver, fading with its age. With more than MANY_ROBOTS robots the page
+receiver, fading with its age; the world's sound sources are lit while they
+play (pale otherwise); its floor is the picture's. With more than MANY_ROBOTS robots the page
 stays readable: each robot draws only its trail of the last TRAIL_MS over
 its pale path, and a robot's rule labels show while the pointer is over it
 or when it is selected (a click on the moving robot; again: unselected).
@@ -27,26 +33,32 @@ import re
 from typing import Optional
 
 from .leds import BODY_ON, FRONT_ON, OFF_STROKE, RING_ON, local_geometry
-from .plot import (COLOURS, DEFAULT_ROBOT_RADIUS_MM, MANY_ROBOTS, MESSAGE_COLOUR, parse_trace,
-                   plot_trace)
+from .plot import (DEFAULT_ROBOT_RADIUS_MM, MANY_ROBOTS, MESSAGE_COLOUR, parse_trace, plot_trace,
+                   robot_colours)
+from .thin import thin_poses
 
 _PAGE = """<!doctype html>
 <html lang="en"><head><meta charset="utf-8"><title>{title}</title>
 <style>
-body {{ font-family: sans-serif; margin: 16px; color: #222; }}
-#controls {{ display: flex; gap: 12px; align-items: center; margin: 8px 0; }}
+body {{ font-family: sans-serif; margin: 12px 16px; color: #222; }}
+#controls {{ display: flex; gap: 12px; align-items: center; margin: 0 0 8px; }}
 #slider {{ width: 480px; }}
-#panel {{ display: flex; gap: 32px; font-size: 13px; }}
-#panel ul {{ margin: 4px 0; padding-left: 18px; }}
+#main {{ display: flex; gap: 16px; align-items: flex-start; }}
+#picture {{ flex: 0 1 auto; min-width: 0; }}
+#picture svg {{ display: block; width: auto; height: auto; max-width: 100%;
+  max-height: calc(100vh - 64px); }}
+#panel {{ flex: 1 0 260px; max-width: 420px; max-height: calc(100vh - 64px); overflow: auto;
+  font-size: 13px; }}
+#panel ul {{ margin: 4px 0 12px; padding-left: 18px; }}
 .replay-robot {{ cursor: pointer; }}
 </style></head>
 <body data-errors="">
 <div id="controls"><button id="play" type="button">play</button>
 <input id="slider" type="range" min="0" max="{end}" step="1" value="0">
 <span id="clock">0.000 s</span></div>
-<div id="picture">{svg}</div>
+<div id="main"><div id="picture">{svg}</div>
 <div id="panel"><div><b>last rules fired</b><ul id="fired"></ul></div>
-<div><b>variables</b><ul id="vars"></ul></div></div>
+<div><b>variables</b><ul id="vars"></ul></div></div></div>
 <script id="run-data" type="application/json">{data}</script>
 <script>
 window.addEventListener("error", e => {{ document.body.dataset.errors += e.message + ";"; }});
@@ -95,13 +107,20 @@ window.addEventListener("error", e => {{ document.body.dataset.errors += e.messa
       const e = dot(x, y, geo.led_r, "led ring-led"); e.dataset.led = i; return e;
     }});
     svg.appendChild(g);
+    let label = null;
+    if (r.name) {{
+      label = document.createElementNS(NS, "text");
+      label.setAttribute("class", "replay-name"); label.setAttribute("font-family", "sans-serif");
+      label.setAttribute("font-size", "10"); label.textContent = r.name;
+      svg.appendChild(label);
+    }}
     // a click selects the robot: its labels stay shown
     g.addEventListener("click", () => {{
       const e = runs.get(r.name); if (!e) return;
       e.classList.toggle("selected"); g.classList.toggle("selected", e.classList.contains("selected"));
     }});
     return {{ poses: r.poses, leds: r.leds, g: g, body: body, front: front, ring: ring,
-             trail: trail }};
+             trail: trail, label: label }};
   }});
   function trailAt(poses, t) {{
     const pts = [];
@@ -130,8 +149,10 @@ window.addEventListener("error", e => {{ document.body.dataset.errors += e.messa
       l.dataset.from = m[5]; l.dataset.to = m[6];
     }});
   }}
-  // the LEDs at the final pose are the end's: the moving robots show them at the cursor
+  // each robot is drawn once: the moving one (its LEDs at the cursor, its name beside it)
+  svg.querySelectorAll(".final-pose").forEach(e => e.setAttribute("display", "none"));
   svg.querySelectorAll(".final-pose .leds").forEach(e => e.setAttribute("display", "none"));
+  const size = Math.max(run.radius * scale, 3);
   function light(e, on, colour) {{
     e.dataset.on = on ? "1" : "0"; e.setAttribute("fill", on ? colour : "none");
   }}
@@ -146,13 +167,29 @@ window.addEventListener("error", e => {{ document.body.dataset.errors += e.messa
     while (lo < hi) {{ const mid = (lo + hi + 1) >> 1; if (poses[mid][0] <= t) lo = mid; else hi = mid - 1; }}
     return poses[lo];
   }}
+  // the world's sound sources (plot.py's g.sound): lit while they play
+  const sounds = [...svg.querySelectorAll("g.sound")].map(e => [e, e.dataset.onMs
+    ? e.dataset.onMs.split(" ").map(w => w.split(":").map(v => v === "" ? Infinity : Number(v)))
+    : []]);
+  function showSounds(t) {{
+    for (const [e, on] of sounds) {{
+      const playing = !on.length || on.some(([a, b]) => a <= t && t < b);
+      e.dataset.playing = playing ? "1" : "0";
+      e.setAttribute("opacity", playing ? "1" : "0.25");
+    }}
+  }}
   function show(t) {{
     showMessages(t);
+    showSounds(t);
     for (const r of robots) {{
       if (r.trail) r.trail.setAttribute("points", trailAt(r.poses, t));
       const [, x, y, heading] = poseAt(r.poses, t);
       const [cx, cy] = px(x, y);
       r.g.setAttribute("transform", `translate(${{cx.toFixed(1)}} ${{cy.toFixed(1)}}) rotate(${{(-heading).toFixed(1)}})`);
+      if (r.label) {{
+        r.label.setAttribute("x", (cx + size + 2).toFixed(1));
+        r.label.setAttribute("y", (cy + 4).toFixed(1));
+      }}
       const [ledT, ring, body, front] = r.leds.length && r.leds[0][0] <= t ? poseAt(r.leds, t)
         : [0, "00000000", 0, 0];
       r.g.dataset.ledsT = ledT;
@@ -164,13 +201,34 @@ window.addEventListener("error", e => {{ document.body.dataset.errors += e.messa
     const cx = tLeft + (tRight - tLeft) * Math.min(t, span) / span;
     cursor.setAttribute("x1", cx.toFixed(1)); cursor.setAttribute("x2", cx.toFixed(1));
     clock.textContent = (t / 1000).toFixed(3) + " s";
-    const fired = run.firings.filter(f => f[0] <= t).slice(-8).reverse();
-    document.getElementById("fired").innerHTML = fired.map(f =>
-      `<li>${{(f[0] / 1000).toFixed(3)}} s ${{f[1] ? f[1] + ": " : ""}}${{escape(f[2])}}</li>`).join("");
+    document.getElementById("fired").innerHTML = lastFired(t).map(g =>
+      `<li>${{(g.last / 1000).toFixed(3)}} s ${{g.robot ? g.robot + ": " : ""}}${{escape(g.rule)}}` +
+      (g.count > 1 ? ` <span class="repeats">\u00d7${{g.count}}${{g.more ? "+" : ""}} since ` +
+       `${{(g.first / 1000).toFixed(3)}} s</span>` : "") + "</li>").join("");
     const values = new Map();
     for (const v of run.sets) {{ if (v[0] > t) break; values.set(v[1] + "\\u0000" + v[2], v); }}
     document.getElementById("vars").innerHTML = [...values.values()].map(v =>
       `<li>${{v[1] ? v[1] + ": " : ""}}${{escape(v[2])}} = ${{v[3]}}</li>`).join("") || "<li>none</li>";
+  }}
+  // the last FIRED_SHOWN rules fired by the cursor, each once with how often it fired since it
+  // began (`every 20 ms` is one line, not the whole list), looked at over the last FIRED_SCAN
+  function lastFired(t) {{
+    let lo = 0, hi = run.firings.length;
+    while (lo < hi) {{ const mid = (lo + hi) >> 1; if (run.firings[mid][0] <= t) lo = mid + 1; else hi = mid; }}
+    const groups = new Map(), order = [];
+    let i = lo - 1;
+    for (; i >= 0 && i >= lo - {fired_scan}; i--) {{
+      const f = run.firings[i], key = f[1] + "\u0000" + f[2];
+      let g = groups.get(key);
+      if (!g) {{
+        if (order.length === {fired_shown}) break;
+        g = {{ robot: f[1], rule: f[2], last: f[0], first: f[0], count: 0, more: false }};
+        groups.set(key, g); order.push(g);
+      }}
+      g.first = f[0]; g.count++;
+    }}
+    if (i >= 0 && i < lo - {fired_scan}) order.forEach(g => {{ g.more = true; }});
+    return order;
   }}
   function escape(s) {{
     return String(s).replace(/[&<>]/g, c => ({{"&": "&amp;", "<": "&lt;", ">": "&gt;"}})[c]);
@@ -211,6 +269,8 @@ window.addEventListener("error", e => {{ document.body.dataset.errors += e.messa
 # Virtual time runs this many times faster than real time: a minute's run
 # plays in six seconds.
 SPEED = 10.0
+FIRED_SHOWN = 8             # rules in "last rules fired", each once with its repeats
+FIRED_SCAN = 5000           # firings looked at for them, back from the cursor
 MESSAGE_SHOWN_MS = 500      # a message's line fades out over this
 TRAIL_MS = 5000             # with many robots, each one's trail
 
@@ -222,10 +282,11 @@ def replay_html(text: str, title: str = "", source: str = "trace",
     (name, initial value) in declared order: the panel lists them from 0 s."""
     world, runs, end_ms = parse_trace(text, source)
     robots, firings, sets, messages = [], [], [], []
+    colours = robot_colours(world, runs)
     for i, run in enumerate(runs):
-        robots.append({"name": run.name, "colour": COLOURS[i % len(COLOURS)],
+        robots.append({"name": run.name, "colour": colours[i],
                        "poses": [[t, round(x, 1), round(y, 1), round(h, 1)]
-                                 for t, x, y, h in run.poses],
+                                 for t, x, y, h in thin_poses(run.poses)],
                        "leds": [list(state) for state in run.leds]})
         firings += [[f.t_ms, run.name, f.shown] for f in run.firings]
         messages += [[t, round(fx, 1), round(fy, 1), round(x, 1), round(y, 1), sender, run.name]
@@ -251,4 +312,5 @@ def replay_html(text: str, title: str = "", source: str = "trace",
     return _PAGE.format(title=html.escape(title or "epuckc replay"), end=end_ms, svg=svg,
                         data=payload, ring_on=RING_ON, front_on=FRONT_ON, body_on=BODY_ON,
                         off_stroke=OFF_STROKE, many=MANY_ROBOTS, trail_ms=TRAIL_MS,
-                        shown_ms=MESSAGE_SHOWN_MS, message_colour=MESSAGE_COLOUR)
+                        shown_ms=MESSAGE_SHOWN_MS, message_colour=MESSAGE_COLOUR,
+                        fired_shown=FIRED_SHOWN, fired_scan=FIRED_SCAN)

@@ -20,13 +20,14 @@ MAX_SCENARIO_MS = 1_000_000_000         # MAX_SCENARIO_MS in host/host_harness.h
 MAX_ITEMS = 64                          # tokens on a line
 EXAMPLE = '"1200 ms ir0=850"'
 
-# name prefix -> (count of indexes, largest value)
+# name prefix -> (count of indexes, largest value); rot's values are signed
 _INPUTS = {"ir": (8, 4095), "amb": (8, 4095), "mic": (3, 4095), "acc": (3, 4095),
-           "selector": (1, 15), "key": (1, 127)}
+           "rot": (3, 1000), "selector": (1, 15), "key": (1, 127), "ground": (3, 4095)}
 KEY_NAMES = {"standby": 12, "mute": 13, "vol_up": 16, "vol_down": 17, "chan_up": 32,
              "chan_down": 33}
 EXPECTED_ITEM = ("expected irN=V or ambN=V (N 0..7), micN=V (N 0..2) or mic=V, accx=V, accy=V "
-                 "or accz=V (V 0..4095), selector=V (0..15), or key=K (0..127 or standby, "
+                 "or accz=V, groundN=V (N 0..2) (V 0..4095), rotx=V, roty=V or rotz=V "
+                 "(V -1000..1000 degrees/s), selector=V (0..15), or key=K (0..127 or standby, "
                  "mute, vol_up, vol_down, chan_up, chan_down)")
 _BLANKS = re.compile(r"[^ \t\f\v]+")
 _LINE_ENDS = re.compile(r"\r\n|\r|\n")
@@ -84,16 +85,19 @@ def _assignment(text: str) -> bool:
         rest = name[len(prefix):]
         if count == 1 and rest == "":
             pass
-        elif prefix == "acc" and rest in ("x", "y", "z"):
+        elif prefix in ("acc", "rot") and rest in ("x", "y", "z"):
             pass
         elif prefix == "mic" and rest == "":
             pass
-        elif count > 1 and prefix != "acc" and len(rest) == 1 and "0" <= rest < str(count):
+        elif count > 1 and prefix not in ("acc", "rot") and len(rest) == 1 \
+                and "0" <= rest < str(count):
             pass
         else:
             continue
         if prefix == "key" and value in KEY_NAMES:
             return True
+        if prefix == "rot" and value[:1] == "-":
+            value = value[1:]
         return (value.isascii() and value.isdigit() and len(value) <= 5
                 and int(value) <= largest)
     return False
@@ -123,6 +127,29 @@ def check_scenario(path: Path, shown: Optional[str] = None, data: Optional[bytes
             if p.help:
                 text_ += f"\nhelp: {p.help}"
             problems.append(text_)
+    return problems
+
+
+def world_scenario_problems(path: Path, shown: Optional[str] = None) -> list:
+    """A world's scenario: check_scenario's problems, and each input that the
+    world's physics gives (the proximity sensors, Enki's) refused where it
+    is written. OSError when it cannot be read."""
+    shown = shown or str(path)
+    data = Path(path).read_bytes()
+    problems = check_scenario(path, shown, data)
+    if data.startswith(b"\xef\xbb\xbf"):
+        data = data[3:]
+    for lineno, line in enumerate(_LINE_ENDS.split(data.decode("utf-8", errors="replace")), 1):
+        for m in _BLANKS.finditer(line.split("#", 1)[0]):
+            if re.match(r"(?i)ir[0-7]=", m.group(0)):
+                col = m.start() + 1
+                problems.append(f"{shown}:{lineno}:{col}: error: in a world the proximity "
+                                f"sensors read Enki's: `{m.group(0)}` cannot be a scenario's "
+                                f"input there\n {lineno} | {line.rstrip()}\n"
+                                + " " * (len(str(lineno)) + 1) + " | " + " " * (col - 1) + "^"
+                                + "\nhelp: a world's scenario gives what its physics does not: "
+                                  "selector, mic, key, acc (knocks, tilts), rot (a hand turning "
+                                  "the robot), amb")
     return problems
 
 

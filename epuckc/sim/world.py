@@ -10,12 +10,20 @@ angles `deg`, and a comma may separate the two coordinates of a point:
     robot at 20 cm, 20 cm heading 45 deg colour blue
     robot bob at 60 cm, 60 cm heading 180 deg program wall_follow.epk
     robot eve at 20 cm, 60 cm program main.c demo.c     (a C main and its other files)
+    robot sam at 60 cm, 20 cm selector 5 scenario sam.scn
+                                  # its selector at start, its inputs at set times
+    scenario knocks.scn           # the inputs of every robot without a scenario of its own
     seed 7                        # Enki's random generator (default 1)
     noise 5 %                     # wheel speed noise, +- (default 5 %, Enki's e-puck)
     step 10 ms                    # physics step (default 10 ms)
     messages range 22.5 cm loss 5 % interval 100 ms emitter 60 deg receiver 60 deg
                                   # the IR message channel (these are the defaults)
+    floor "track.png"             # the floor the ground sensors read (sim/floor.py), or
+    floor line from 20 cm, 20 cm to 80 cm, 20 cm width 2 cm       drawn shapes
+    sound at 60 cm, 50 cm frequency 1000 Hz level 80 dB from 1 s to 3 s    (sim/sound.py)
+    physics chipmunk              # enki (the default up to 200 robots) or chipmunk (sim/physics.py)
 
+The words of a line and their diagnostics are sim/worldline.py's.
 docs/world.md is the reference. `parse_world` returns a `World` in
 millimetres and degrees, or raises `WorldError` with `file:line:col: error:
 what is wrong`, and how to fix it.
@@ -28,21 +36,16 @@ from pathlib import Path
 from typing import Optional
 
 from ..base.records import field, record
+from . import floor as floor_lines, physics as physics_line, sound as sound_lines
+from .spacing import overlapping
+# (COLOURS, LENGTH_UNITS, MAX_LENGTH_MM and WorldError are this module's too)
+from .worldline import (COLOURS, DEFAULT_COLOUR, KEYWORDS, LENGTH_UNITS, MAX_LENGTH_MM,  # noqa: F401
+                        WorldError, colour as _colour, Line as _Line, tokens)
 
 ROBOT_RADIUS_MM = 37.0          # Enki's e-puck body
 DEFAULT_HEIGHT_MM = 50.0        # boxes and cylinders: taller than the IR sensors (25 mm)
-LENGTH_UNITS = {"mm": 1.0, "cm": 10.0, "m": 1000.0}
-MAX_ROBOTS = 1000
-MAX_LENGTH_MM = 100_000.0       # 100 m
+MAX_ROBOTS = 100_000
 NAME_RE = re.compile(r"[A-Za-z_][A-Za-z0-9_-]*\Z")
-KEYWORDS = {"at", "size", "x", "angle", "height", "radius", "heading", "program", "none",
-            "range", "loss", "interval", "emitter", "receiver", "range_noise", "colour"}
-# What the camera sees of each colour a world may give (r, g, b, 0..255):
-# the six the camera tells apart (stdlib COLOURS) and three it does not.
-COLOURS = {"red": (230, 30, 30), "yellow": (230, 220, 40), "green": (40, 190, 60),
-           "cyan": (40, 200, 210), "blue": (40, 70, 220), "magenta": (210, 40, 200),
-           "white": (240, 240, 240), "grey": (128, 128, 128), "black": (20, 20, 20)}
-DEFAULT_COLOUR = "grey"         # walls, boxes, cylinders and robots without one
 
 
 @record
@@ -55,10 +58,6 @@ class Messages:
     emitter_deg: float = 60.0
     receiver_deg: float = 60.0
     range_noise_percent: float = 10.0
-
-
-class WorldError(Exception):
-    """A problem in a world file; str() is the whole diagnostic."""
 
 
 @record
@@ -93,6 +92,8 @@ class RobotPlacement:
     line: int = 0
     colour: str = DEFAULT_COLOUR
     more_c: tuple = ()                  # a C program's other files, after its main
+    selector: Optional[int] = None      # the selector's position at start
+    scenario: Optional[Path] = None     # its inputs at set times (a scenario file)
 
 
 @record
@@ -108,10 +109,20 @@ class World:
     step_ms: int = 10
     messages: Messages = field(default_factory=Messages)
     wall_colour: str = DEFAULT_COLOUR
+    floor: Optional[floor_lines.Floor] = None   # None: white paper, nothing drawn
+    sounds: list = field(default_factory=list)  # sound.Sound: the sound sources
+    physics: Optional[str] = None       # the `physics` line's; None: by the robot count
+    physics_line: int = 0
+    scenario: Optional[Path] = None     # the inputs of the robots without their own
 
     @property
     def walled(self) -> bool:
         return self.width_mm is not None
+
+    @property
+    def resolved_physics(self) -> str:
+        """Its `physics` line's, else by its robot count (sim/physics.py)."""
+        return physics_line.resolved(self)
 
     def to_json(self) -> dict:
         """The world as the first record of a trace (what `epuckc plot` draws)."""
@@ -133,132 +144,17 @@ class World:
             "seed": self.seed,
             "noise_percent": self.noise_percent,
             "step_ms": self.step_ms,
+            "physics": self.resolved_physics,
             "messages": {"range_mm": r1(self.messages.range_mm),
                          "loss_percent": self.messages.loss_percent,
                          "interval_ms": self.messages.interval_ms,
                          "emitter_deg": self.messages.emitter_deg,
                          "receiver_deg": self.messages.receiver_deg,
                          "range_noise_percent": self.messages.range_noise_percent},
+            # (a floor and sound sources only when the world has them)
+            **({"floor": floor_lines.picture(self)} if self.floor else {}),
+            **({"sounds": sound_lines.to_json(self)} if self.sounds else {}),
         }
-
-
-# ---- tokens ---------------------------------------------------------------------
-
-_TOKEN = re.compile(r"\s*(?:(?P<num>[-+]?(?:\d+\.?\d*|\.\d+))(?P<unit>[A-Za-z%]+)?"
-                    r"|(?P<word>[^\s,]+)|(?P<comma>,))")
-
-
-@record
-class _Tok:
-    text: str
-    col: int
-    number: Optional[float] = None
-    unit: Optional[str] = None
-
-
-def _tokens(line: str) -> list:
-    out = []
-    pos = 0
-    while pos < len(line):
-        m = _TOKEN.match(line, pos)
-        if m is None or m.end() == pos:
-            break
-        start = m.start(m.lastgroup) + 1
-        if m.group("num") is not None:
-            out.append(_Tok(m.group(0).strip(), start, float(m.group("num")), m.group("unit")))
-        elif m.group("word") is not None:
-            out.append(_Tok(m.group("word"), start))
-        pos = m.end()
-    return out
-
-
-class _Line:
-    """A cursor over one line's tokens, with diagnostics that point into it."""
-
-    def __init__(self, path: str, lineno: int, text: str):
-        self.path, self.lineno, self.text = path, lineno, text
-        self.toks = _tokens(text)
-        self.i = 0
-
-    def error(self, message: str, tok: Optional[_Tok] = None, help: str = "") -> WorldError:
-        col = tok.col if tok is not None else len(self.text.rstrip()) + 1
-        text = f"{self.path}:{self.lineno}:{col}: error: {message}"
-        text += f"\n {self.lineno} | {self.text.rstrip()}\n"
-        text += " " * (len(str(self.lineno)) + 1) + " | " + " " * (col - 1) + "^"
-        if help:
-            text += f"\nhelp: {help}"
-        return WorldError(text)
-
-    def at_end(self) -> bool:
-        return self.i >= len(self.toks)
-
-    def peek(self) -> Optional[_Tok]:
-        return self.toks[self.i] if self.i < len(self.toks) else None
-
-    def next(self, what: str) -> _Tok:
-        tok = self.peek()
-        if tok is None:
-            raise self.error(f"expected {what} here, at the end of the line")
-        self.i += 1
-        return tok
-
-    def keyword(self, word: str) -> bool:
-        tok = self.peek()
-        if tok is not None and tok.number is None and tok.text.lower() == word:
-            self.i += 1
-            return True
-        return False
-
-    def expect(self, word: str, example: str):
-        if not self.keyword(word):
-            tok = self.peek()
-            found = f"`{tok.text}`" if tok is not None else "the end of the line"
-            raise self.error(f"expected `{word}`, found {found}", tok, f"write it as: {example}")
-
-    def _quantity(self, units: dict, kind: str, example: str) -> float:
-        tok = self.next(f"a {kind} such as {example}")
-        if tok.number is None:
-            raise self.error(f"expected a {kind} such as {example}, found `{tok.text}`", tok)
-        unit = tok.unit
-        if unit is None:
-            nxt = self.peek()
-            if (nxt is not None and nxt.number is None
-                    and (nxt.text in units or nxt.text.lower() not in KEYWORDS)):
-                unit = nxt.text
-                self.i += 1
-        if unit is None:
-            raise self.error(f"the {kind} {tok.text} has no unit", tok,
-                             f"add one of {', '.join(units)}, e.g. {example}")
-        if unit not in units:
-            raise self.error(f"`{unit}` is not a unit of {kind}", tok,
-                             f"use one of {', '.join(units)}, e.g. {example}")
-        value = tok.number * units[unit]
-        if not math.isfinite(value):
-            raise self.error(f"the {kind} {tok.text} is not a number", tok)
-        return value
-
-    def length(self, what: str = "length", positive: bool = False) -> float:
-        tok = self.peek()
-        v = self._quantity(LENGTH_UNITS, "length", "20 cm")
-        if abs(v) > MAX_LENGTH_MM:
-            raise self.error(f"the {what} is larger than 100 m", tok)
-        if positive and v <= 0:
-            raise self.error(f"the {what} must be positive", tok)
-        return v
-
-    def angle(self) -> float:
-        return self._quantity({"deg": 1.0}, "angle", "90 deg")
-
-    def point(self):
-        x = self.length("x coordinate")
-        y = self.length("y coordinate")
-        return x, y
-
-    def end(self):
-        tok = self.peek()
-        if tok is not None:
-            raise self.error(f"unexpected `{tok.text}`", tok, "each item takes one line; "
-                             "see docs/world.md for what may follow")
 
 
 # ---- parsing ----------------------------------------------------------------------
@@ -283,7 +179,10 @@ def parse_world(path: Path, text: Optional[str] = None, shown: Optional[str] = N
         except WorldError as exc:
             errors.append(str(exc))
     if not errors:
-        errors = _check_placement(world, text.splitlines(), shown)
+        lines = text.splitlines()
+        errors = (_check_placement(world, lines, shown) + floor_lines.check(world, lines, shown)
+                  + sound_lines.check(world, lines, shown)
+                  + physics_line.check(world, lines, shown))
     if errors:
         count = f"{len(errors)} error{'s' if len(errors) > 1 else ''}"
         raise WorldError("\n\n".join(errors) + f"\n\n{count} in {shown}")
@@ -295,12 +194,12 @@ def _parse_line(world: World, path: Path, shown: str, lineno: int, raw: str, see
     """One item of a world file into `world`, or a WorldError."""
     body = raw.split("#", 1)[0]
     ln = _Line(shown, lineno, raw)
-    ln.toks = _tokens(body)
+    ln.toks = tokens(body)
     if ln.at_end():
         return
     head = ln.next("an item")
     kind = head.text.lower() if head.number is None else ""
-    if kind in ("arena", "seed", "noise", "step", "messages"):
+    if kind in ("arena", "seed", "noise", "step", "messages", "physics", "scenario"):
         if kind in seen:
             raise ln.error(f"a second `{kind}` line (the first is line {seen[kind]})", head,
                            "a world has one of each; delete one")
@@ -366,6 +265,11 @@ def _parse_line(world: World, path: Path, shown: str, lineno: int, raw: str, see
                 robot.heading_deg = ln.angle()
             elif ln.keyword("colour"):
                 robot.colour = _colour(ln)
+            elif ln.keyword("selector"):
+                robot.selector = ln.whole("the selector's position, 0 .. 15", 15,
+                                          "the selector's position is a whole number from 0 to 15")
+            elif ln.keyword("scenario"):
+                robot.scenario = _scenario(ln, path)
             elif ln.keyword("program"):
                 ptok = ln.next("a program file (.epk or .c)")
                 program = Path(ptok.text)
@@ -377,7 +281,7 @@ def _parse_line(world: World, path: Path, shown: str, lineno: int, raw: str, see
                 robot.program = program
                 more = []
                 while program.suffix == ".c" and ln.peek() is not None \
-                        and ln.peek().text.endswith(".c"):
+                        and ln.peek().text.endswith((".c", ".s")):
                     ctok = ln.next("a C file")
                     extra = Path(ctok.text)
                     if not extra.is_absolute():
@@ -390,13 +294,11 @@ def _parse_line(world: World, path: Path, shown: str, lineno: int, raw: str, see
             else:
                 ln.end()
         if len(world.robots) == MAX_ROBOTS:
-            raise ln.error(f"more than {MAX_ROBOTS} robots", head)
+            raise ln.error(f"more than {MAX_ROBOTS:,} robots", head)
         world.robots.append(robot)
     elif kind == "seed":
-        tok = ln.next("a whole number")
-        if tok.number is None or tok.unit or not tok.text.isdigit() or int(tok.text) >= 2**32:
-            raise ln.error("the seed is a whole number from 0 to 4294967295", tok)
-        world.seed = int(tok.text)
+        world.seed = ln.whole("a whole number", 2**32 - 1,
+                              "the seed is a whole number from 0 to 4294967295")
     elif kind == "noise":
         tok = ln.peek()
         value = ln._quantity({"%": 1.0}, "noise", "5 %")
@@ -411,20 +313,43 @@ def _parse_line(world: World, path: Path, shown: str, lineno: int, raw: str, see
         world.step_ms = int(value)
     elif kind == "messages":
         _messages(world.messages, ln)
+    elif kind == "floor":
+        floor_lines.parse(world, ln, path, lineno)
+    elif kind == "sound":
+        sound_lines.parse(world, ln, lineno)
+    elif kind == "physics":
+        physics_line.parse(world, ln, lineno)
+    elif kind == "scenario":
+        world.scenario = _scenario(ln, path)
     else:
         raise ln.error(f"unknown item `{head.text}`", head,
-                       "a line starts with arena, box, cylinder, robot, seed, noise, step or "
-                       "messages")
+                       "a line starts with arena, box, cylinder, robot, seed, noise, step, "
+                       "messages, floor, sound, physics or scenario")
     ln.end()
 
 
-def _colour(ln: _Line) -> str:
-    tok = ln.next("a colour")
-    name = tok.text.lower()
-    if tok.number is not None or name not in COLOURS:
-        raise ln.error(f"`{tok.text}` is not a colour of a world", tok,
-                       "the colours are " + ", ".join(COLOURS))
-    return name
+def _scenario(ln: _Line, path: Path) -> Path:
+    """A scenario file named by the world (relative to its folder): its
+    inputs at set times for what physics does not give, checked now (each
+    problem at the scenario's own file:line:col)."""
+    from .scenario import world_scenario_problems
+    tok = ln.next("a scenario file (.scn)")
+    scenario = Path(tok.text)
+    if not scenario.is_absolute():
+        scenario = Path(path).parent / scenario
+    if not scenario.is_file():
+        raise ln.error(f"the scenario {tok.text} does not exist", tok,
+                       "the path is relative to the world file's folder")
+    try:
+        problems = world_scenario_problems(scenario, tok.text)
+    except OSError as exc:
+        raise ln.error(f"cannot read the scenario {tok.text}: {exc.strerror or exc}", tok) \
+            from None
+    if problems:
+        raise WorldError("\n\n".join(problems) + "\n" + str(ln.error(
+            f"the scenario {tok.text} of this line has "
+            f"{len(problems)} error{'s' if len(problems) > 1 else ''} (above)", tok)))
+    return scenario
 
 
 def _messages(m: Messages, ln: _Line):
@@ -497,14 +422,13 @@ def _check_placement(world: World, lines: list, shown: str) -> list:
                 fail(robot.line, f"robot {robot.name} overlaps the cylinder of line {c.line}",
                      "move the robot or the cylinder")
         for b in world.boxes:
-            if _box_distance(b, robot.x_mm, robot.y_mm) < r:
+            if box_distance(b, robot.x_mm, robot.y_mm) < r:
                 fail(robot.line, f"robot {robot.name} overlaps the box of line {b.line}",
                      "move the robot or the box")
-    for i, a in enumerate(world.robots):
-        for b in world.robots[i + 1:]:
-            if math.hypot(a.x_mm - b.x_mm, a.y_mm - b.y_mm) < 2 * r:
-                fail(b.line, f"robot {b.name} overlaps robot {a.name}",
-                     f"robots' centres must be at least {2 * r:g} mm apart")
+    for i, j in overlapping(world.robots, 2 * r):
+        a, b = world.robots[i], world.robots[j]
+        fail(b.line, f"robot {b.name} overlaps robot {a.name}",
+             f"robots' centres must be at least {2 * r:g} mm apart")
     if world.walled:
         for obj in world.boxes + world.cylinders:
             if not (0 <= obj.x_mm <= world.width_mm and 0 <= obj.y_mm <= world.height_mm):
@@ -513,7 +437,7 @@ def _check_placement(world: World, lines: list, shown: str) -> list:
     return problems
 
 
-def _box_distance(b: Box, x: float, y: float) -> float:
+def box_distance(b: Box, x: float, y: float) -> float:
     """Distance from a point to a (rotated) box, 0 inside."""
     a = math.radians(b.angle_deg)
     dx, dy = x - b.x_mm, y - b.y_mm
@@ -529,13 +453,15 @@ def _rgb(colour: str) -> str:
     return " ".join(repr(round(v / 255, 6)) for v in COLOURS[colour])
 
 
-def runner_spec(world: World, robots: list) -> str:
+def runner_spec(world: World, robots: list, floor_file: Optional[Path] = None) -> str:
     """The world for runtime_c/enki/world_runner.cpp: lengths in cm, angles
     in radians, colours as r g b in 0..1. `robots` gives, in the world's
     order, (library path, {setting: value}[, devices]) for each robot:
     `devices` (stdlib DEVICES; None or left out: all) says which of the
-    costly ones it reads, "camera" (Enki's camera on its body) and "tof"
-    (the distance ray, cast at every step)."""
+    costly ones it reads, "camera" (Enki's camera on its body), "tof"
+    (the distance ray, cast at every step) and "ground" (Enki's ground
+    sensors over the floor). A world with a floor has its texture written
+    to `floor_file` (sim/floor.py)."""
     def f(v: float) -> str:
         return repr(float(v))
     out = []
@@ -558,13 +484,18 @@ def runner_spec(world: World, robots: list) -> str:
     for c in world.cylinders:
         out.append(f"cylinder {f(c.x_mm / 10)} {f(c.y_mm / 10)} {f(c.radius_mm / 10)} "
                    f"{f(c.height_mm / 10)} {_rgb(c.colour)}")
+    if world.floor is not None:
+        if floor_file is None:
+            raise ValueError("the world has a floor: runner_spec needs a floor_file")
+        out.append(floor_lines.write_texture(world, floor_file))
+    out.extend(sound_lines.spec_lines(world))
     for placement, (lib, settings, *rest) in zip(world.robots, robots):
-        devices = rest[0] if rest and rest[0] is not None else ("camera", "tof")
+        devices = rest[0] if rest and rest[0] is not None else ("camera", "tof", "ground")
         out.append(f"robot {placement.name} {f(placement.x_mm / 10)} {f(placement.y_mm / 10)} "
                    f"{f(math.radians(placement.heading_deg))}")
         out.append(f"lib {lib}")
         out.append(f"colour {_rgb(placement.colour)}")
-        out.extend(device for device in ("camera", "tof") if device in devices)
+        out.extend(device for device in ("camera", "tof", "ground") if device in devices)
         for name, value in settings.items():
             out.append(f"setting {name} {value}")
     return "\n".join(out) + "\n"

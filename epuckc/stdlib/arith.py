@@ -148,3 +148,143 @@ def exact(op: str, a: tuple, b: tuple = None) -> tuple | None:
             values.append(0)
         return min(values), max(values)
     return None
+
+
+# ---- the bitwise operators: 16-bit patterns ------------------------------------------
+#
+# `&`, `|`, `^`, `~`, `<<` and `>>` work on the 16-bit two's complement
+# pattern of ints in -32768..32767 (the checker saturates an operand
+# outside, as where it is stored) and give such an int, on every target
+# (runtime_c/rt_lang.c: rt_shl, rt_shr). A shift by a negative count
+# shifts the other way; by 16 or more it leaves no bit of the value: `<<`
+# gives 0, `>>` the sign (0 or -1). `>>` keeps the sign (it rounds towards
+# minus infinity: -5 >> 1 is -3); `<<` drops the bits shifted past the
+# 16th, so that its result can differ from a * 2**n.
+
+BITWISE = ("&", "|", "^", "<<", ">>")
+
+
+def int16(v: int) -> int:
+    """The int of a 16-bit pattern (its low 16 bits)."""
+    v &= 0xFFFF
+    return v - 0x10000 if v & 0x8000 else v
+
+
+def bit_and(a: int, b: int) -> int:
+    return a & b        # Python's ints are two's complement of any width: exact
+
+
+def bit_or(a: int, b: int) -> int:
+    return a | b
+
+
+def bit_xor(a: int, b: int) -> int:
+    return a ^ b
+
+
+def bit_not(a: int) -> int:
+    return ~a
+
+
+def shl(a: int, n: int) -> int:
+    if n < 0:
+        return shr(a, -n)
+    return 0 if n >= 16 else int16(a << n)
+
+
+def shr(a: int, n: int) -> int:
+    if n < 0:
+        return shl(a, -n)
+    return a >> min(n, 15)
+
+
+BITS = {"&": bit_and, "|": bit_or, "^": bit_xor, "<<": shl, ">>": shr}
+
+
+def _ones(v: int) -> int:
+    """The smallest 2**k - 1 >= v (v >= 0)."""
+    return (1 << v.bit_length()) - 1
+
+
+def _nonnegative(op: str, a: tuple, b: tuple) -> tuple:
+    """`a op b` over intervals of ints >= 0."""
+    if op == "&":
+        return 0, min(a[1], b[1])
+    if op == "|":
+        return max(a[0], b[0]), _ones(max(a[1], b[1]))
+    return 0, _ones(max(a[1], b[1]))       # ^
+
+
+def _not(a: tuple) -> tuple:
+    return -a[1] - 1, -a[0] - 1
+
+
+def _signed(op: str, a: tuple, b: tuple) -> tuple:
+    """`a op b` where each interval is on one side of 0, from the identities
+    of `~` (which maps the negative ints onto the others): a & b is
+    ~(~a | ~b), a | b is ~(~a & ~b), ~a ^ ~b is a ^ b, ..."""
+    neg_a, neg_b = a[1] < 0, b[1] < 0
+    if neg_a and not neg_b:
+        a, b, neg_a, neg_b = b, a, False, True
+    if not neg_b:                                       # both >= 0
+        return _nonnegative(op, a, b)
+    nb = _not(b)
+    if not neg_a:                                       # a >= 0 > b
+        if op == "&":                                   # a & ~nb: a's bits, fewer
+            return 0, a[1]
+        if op == "|":                                   # ~(nb & ~a)
+            return _not((0, nb[1]))
+        return _not(_nonnegative("^", a, nb))           # ~(a ^ nb)
+    na = _not(a)                                        # both < 0
+    if op == "&":
+        return _not(_nonnegative("|", na, nb))
+    if op == "|":
+        return _not(_nonnegative("&", na, nb))
+    return _nonnegative("^", na, nb)
+
+
+def _sides(a: tuple) -> list:
+    """An interval cut at 0: its negative part and the rest."""
+    parts = []
+    if a[0] < 0:
+        parts.append((a[0], min(a[1], -1)))
+    if a[1] >= 0:
+        parts.append((max(a[0], 0), a[1]))
+    return parts
+
+
+def bits_interval(op: str, a: tuple, b: tuple = None) -> tuple:
+    """The interval of a bitwise operation over 16-bit operand intervals:
+    every value it can give lies in it (tests/runtime/test_language.py
+    draws values inside and checks)."""
+    if op == "~":
+        return _not(a)
+    if op in ("<<", ">>"):
+        f = BITS[op]
+        lo = hi = None
+        # (every count beyond -16..16 gives what -16 or 16 gives)
+        for n in range(min(max(b[0], -16), 16), min(max(b[1], -16), 16) + 1):
+            left = n if op == "<<" else -n                      # a shift to the left by
+            if 0 < left < 16 and not fits16(a[0] << left, a[1] << left):
+                low, high = INT16_MIN, INT16_MAX            # bits reach the sign
+            else:
+                low, high = sorted((f(a[0], n), f(a[1], n)))     # monotone in a
+            lo = low if lo is None else min(lo, low)
+            hi = high if hi is None else max(hi, high)
+        return lo, hi
+    found = [_signed(op, x, y) for x in _sides(a) for y in _sides(b)]
+    return min(f[0] for f in found), max(f[1] for f in found)
+
+
+def shift_loses(a: tuple, n: tuple) -> tuple | None:
+    """Where `a << n` can differ from a * 2**n (a bit shifted past the 16th
+    or into the sign), the exact interval of a * 2**n over the counts >= 0
+    that do, with the largest such count; else None (W020)."""
+    exact_lo = exact_hi = most = None
+    for k in range(min(max(n[0], 0), 16), min(max(n[1], 0), 16) + 1):
+        lo, hi = a[0] << k, a[1] << k
+        if (lo, hi) != (0, 0) and not fits16(lo, hi):
+            exact_lo = lo if exact_lo is None else min(exact_lo, lo)
+            exact_hi = hi if exact_hi is None else max(exact_hi, hi)
+            most = k
+    return None if exact_lo is None else (exact_lo, exact_hi, most)

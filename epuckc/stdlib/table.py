@@ -135,13 +135,16 @@ DEVICES = {
     "tof": "the time-of-flight distance sensor (VL53L0X)",
     "camera": "the colour camera (`e_poxxxx`; the e-puck2's po8030 through `dcmi`)",
     "rgb_leds": "RGB LEDs (the e-puck2's four, `set_rgb_led`)",
+    "ground": "GCtronic's ground-sensor module (three IR sensors under the front, "
+              "`get_ground_prox`)",
 }
 TARGET_DEVICES = {
     "host": frozenset(DEVICES),
     # the e-puck library the dspic project builds with has no IR messaging
-    # (libIrcom is a library apart) and the e-puck has no ToF sensor
-    "dspic": frozenset({"camera"}),
-    "epuck2": frozenset({"messages", "tof", "camera", "rgb_leds"}),
+    # (libIrcom is a library apart) and the e-puck has no ToF sensor; the
+    # ground module is read over its I2C protocol (runtime_c/ground_i2c.c)
+    "dspic": frozenset({"camera", "ground"}),
+    "epuck2": frozenset({"messages", "tof", "camera", "rgb_leds", "ground"}),
 }
 TARGET_NAMES = {"host": "the simulation (host)", "dspic": "the e-puck (dspic)",
                 "epuck2": "the e-puck2 (epuck2)"}
@@ -260,6 +263,14 @@ ACTIONS = (
     ActionSpec("led_toggle", (_LED,), "switches an LED on if it is off, off if it is on",
                "action_set_led", runtime_param="param_set_led",
                fields=("{led}", "SET_LED_TOGGLE")),
+    # `fill(a, v)` is `a = [v, v, ...]` (check/arrays.py), v computed once
+    ActionSpec("fill",
+               (Param("array", "array", "a variable array", "declared `var a = [...]` [E062]"),
+                Param("value", "value", "what every element gets, computed once",
+                      "of the array's kind [E048]")),
+               "gives every element of a variable array one value (`a = [v, v, ...]`)",
+               "action_fill", runtime_param="param_fill",
+               dynamic=("action_fill", "param_fill", ("{array}", "{id}", "{count}", "{value}"))),
     ActionSpec("led_ring",
                (Param("count", INT, "how many ring LEDs to light, from LED 0 (the front) "
                       "clockwise", "0..8 [E042]; a value computed outside is taken as the "
@@ -347,7 +358,8 @@ EVENTS = (
     EventSpec("tap",
               (Param("threshold", INT, "change of a raw accelerometer axis in one poll",
                      _READING_RANGE, lo=0, hi=THRESHOLD_MAX, range_code="E032"),),
-              "when an accelerometer axis (`e_get_acc`) jumps by more than `threshold` "
+              "when an accelerometer axis (`e_get_acc_filtered(axis, 1)`) jumps by more than "
+              "`threshold` "
               "between two polls (a knock on the robot)",
               "event_tap", "param_event_accel", fields=("{threshold}",)),
     EventSpec("tilt",
@@ -429,8 +441,13 @@ READINGS = tuple(
     + [Reading(f"mic{i}", INT, 0, THRESHOLD_MAX, f"rt_mic({i})",
                f"volume of microphone {i} (`e_get_micro_volume`, peak to peak)")
        for i in range(3)]
+    + [Reading(f"ground{i}", INT, 0, THRESHOLD_MAX, f"rt_ground({i})",
+               f"ground sensor {i}, {side} (`get_ground_prox`: light reflected by the floor, "
+               f"about 1000 on white paper, near 0 on black)", device="ground")
+       for i, side in enumerate(("left", "centre", "right"))]
     + [Reading(f"acc_{axis}", INT, 0, THRESHOLD_MAX, f"rt_acc({i})",
-               f"accelerometer axis {axis} (`e_get_acc`, raw)")
+               f"accelerometer axis {axis} (`e_get_acc_filtered({i}, 1)`: 2048 no acceleration, "
+               f"768 a g)")
        for i, axis in enumerate("xyz")]
     + [Reading("selector", INT, 0, 15, "rt_selector()",
                "the 16-position selector (`getselector()`)"),
@@ -475,6 +492,7 @@ READING_ARRAYS = {
     "ir": (tuple(f"ir{i}" for i in range(SENSOR_COUNT)), "rt_ir"),
     "ambient": (tuple(f"ambient{i}" for i in range(SENSOR_COUNT)), "rt_ambient"),
     "mic": (tuple(f"mic{i}" for i in range(3)), "rt_mic"),
+    "ground": (tuple(f"ground{i}" for i in range(3)), "rt_ground"),
     "acc": (tuple(f"acc_{axis}" for axis in "xyz"), "rt_acc"),
 }
 # Functions of a whole array (`min` and `max` of one argument too).

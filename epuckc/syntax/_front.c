@@ -256,7 +256,10 @@ static PyObject *parse_statement(DriverObject *d, PyObject *text, const Lexeme *
             rule = &d->rules[-code - 1];
             base = s->top - rule->size + 1;     /* the rule's first value */
             first = rule->size ? s->first[base] : index;
-            if (rule->grow) {
+            if (rule->pass) {               /* `sum: term`: the term itself */
+                value = s->value[base];
+                Py_INCREF(value);
+            } else if (rule->grow) {
                 value = s->value[base];
                 if (!PyList_Check(value)
                         || PyList_Append(value, s->value[s->top + 1 + rule->grow]) < 0) {
@@ -474,10 +477,11 @@ static int int_item(PyObject *seq, Py_ssize_t i, int *out)
  *   names:  the symbols' names, a symbol being its index
  *   packed: the action table, native int32, state * len(names) + symbol
  *           (lalr.Tables.packed; lalr.NO_ACTION is an error)
- *   rules:  per rule, (origin, size, callback or None, include, after, grow)
+ *   rules:  per rule, (origin, size, callback or None, include, after, grow, pass)
  *           with include ((index, splice, nones), ...) as in lalr.Tables
  *   meta:   the span type (source.Span, a named tuple of four ints)
- *   lexer:  (keywords ((word, symbol), ...), punctuation ((char, symbol), ...),
+ *   lexer:  (keywords ((word, symbol), ...), punctuation ((text, symbol), ...): a
+ *            character, or two: one followed by `=` or the same one twice,
  *            NAME, NUMBER, STRING, $END, _LBRACE, _RBRACE, _ACTION, _EXTERN,
  *            _MODE, _INITIAL, _ON, _RULE, statement starts (symbol, ...),
  *            mode starts (symbol, ...)) */
@@ -572,7 +576,8 @@ static PyObject *make_driver(PyObject *module, PyObject *args)
         if (item == NULL)
             goto fail;
         if (int_item(item, 0, &rule->origin) < 0 || int_item(item, 1, &rule->size) < 0
-                || int_item(item, 4, &rule->after) < 0 || int_item(item, 5, &rule->grow) < 0) {
+                || int_item(item, 4, &rule->after) < 0 || int_item(item, 5, &rule->grow) < 0
+                || int_item(item, 6, &rule->pass) < 0) {
             Py_DECREF(item);
             goto fail;
         }
@@ -618,7 +623,8 @@ static PyObject *make_driver(PyObject *module, PyObject *args)
         }
         Py_DECREF(include);
         if (rule->origin < 0 || rule->origin >= nsyms || rule->size < 0 || rule->after < 0
-                || rule->grow < -rule->size || rule->grow > 0)
+                || rule->grow < -rule->size || rule->grow > 0
+                || (rule->pass && (rule->size != 1 || rule->grow)))
             goto bad_size;
     }
 
@@ -637,7 +643,7 @@ static PyObject *make_driver(PyObject *module, PyObject *args)
                 goto bad_size;
     }
     for (i = 0; i < 128; i++)
-        d->punct_sym[i] = d->punct_eq_sym[i] = -1;
+        d->punct_sym[i] = d->punct_eq_sym[i] = d->punct_twice_sym[i] = -1;
     {
         Py_ssize_t k, n = PySequence_Size(keywords);
         if (n < 0)
@@ -685,13 +691,16 @@ static PyObject *make_driver(PyObject *module, PyObject *args)
             Py_DECREF(pair);
             if (!PyUnicode_Check(ch) || PyUnicode_GET_LENGTH(ch) < 1
                     || PyUnicode_GET_LENGTH(ch) > 2
-                    || (PyUnicode_GET_LENGTH(ch) == 2 && PyUnicode_READ_CHAR(ch, 1) != '=')
+                    || (PyUnicode_GET_LENGTH(ch) == 2 && PyUnicode_READ_CHAR(ch, 1) != '='
+                        && PyUnicode_READ_CHAR(ch, 1) != PyUnicode_READ_CHAR(ch, 0))
                     || PyUnicode_READ_CHAR(ch, 0) >= 128 || sym < 0 || sym >= nsyms) {
                 Py_DECREF(ch);
                 goto bad_size;
             }
-            if (PyUnicode_GET_LENGTH(ch) == 2)
+            if (PyUnicode_GET_LENGTH(ch) == 2 && PyUnicode_READ_CHAR(ch, 1) == '=')
                 d->punct_eq_sym[PyUnicode_READ_CHAR(ch, 0)] = sym;
+            else if (PyUnicode_GET_LENGTH(ch) == 2)
+                d->punct_twice_sym[PyUnicode_READ_CHAR(ch, 0)] = sym;
             else
                 d->punct_sym[PyUnicode_READ_CHAR(ch, 0)] = sym;
             Py_DECREF(ch);

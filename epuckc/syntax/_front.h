@@ -42,6 +42,7 @@ typedef struct {
     Include *include;       /* the children kept, as lalr._child_filter says */
     int after;              /* Nones after the last child kept */
     int grow;               /* `_rule: _rule SEP item`: the item's offset from the top, else 0 */
+    int pass;               /* its callback gives its one child back: no call (lalr.PASS) */
     int plain;              /* no child is spliced: the children can be a tuple */
 } Rule;
 
@@ -64,6 +65,7 @@ typedef struct {
     int keyword_sym[MAX_KEYWORDS];
     int punct_sym[128];
     int punct_eq_sym[128];  /* the two-character token of c followed by `=`, or -1 */
+    int punct_twice_sym[128];   /* the two-character token of c twice (`<<`), or -1 */
     int t_name, t_number, t_string, t_end;
     int t_lbrace, t_rbrace, t_action, t_extern, t_mode, t_initial, t_on, t_rule;
 } DriverObject;

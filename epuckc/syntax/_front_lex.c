@@ -145,6 +145,22 @@ int front_tokenise(DriverObject *d, PyObject *text, Lexemes *out)
                     }
                 }
             }
+        } else if (c == '0' && pos + 1 < n && (CH(pos + 1) == 'x' || CH(pos + 1) == 'X'
+                                               || CH(pos + 1) == 'b' || CH(pos + 1) == 'B')) {
+            /* `0x1F`, `0b101`: lexer._radix; a digit its base has not, or
+             * none, is E009 */
+            int hex = CH(pos + 1) == 'x' || CH(pos + 1) == 'X';
+            pos += 2;
+            while (pos < n && CH(pos) < 128 && IS_WORD(CH(pos))) {
+                Py_UCS4 h = CH(pos);
+                if (!(h == '0' || h == '1' || (hex && (IS_DIGIT(h) || (h >= 'a' && h <= 'f')
+                                                      || (h >= 'A' && h <= 'F')))))
+                    return 0;
+                pos++;
+            }
+            if (pos == start + 2 || (pos < n && CH(pos) >= 128))
+                return 0;
+            sym = d->t_number;
         } else if (IS_DIGIT(c)) {
             Py_ssize_t mark;
             while (pos < n && IS_DIGIT(CH(pos)))
@@ -188,6 +204,9 @@ int front_tokenise(DriverObject *d, PyObject *text, Lexemes *out)
             sym = d->t_string;
         } else if (pos + 1 < n && CH(pos + 1) == '=' && d->punct_eq_sym[c] >= 0) {
             sym = d->punct_eq_sym[c];   /* `<=`, `+=`, ... */
+            pos += 2;
+        } else if (pos + 1 < n && CH(pos + 1) == c && d->punct_twice_sym[c] >= 0) {
+            sym = d->punct_twice_sym[c];    /* `<<`, `>>` */
             pos += 2;
         } else {
             sym = d->punct_sym[c];

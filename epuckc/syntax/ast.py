@@ -161,8 +161,8 @@ Value = Union[Number, ConstRef]
 # a `value`; these nodes are made by the operators.
 
 class BinOp(Node):
-    """`left OP right`: OP is one of `+ - * / %`, a comparison
-    (`< <= > >= == !=`), `and` or `or`."""
+    """`left OP right`: OP is one of `+ - * / %`, a bitwise one (`& | ^ <<
+    >>`), a comparison (`< <= > >= == !=`), `and` or `or`."""
     __slots__ = ("op", "left", "right", "span")
     op: str
     left: object
@@ -171,7 +171,7 @@ class BinOp(Node):
 
 
 class UnaryOp(Node):
-    """`-x` (of something other than a number or a name) or `not x`."""
+    """`-x` (of something other than a number or a name), `~x` or `not x`."""
     __slots__ = ("op", "operand", "span")
     op: str
     operand: object
@@ -262,6 +262,17 @@ class Index(Node):
     __slots__ = ("name", "index", "span")
     name: Ident
     index: object
+    span: Span
+
+
+class Slice(Node):
+    """`NAME[LO:HI]`: the elements LO..HI-1 of an array, where a whole
+    array is read (`sum(a[1:4])`); LO and HI are constants (None where
+    left out: from the first, to the last)."""
+    __slots__ = ("name", "lo", "hi", "span")
+    name: Ident
+    lo: object
+    hi: object
     span: Span
 
 

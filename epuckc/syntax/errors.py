@@ -19,8 +19,11 @@ _FRIENDLY = {
     "_RBRACE": "`}`", "_COMMA": "`,`",
     "_COLON": "`:`", "_EQUAL": "`=`", "_SLASH": "`/`", "_PLUS": "`+`", "_STAR": "`*`",
     "_PERCENT": "`%`", "_PLUSEQ": "`+=`", "_MINUSEQ": "`-=`",
+    "_AMP": "`&`", "_PIPE": "`|`", "_CARET": "`^`", "_TILDE": "`~`", "_SHL": "`<<`",
+    "_SHR": "`>>`",
 }
-_OPERATORS = {"_PLUS", "MINUS", "_STAR", "_SLASH", "_PERCENT"}
+_OPERATORS = {"_PLUS", "MINUS", "_STAR", "_SLASH", "_PERCENT", "_AMP", "_PIPE", "_CARET",
+              "_SHL", "_SHR"}
 _STATEMENT_LIST = "a statement (`on`, `rule`, `action`, `const`, `extern`, `robot` or `mode`)"
 
 

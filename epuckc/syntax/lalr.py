@@ -17,13 +17,11 @@ folder is writable the tables are built in memory each time.
 """
 from __future__ import annotations
 
-import marshal
 import os
 import sys
 import zlib
 from operator import itemgetter
 
-from ..base.resources import cache_dir
 
 FORMAT = 2          # bump when the table layout below changes
 NO_ACTION = -(2 ** 31)  # an empty cell of the packed table
@@ -275,21 +273,14 @@ def load_tables(grammar: str, start: str) -> Tables:
     # holds that text itself, compared whole on loading: no hash collision
     # can hand back another grammar's tables (and hashlib, which takes ~3 ms
     # to import, is not needed).
+    from ..base import cache
     key = "\0".join((grammar, start, str(FORMAT), _lark_version(), sys.version, sys.byteorder))
-    path = cache_dir() / f"tables-{zlib.crc32(key.encode('utf-8')):08x}.marshal"
-    try:
-        with open(path, "rb") as f:
-            data = marshal.load(f)
-        if isinstance(data, tuple) and len(data) == 6 and data[0] == key:
-            return Tables(data[1:])
-    except (OSError, EOFError, ValueError, TypeError):
-        pass
+    path = cache.area("tables") / f"{cache.key_name(key.encode('utf-8'))}.marshal"
+    data = cache.load(path)
+    if isinstance(data, tuple) and len(data) == 6 and data[0] == key:
+        return Tables(data[1:])
     data = build_tables(grammar, start)
-    from ..base.output import OutputError, write_file
-    try:                            # atomic: a parallel run sees all or nothing
-        write_file(path, marshal.dumps((key,) + data))
-    except (OutputError, ValueError):
-        pass                        # an unusable cache: build the tables each time
+    cache.store(path, (key,) + data)    # an unusable cache: built each time
     return Tables(data)
 
 
@@ -355,7 +346,14 @@ def expected(tables: Tables, stack: list) -> set:
     return {t for t in row if t.isupper() and _accepts(tables, stack, t)}
 
 
-PICK, ONE, NONE, GROW, GENERAL = range(5)
+PICK, ONE, NONE, GROW, GENERAL, PASS = range(6)
+
+
+def passes_child(func) -> bool:
+    """A callback marked `passes_child = True` gives its one child back as
+    it is (`sum: term`, the levels of an expression without their
+    operator): the drivers skip the call."""
+    return getattr(func, "passes_child", False)
 
 
 def _plan(rules, callbacks) -> list:
@@ -370,7 +368,8 @@ def _plan(rules, callbacks) -> list:
       NONE    no child at all
       GROW    `_rule: _rule SEP item` (left recursion): the item at offset
               arg is appended to the list that is the first child, in place
-      GENERAL anything else (a `_rule` spliced among other children)."""
+      GENERAL anything else (a `_rule` spliced among other children)
+      PASS    the one child at offset arg is the value itself (passes_child)."""
     plan = []
     for origin, callback, size, include, after in rules:
         func = callbacks[callback] if callback is not None else None
@@ -391,6 +390,9 @@ def _plan(rules, callbacks) -> list:
             how, arg = GROW, include[1][0] - size
         else:
             how, arg = GENERAL, include
+        if func is not None and passes_child(func) and size == 1 and after == 0 \
+                and include == ((0, False, 0),):
+            how, arg = PASS, -1
         plan.append((origin, size, func, how, arg, after))
     return plan
 
@@ -432,6 +434,11 @@ def parse(tables: Tables, tokens, callbacks, meta=Meta) -> object:
                 starts.append(index)
                 break
             origin, size, func, how, arg, after = plan[-code - 1]
+            if how == PASS:                 # `sum: term`: the term itself, where it is
+                stack[-1] = states[stack[-2]][origin]
+                if ttype == "$END" and stack[-1] == end_state:
+                    return values[-1]
+                continue
             first = starts[-size] if size else index
             if how == PICK:
                 kept = arg(values)

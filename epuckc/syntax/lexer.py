@@ -25,6 +25,8 @@ PUNCTUATION = {
     "<": "CMP", "+": "_PLUS", "*": "_STAR", "%": "_PERCENT", "[": "_LBRACK", "]": "_RBRACK",
     # two characters, the second always `=`
     "<=": "CMP", ">=": "CMP", "==": "CMP", "!=": "CMP", "+=": "_PLUSEQ", "-=": "_MINUSEQ",
+    # the bitwise operators (16 bits, docs/language.md); a shift is its character twice
+    "&": "_AMP", "|": "_PIPE", "^": "_CARET", "~": "_TILDE", "<<": "_SHL", ">>": "_SHR",
 }
 class Token:
     """One token: its terminal name (`NAME`, `_ON`, ...), its text and where
@@ -74,16 +76,17 @@ _TOKEN_RE = re.compile(r"""
     (?P<space>\n[ \t\r\n\f\v]*|\Z)
   | (?P<comment>\#[^\n]*)
   | (?P<NAME>(?![0-9])\w+)                   # any letters: `café` is one token, one E008
+  | (?P<radix>0[xXbB][0-9A-Za-z_]*)          # 0x1F, 0b101 (checked in _radix)
   | (?P<exponent>[0-9]+(?:\.[0-9]+)?[eE][+-]?[0-9]+)
   | (?P<NUMBER>[0-9]+(?:\.[0-9]+)?)
   | (?P<STRING>"(?:[^"\\\n]|\\.)*")
   | (?P<open_string>"(?:[^"\\\n]|\\.)*)
-  | (?P<punct>[<>=!+\-]=|[(){}\[\],:=/\-><+*%])
+  | (?P<punct>[<>=!+\-]=|<<|>>|[(){}\[\],:=/\-><+*%&|^~])
     )""", re.VERBOSE)
 _BLANKS_RE = re.compile(r"[ \t\r\f\v]*")
 
 # A run of characters that start no token (every other character starts one).
-_BAD_RE = re.compile(r"""(?:!(?!=)|[^\w \t\r\n\f\v#"(){}\[\],:=/\-><+*%!])+""")
+_BAD_RE = re.compile(r"""(?:!(?!=)|[^\w \t\r\n\f\v#"(){}\[\],:=/\-><+*%!&|^~])+""")
 
 
 # Symbols that stand for a unit, and the unit's name in rule files.
@@ -100,7 +103,8 @@ def _bad_help(source: SourceFile, text: str, start: int, end: int):
         number = re.search(r"[0-9.]*$", text[:start].rstrip(" \t")).group(0) or "90"
         return Fix(source.span(start, end), spaced,
                    f"units are written as words: `{number} {unit}`")
-    return ("rule files use names, numbers, units and `( ) { } [ ] , : = + - * / % > < !=`; "
+    return ("rule files use names, numbers, units and "
+            "`( ) { } [ ] , : = + - * / % > < != & | ^ ~ << >>`; "
             "comments start with `#`")
 
 
@@ -145,6 +149,9 @@ def iter_tokens(source: SourceFile, diags: Collector):
             if kind == "NAME" and not value.isascii() and value not in not_ascii:
                 not_ascii.add(value)        # said once per name
                 _not_ascii(source, diags, start, end, value)
+        elif kind == "radix":
+            value = _radix(source, diags, start, end, value)
+            kind = "NUMBER"
         elif kind == "exponent":
             value = _exponent(source, diags, start, end, value)
             kind = "NUMBER"
@@ -194,6 +201,33 @@ def _not_ascii(source, diags, start, end, name):
     diags.error("E008", source.span(start, end),
                 f"names are ASCII: `{name}` has {', '.join(f'`{c}`' for c in others)}",
                 help=f"write it with ASCII letters, digits and `_`, e.g. `{plain}`")
+
+
+_RADIX_DIGITS = {"x": ("hexadecimal", "0123456789abcdefABCDEF", "0x1F"),
+                 "b": ("binary", "01", "0b101")}
+
+
+def _radix(source, diags, start, end, text) -> str:
+    """A hexadecimal or binary number (`0x1F`, `0b101`) as it is; one with
+    a digit its base has not (or none) is reported [E009] and read as 0,
+    so that the rest of the file is checked."""
+    name, digits, example = _RADIX_DIGITS[text[1].lower()]
+    body = text[2:]
+    if body and all(c in digits for c in body):
+        return text
+    bad = next((c for c in body if c not in digits), None)
+    if bad is None:
+        message = f"`{text}` has no digits"
+    else:
+        message = f"`{text}` has `{bad}`, which is not a {name} digit"
+    if name == "binary" and body and not body[0].isdigit():
+        more = f"; for zero of a unit, leave a space: `0 {body}`"
+    else:
+        more = ""
+    diags.error("E009", source.span(start, end), message,
+                help=f"{name} numbers are written `{example}` with the digits "
+                     f"{'0-9 and a-f' if name == 'hexadecimal' else '0 and 1'}{more}")
+    return "0"
 
 
 def _exponent(source, diags, start, end, text) -> str:

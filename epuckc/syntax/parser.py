@@ -14,8 +14,9 @@ from . import accel
 from . import ast
 from . import lalr
 from ..diagnostics import Collector, Note
+from . import aseba
 from .errors import syntax_error
-from .limits import IF_LEVELS, MAX_DEPTH, too_deep
+from .limits import report_too_deep, too_deep
 from .lexer import KEYWORDS, STATEMENT_STARTS, iter_statements, iter_tokens
 from ..base.resources import grammar_path
 from ..base.source import SourceFile, Span
@@ -56,6 +57,18 @@ _Assign = ast.maker(ast.Assign)
 _Index = ast.maker(ast.Index)
 _IfBranch = ast.maker(ast.IfBranch)
 _IfAction = ast.maker(ast.IfAction)
+
+
+def number_value(text: str) -> float:
+    """The value of a number's text: `12`, `0.5`, or a hexadecimal or binary
+    one (`0x1F`, `0b101`), which is a 16-bit pattern: 0x8000..0xFFFF are the
+    negative ints of that two's complement (0xFFFF is -1), as on the
+    e-puck; a longer one keeps its value, for the checker to say it does
+    not fit 16 bits."""
+    if text[1:2] in ("x", "X", "b", "B"):
+        v = int(text[2:], 16 if text[1] in "xX" else 2)
+        return float(v - 0x10000 if 0x8000 <= v <= 0xFFFF else v)
+    return float(text)
 
 
 def _ident(tok) -> ast.Ident:
@@ -145,7 +158,7 @@ class _ToAst:
 
     def priority_number(self, span, children):
         (number,) = children
-        return _Number(float(number.value), number.value, None, None, number.span)
+        return _Number(number_value(number.value), number.value, None, None, number.span)
 
     def priority_const(self, span, children):
         (name,) = children
@@ -246,16 +259,20 @@ class _ToAst:
     def number(self, span, children):
         minus, number, unit = children
         text = number.value if minus is None else "-" + number.value
+        value = number_value(number.value)
+        value = value if minus is None else -value
         if unit is None:
-            return _Number(float(text), text, None, None, span)
-        return _Number(float(text), text, unit[0], unit[1], span)
+            return _Number(value, text, None, None, span)
+        return _Number(value, text, unit[0], unit[1], span)
 
     # -- expressions: a level without its operator passes its one child on --
 
     def _pass(self, span, children):
         return children[0]
+    _pass.passes_child = True       # (the drivers skip the call: lalr.PASS)
 
     expr = conjunction = negation = comparison = sum = product = unary = _pass
+    bit_xor = bit_and = shift = term = _pass
 
     def _binary(op):
         def make(self, span, children):
@@ -265,7 +282,22 @@ class _ToAst:
     or_op, and_op = _binary("or"), _binary("and")
     add_op, sub_op = _binary("+"), _binary("-")
     mul_op, div_op, mod_op = _binary("*"), _binary("/"), _binary("%")
+    bitor_op, bitxor_op, bitand_op = _binary("|"), _binary("^"), _binary("&")
+    shl_op, shr_op = _binary("<<"), _binary(">>")
     del _binary
+
+    def bitnot_op(self, span, children):
+        return _UnaryOp("~", children[0], span)
+
+    def slice_atom(self, span, children):
+        name, lo, hi = children
+        return ast.Slice(_ident(name), lo, hi, span)
+
+    def array_assign_call(self, span, children):
+        """`a = [e0, e1, ...]`: every element at once (the values are
+        computed before any is stored)."""
+        name, *items = children
+        return _Assign(_ident(name), "=", ast.ArrayLit(tuple(items), span), span, None)
 
     def compare_op(self, span, children):
         left, op, right = children
@@ -289,8 +321,8 @@ class _ToAst:
     def number_atom(self, span, children):
         number, unit = children
         if unit is None:
-            return _Number(float(number.value), number.value, None, None, span)
-        return _Number(float(number.value), number.value, unit[0], unit[1], span)
+            return _Number(number_value(number.value), number.value, None, None, span)
+        return _Number(number_value(number.value), number.value, unit[0], unit[1], span)
 
     def name_atom(self, span, children):
         ident = _ident(children[0])
@@ -340,7 +372,8 @@ def make_c_driver(front, tables: lalr.Tables, callbacks):
     rules = []
     for (origin, _, size, include, after), (_, _, func, how, arg, _) in zip(
             tables.rules, lalr._plan(tables.rules, callbacks)):
-        rules.append((sym[origin], size, func, include, after, arg if how == lalr.GROW else 0))
+        rules.append((sym[origin], size, func, include, after, arg if how == lalr.GROW else 0,
+                      int(how == lalr.PASS)))
     lexer = (tuple((word, sym[t]) for word, t in KEYWORDS.items()),
              tuple((char, sym[t]) for char, t in PUNCTUATION.items()),
              sym["NAME"], sym["NUMBER"], sym["STRING"], sym["$END"], sym["_LBRACE"],
@@ -402,7 +435,15 @@ def parse_statement(chunk: list, following, source: SourceFile, diags: Collector
     try:
         return lalr.parse(tables or _tables(), chunk, _CALLBACKS, meta=Span)
     except lalr.ParseError as exc:
-        syntax_error(exc, chunk, following, source, diags)
+        foreign = aseba.report(chunk, diags)        # Aseba's constructs, by name
+        if foreign is None:
+            syntax_error(exc, chunk, following, source, diags)
+        elif foreign > 0 and chunk[foreign - 1].end_line < chunk[foreign].line:
+            # the lines before it may be a statement of their own (`var s = 0`)
+            try:
+                return lalr.parse(tables or _tables(), chunk[:foreign], _CALLBACKS, meta=Span)
+            except lalr.ParseError:
+                pass
         return None
 
 
@@ -491,19 +532,7 @@ class ModePlacer:
             self.placed[id(statement)] = hit
         deep = hit[2]
         if deep is not None:
-            if isinstance(deep, ast.IfAction):
-                diags.error("E056", deep.span,
-                            f"this `if` is nested more than {MAX_DEPTH} deep (an `if` counts "
-                            f"{IF_LEVELS}, an operator, call or parenthesis inside it 1)",
-                            help="join nested conditions with `and`, use `else if` (which "
-                                 "does not nest), or compute a part of a long expression into "
-                                 "a variable first")
-            else:
-                diags.error("E056", deep.span,
-                            f"this expression is nested more than {MAX_DEPTH} deep (operators, "
-                            f"calls and parentheses)",
-                            help="compute a part of it into a variable first (`part = ...`), "
-                                 "then use the variable")
+            report_too_deep(diags, statement, deep)
             return
         if mode is not None and not isinstance(statement, ast.Rule):
             if isinstance(statement, ast.VarDef):

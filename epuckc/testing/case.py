@@ -28,6 +28,8 @@ KEYS = {
     "constants": "a table of the program's constants and their values, as `-D NAME=VALUE` "
                  "gives them: NAME = \"400 steps/s\" or NAME = 3",
     "target": "where the case runs: \"host\" (the simulated e-puck; the only one so far)",
+    "recorded": "a robot's trace recorded by `epuckc monitor --trace` (JSON lines), relative "
+                "to this file's folder: the case's run, instead of a simulation",
 }
 TOLERANCE_KEYS = ("pose_mm", "heading_deg", "time_ms")
 
@@ -65,6 +67,7 @@ class Case:
     expect: list = field(default_factory=list)      # props.Property
     tolerance: Tolerance = field(default_factory=Tolerance)
     constants: dict = field(default_factory=dict)   # NAME -> VALUE text (`-D`)
+    recorded: Optional[Path] = None     # a robot's recorded trace: the run, not simulated
 
     @property
     def name(self) -> str:
@@ -166,16 +169,18 @@ def _apply(case: Case, data: dict, text: str, shown: str, folder: Path):
             if isinstance(value, bool) or not isinstance(value, int) or not 0 <= value <= 0xFFFFFFFF:
                 raise _bad(shown, text, key, KEYS[key])
             case.seed = value
-        elif key in ("scenario", "world"):
+        elif key in ("scenario", "world", "recorded"):
             if not isinstance(value, str) or not value:
                 raise _bad(shown, text, key, KEYS[key])
             target = folder / value
             if not target.is_file():
                 line, col = _where(text, value)
-                raise UsageError(f"{shown}:{line}:{col}: error: the {key} file {value} does "
+                what = "recorded trace" if key == "recorded" else f"{key} file"
+                raise UsageError(f"{shown}:{line}:{col}: error: the {what} {value} does "
                                  f"not exist (paths are relative to {shown}'s folder)")
             setattr(case, key, target)
-            setattr(case, "world" if key == "scenario" else "scenario", None)
+            if key != "recorded":
+                setattr(case, "world" if key == "scenario" else "scenario", None)
         elif key in ("trace", "diag", "c"):
             if not isinstance(value, bool):
                 raise _bad(shown, text, key, KEYS[key])

@@ -25,6 +25,8 @@ from dataclasses import dataclass
 from decimal import Decimal
 from typing import Optional
 
+from ..sim.contacts import steps_in_contact
+
 
 class PropertyError(Exception):
     """A sentence that is not a property check."""
@@ -135,7 +137,7 @@ def _check_one(prop: Property, records: list, robot: str, world: bool) -> Option
             return "`no contact` needs a world (NAME.world): without one nothing can be touched"
         for r in mine:
             if r.get("kind") == "contacts":
-                total = r["walls"] + r["objects"] + r["robots"]
+                total = steps_in_contact(r)
                 if total:
                     return (f"{_who(robot)}collisions in {total} physics steps, the first at "
                             f"{r['first_ms']} ms")

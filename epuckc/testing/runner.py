@@ -4,7 +4,10 @@ A case is checked here (its diagnostics, without colour, the file named
 relative to its folder) and, when it has no errors, run as `epuckc run
 NAME.epk` in a child process started in the case's folder: standard output
 is the readable trace exactly as a user sees it, and a JSON-lines trace
-is written on the side for the property checks. Cases run in parallel on
+is written on the side for the property checks. A case whose run was
+recorded on a robot (`recorded = "run.jsonl"`, by `epuckc monitor`) is
+not run: the recording is its JSON trace, and the readable trace is what
+the monitor printed of it. Cases run in parallel on
 the machine's processors (threads, each waiting for its child); the build
 cache makes a second run of an unchanged program cheap. Outcomes come
 back in the order of the cases."""
@@ -12,6 +15,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import subprocess
 import sys
 import tempfile
@@ -38,6 +42,7 @@ class Outcome:
     problems: list = field(default_factory=list)     # text blocks, each one failure
     written: list = field(default_factory=list)      # with bless: "NAME.trace (new)", ...
     reason: str = ""                                  # why skipped
+    records: Optional[list] = None                    # the run's JSON trace (the studio's replay)
 
 
 @dataclass
@@ -62,7 +67,8 @@ def _program_name(path: Path) -> str:
 
 
 def _front_end(case: Case):
-    """(diagnostics text, generated C or None, has errors)."""
+    """(diagnostics text, generated C or None, has errors, the names of
+    its trace or None)."""
     from ..check.frontend import InputError, check_file
     from ..diagnostics import Report
     from ..diagnostics.render import render_report
@@ -76,20 +82,38 @@ def _front_end(case: Case):
                     text = apply_defines(case.path.read_text(encoding="utf-8"), case.constants,
                                          case.path.name)
                 except (DefineError, UnicodeDecodeError, OSError) as exc:
-                    return f"{case.path.name}: error: {exc}\n", None, True
+                    return f"{case.path.name}: error: {exc}\n", None, True, None
             result = check_file(case.path, report, shown_name=case.path.name, text=text)
         except InputError as exc:
             report.diagnostics.append(exc.diagnostic(case.path.name))
-            return render_report(report, "human", colour=False), None, True
+            return render_report(report, "human", colour=False), None, True, None
         text = render_report(report, "human", colour=False)
         if result.checked is None or report.error_count:
-            return text, None, True
-        c_text = None
-        if case.compare_c:
+            return text, None, True, None
+        c_text = names = None
+        if case.compare_c or case.recorded is not None:
             from ..emit.program import emit_program
-            c_text = emit_program(result.checked, result.source.text,
-                                  _program_name(case.path)).c_text
-    return text, c_text, False
+            generated = emit_program(result.checked, result.source.text,
+                                     _program_name(case.path))
+            c_text = generated.c_text if case.compare_c else None
+            names = generated.names
+    return text, c_text, False, names
+
+
+def _recorded(case: Case, names: dict, produced: Produced) -> None:
+    """A robot's recorded trace as the case's run: its records, and the
+    readable trace `epuckc monitor` printed of them (the steps' texts from
+    the program's names)."""
+    from ..sim.readable import readable_trace
+    try:
+        lines = case.recorded.read_text(encoding="utf-8").splitlines()
+        produced.records = [json.loads(line) for line in lines if line.strip()]
+        steps = names.get("steps", {})
+        produced.texts[".trace"] = readable_trace(produced.records,
+                                                  lambda a: steps.get(str(a), []))
+    except (OSError, UnicodeDecodeError, ValueError, KeyError, TypeError) as exc:
+        produced.run_problem = (f"the recorded trace {case.recorded.name} is not a trace that "
+                                f"`epuckc monitor --trace` writes ({exc})")
 
 
 def _run(case: Case, trace_path: Path) -> subprocess.CompletedProcess:
@@ -117,10 +141,13 @@ def _run(case: Case, trace_path: Path) -> subprocess.CompletedProcess:
 
 def produce(case: Case) -> Produced:
     """Check and run the case; what it produces now."""
-    diag, c_text, has_errors = _front_end(case)
+    diag, c_text, has_errors, names = _front_end(case)
     texts = {".diag": diag or None, ".trace": None, ".c": c_text}
     produced = Produced(texts, has_errors=has_errors)
     if has_errors or not (case.compare_trace or case.expect):
+        return produced
+    if case.recorded is not None:
+        _recorded(case, names, produced)
         return produced
     if case.world is not None:
         from ..sim.enki import ENKI_MISSING, enki_available
@@ -187,6 +214,19 @@ def _compare(case: Case, kind: str, expected: Optional[str], actual: Optional[st
     return header + "\n" + diff
 
 
+_INPUT_LINE = re.compile(r"\[ *\d+ ms\] input ")
+
+
+def _as_recorded(expected: str, records) -> str:
+    """The golden of a simulated run as a robot's recording can match it:
+    the robot's tracer sends what the program did, not what its sensors
+    read (the scenario's `input` lines are the simulation's), so they are
+    left out unless the recording has inputs of its own."""
+    if any(r.get("kind") == "input" for r in records or ()):
+        return expected
+    return "".join(line for line in expected.splitlines(True) if not _INPUT_LINE.match(line))
+
+
 def _read(path: Path) -> Optional[str]:
     try:
         return path.read_text(encoding="utf-8")
@@ -197,6 +237,7 @@ def _read(path: Path) -> Optional[str]:
 def run_case(case: Case, bless: bool = False, bless_hint: str = "`epuckc test --bless`") -> Outcome:
     outcome = Outcome(case)
     produced = produce(case)
+    outcome.records = produced.records
     if produced.skipped:
         outcome.status, outcome.reason = SKIPPED, produced.skipped
         return outcome
@@ -210,6 +251,8 @@ def run_case(case: Case, bless: bool = False, bless_hint: str = "`epuckc test --
         actual = produced.texts[kind]
         if kind == ".trace" and produced.run_problem:
             continue        # nothing to compare with; the problem says why
+        if kind == ".trace" and case.recorded is not None and expected is not None and not bless:
+            expected = _as_recorded(expected, produced.records)
         if bless:
             _bless(path, expected, actual, outcome)
             continue

@@ -14,8 +14,8 @@
 #ifndef ENKI_BRIDGE_H
 #define ENKI_BRIDGE_H
 
-#define ENKI_BRIDGE_VERSION 4
-#define ENKI_MAX_SETTINGS 8
+#define ENKI_BRIDGE_VERSION 6
+#define ENKI_MAX_SETTINGS 12
 #define ENKI_MAX_SENT 16        /* values a robot sends in one world step, at most */
 #define ENKI_MAX_INBOX 64       /* messages delivered to a robot in one world step */
 #define ENKI_CAMERA_PIXELS 60   /* Enki's e-puck camera: 60 pixels over 60 degrees */
@@ -68,6 +68,16 @@ typedef struct enki_robot_io {
      * name/value pairs.  Any other EPUCK_* name reads as unset. */
     const char *settings[2 * ENKI_MAX_SETTINGS + 2];
     enki_message inbox[ENKI_MAX_INBOX];
+
+    /* GCtronic's ground-sensor module and the microphones (world_ground.h,
+     * world_sound.h), at each world step */
+    int ground_on;                  /* (at attach) the world fills ground[] */
+    int ground[3];                  /* world -> robot: what get_ground_prox reads */
+    int mic[3];                     /* world -> robot: what each microphone hears of the world
+                                       (e_get_micro_volume's units) */
+    int sound_started;              /* robot -> world: 1 + the ms in the step at which a sample
+                                       started playing (e_play_sound); 0: none */
+    long sound_words;               /* its length in words */
 } enki_robot_io;
 
 #endif

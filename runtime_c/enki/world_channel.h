@@ -162,9 +162,11 @@ struct Pose {
 
 // What robot R at `to` hears of a message from `from`: false when nothing;
 // else the receiving sensor, the reported direction and distance.
-inline bool deliver(const Settings &s, const std::vector<Obstacle> &obstacles, Random &random,
-                    const Pose &from, const Pose &to, int *sensor, double *direction_rad,
-                    double *distance_cm)
+// `blocked(from, to)`: whether an obstacle lies between them (the physics
+// answers it, from its spatial index where it has one).
+template <class Blocked>
+inline bool deliver(const Settings &s, Blocked blocked, Random &random, const Pose &from,
+                    const Pose &to, int *sensor, double *direction_rad, double *distance_cm)
 {
     double dx = to.x - from.x, dy = to.y - from.y;
     double d = std::hypot(dx, dy);
@@ -174,7 +176,7 @@ inline bool deliver(const Settings &s, const std::vector<Obstacle> &obstacles, R
     if (sensor_for(wrap(world_dir - from.angle), s.emitter_rad) < 0)
         return false;
     int k = sensor_for(wrap(world_dir + PI - to.angle), s.receiver_rad);
-    if (k < 0 || blocked(obstacles, from.x, from.y, to.x, to.y))
+    if (k < 0 || blocked(from, to))
         return false;
     if (random.uniform() < s.loss)
         return false;
@@ -182,6 +184,31 @@ inline bool deliver(const Settings &s, const std::vector<Obstacle> &obstacles, R
     *direction_rad = SENSOR_RAD[k];
     *distance_cm = d * (1.0 + s.range_noise * (2.0 * random.uniform() - 1.0));
     return true;
+}
+
+// How far along the ray from p (|d| = 1) the arena's walls are.
+inline double walls_ahead(const Pose &p, double dx, double dy, double width, double height)
+{
+    double best = std::numeric_limits<double>::infinity();
+    if (dx > 1e-12)
+        best = std::min(best, (width - p.x) / dx);
+    if (dx < -1e-12)
+        best = std::min(best, -p.x / dx);
+    if (dy > 1e-12)
+        best = std::min(best, (height - p.y) / dy);
+    if (dy < -1e-12)
+        best = std::min(best, -p.y / dy);
+    return best;
+}
+
+// The ToF reading for the first thing `best` cm along the ray from the
+// body's centre.
+inline int tof_reading(double best)
+{
+    double ahead = best - ROBOT_RADIUS_CM;
+    if (!(ahead <= TOF_MAX_CM))
+        return TOF_NONE_MM;
+    return ahead <= 0 ? 0 : (int)std::floor(ahead * 10.0 + 0.5);
 }
 
 // The ToF ray straight ahead from the body's edge: mm to the first wall,
@@ -199,20 +226,9 @@ inline int tof_mm(const Pose &p, const std::vector<Obstacle> &obstacles,
         Obstacle body{false, r.x, r.y, ROBOT_RADIUS_CM, 0, 0, 0, {0, 0, 0}};
         best = std::min(best, hit(body, p.x, p.y, dx, dy));
     }
-    if (walls) {
-        if (dx > 1e-12)
-            best = std::min(best, (width - p.x) / dx);
-        if (dx < -1e-12)
-            best = std::min(best, -p.x / dx);
-        if (dy > 1e-12)
-            best = std::min(best, (height - p.y) / dy);
-        if (dy < -1e-12)
-            best = std::min(best, -p.y / dy);
-    }
-    double ahead = best - ROBOT_RADIUS_CM;
-    if (!(ahead <= TOF_MAX_CM))
-        return TOF_NONE_MM;
-    return ahead <= 0 ? 0 : (int)std::floor(ahead * 10.0 + 0.5);
+    if (walls)
+        best = std::min(best, walls_ahead(p, dx, dy, width, height));
+    return tof_reading(best);
 }
 
 }  // namespace channel

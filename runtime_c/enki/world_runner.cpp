@@ -1,7 +1,10 @@
 /*
- * world_runner.cpp - runs e-puck programs in an Enki world, in lockstep.
+ * world_runner.cpp - runs e-puck programs in a simulated world, in
+ * lockstep: the runner's core, over a physics provider (physics.h; this
+ * file is linked with physics_enki.cpp into epuck-world-enki and with
+ * physics_chipmunk.cpp into epuck-world-chipmunk).
  *
- *   epuck-world SPEC RESULTS
+ *   epuck-world-PHYSICS SPEC RESULTS
  *
  * SPEC is the world as epuckc/sim/world.py resolved it (all lengths in cm,
  * angles in radians, one item per line):
@@ -9,7 +12,7 @@
  *   arena square W H [R G B] | arena none
  *                                        walls of a W x H cm arena, corner (0,0),
  *                                        coloured R G B (0..1; default grey)
- *   seed N                               Enki's random generator (noise)
+ *   seed N                               the physics' random generators (noise)
  *   noise F                              wheel speed noise, +-F (0.05 = 5 %)
  *   step_ms N                            ms of virtual time per world step
  *   messages RANGE LOSS EMIT RECV NOISE INTERVAL_MS
@@ -23,8 +26,11 @@
  *                                        (robots may name the same one)
  *   setting NAME VALUE                   what its getenv(NAME) returns
  *   colour R G B                         its body's colour (what cameras see)
- *   camera                               it has Enki's camera (its program reads it)
+ *   camera                               it has the camera (its program reads it)
  *   tof                                  its ToF ray is cast (its program reads it)
+ *   ground                               it has the ground-sensor module (world_ground.h)
+ *   floor W H PATH                       the floor's texture (world_ground.h)
+ *   sound X Y HZ DB N ON OFF ...         a sound source (world_sound.h)
  *
  * The robots of one `lib` share one loaded copy of it, each with its own
  * copy of its globals, swapped into the object's data pages while its code
@@ -32,22 +38,29 @@
  * or the environment's EPUCK_WORLD_COPIES set, each robot loads its own copy
  * of the file instead, in memory or beside the SPEC).  A robot's main()
  * runs as a coroutine (coroutine.h): it runs step_ms poll cycles, then
- * yields (robot_glue.c), and the world steps once.  Robots are
- * resumed in the order of the SPEC; nothing depends on wall-clock time, so
- * a run is reproducible byte for byte.
+ * yields (robot_glue.c), and the world steps once.  The robots' polls run
+ * on EPUCK_WORLD_THREADS threads (default: one per CPU, at most one per
+ * ROBOTS_PER_THREAD robots; workers.h), each thread with its own copy of
+ * each program's object; the physics steps on the main thread in between.
+ * Nothing depends on wall-clock time or on the threads, so a run is
+ * reproducible byte for byte.
  *
  * Readable output: one robot writes to stdout as on the stub harness;
  * several robots' lines are collected per robot and printed after each
- * world step, prefixed with "NAME: ".
+ * world step, prefixed with "NAME: ", in the SPEC's order.
  * RESULTS gets one line per robot:
- *   NAME STATUS WALL_CONTACTS OBJECT_CONTACTS ROBOT_CONTACTS FIRST_CONTACT_MS
- * (contacts are counted in physics steps with a collision; first -1: none).
+ *   NAME STATUS WALL_CONTACTS OBJECT_CONTACTS ROBOT_CONTACTS FIRST_CONTACT_MS CONTACTS
+ * (the physics steps in which the robot touched a wall, an obstacle,
+ * another robot, each kind told apart by the provider (physics::Contacts),
+ * and anything; first -1: none).
  * Exit status 0, or 4 with a message on stderr when the SPEC or a robot's
  * shared object cannot be used.
  */
 #include <dlfcn.h>
 #include <signal.h>
-#include <sys/time.h>
+#include <sched.h>
+#include <sys/resource.h>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -58,21 +71,23 @@
 #include <string>
 #include <utility>
 #include <vector>
-#ifdef __GLIBC__
-#include <stdio_ext.h>         // __fpending
-#endif
-
-#include <enki/PhysicalEngine.h>
-#include <enki/robots/e-puck/EPuck.h>
 
 #include "coroutine.h"
 #include "enki_bridge.h"
+#include "physics.h"
 #include "robot_loader.h"
+#include "workers.h"
 #include "world_channel.h"
+#include "world_ground.h"
+#include "world_sound.h"
 
 namespace {
 
 const int EXIT_RUNNER = 4;
+// Fewer robots than this per thread are not worth a thread of their own
+// (the wake-up of a thread costs about as much as ROBOTS_PER_THREAD polls;
+// docs/performance.md, "Large worlds").
+const size_t ROBOTS_PER_THREAD = 64;
 
 [[noreturn]] void die(const std::string &message)
 {
@@ -80,56 +95,12 @@ const int EXIT_RUNNER = 4;
     std::exit(EXIT_RUNNER);
 }
 
-// Enki's e-puck with the program's wheel geometry and collision counters.
-struct Body : public Enki::EPuck {
-    long wall_contacts = 0, object_contacts = 0, robot_contacts = 0;
-    long first_contact_ms = -1;
-    long now_ms = 0;
-
-    // Enki's EPuck(CAPABILITY_BASIC_SENSORS) also adds the scanner turret
-    // (its test is `capabilities & CAPABILITY_SCANNER_TURRET`, and that
-    // constant is 0x3), which costs most of a step and is never read here:
-    // only the eight IR sensors are added.
-    Body(bool with_camera) : Enki::EPuck(CAPABILITY_NONE)
-    {
-        if (with_camera)
-            addLocalInteraction(&camera);
-        addLocalInteraction(&infraredSensor0);
-        addLocalInteraction(&infraredSensor1);
-        addLocalInteraction(&infraredSensor2);
-        addLocalInteraction(&infraredSensor3);
-        addLocalInteraction(&infraredSensor4);
-        addLocalInteraction(&infraredSensor5);
-        addLocalInteraction(&infraredSensor6);
-        addLocalInteraction(&infraredSensor7);
-    }
-    void setGeometry(double axle_cm, double max_speed_cm_s, double noise)
-    {
-        distBetweenWheels = axle_cm;
-        maxSpeed = max_speed_cm_s;
-        noiseAmount = noise;
-    }
-    void collisionEvent(Enki::PhysicalObject *o) override
-    {
-        if (o == nullptr)
-            wall_contacts++;
-        else if (dynamic_cast<Body *>(o) != nullptr)
-            robot_contacts++;
-        else
-            object_contacts++;
-        if (first_contact_ms < 0)
-            first_contact_ms = now_ms;
-    }
-};
-
 struct Robot {
     std::string name, lib;
-    double x = 0, y = 0, angle = 0;
+    physics::Placement placement;
     std::vector<std::string> settings;      // name, value, ...
-    Enki::Color colour = Enki::Color::gray;
-    bool camera = false, tof = false;
+    int thread = 0;                         // the one that resumes it (workers.h)
     enki_robot_io io;
-    Body *body = nullptr;
     void *handle = nullptr;
     int (*main)(int, char **) = nullptr;
     void (*cmain_signal)(int wall) = nullptr;   // host/cmain.c's timers, this robot's
@@ -137,45 +108,23 @@ struct Robot {
     // its own copy of its program's globals, when other robots share the
     // object (swapped in while its code runs)
     loader::Swapped state;
-    FILE *out = nullptr;                    // several robots: collected output
-    char *out_buf = nullptr;
-    size_t out_size = 0, out_done = 0;
+    std::string out;                        // several robots: its output not printed yet
 };
 
 std::vector<Robot> robots;
+std::unique_ptr<physics::World> world;
 std::map<void *, loader::State> states;     // of each program's object, by handle
-Enki::World *world;
-Robot *current;
-Robot *volatile running_robot;      // the robot whose code runs now, else null
+thread_local Robot *current;                // the robot this thread resumes
+thread_local Robot *volatile running_robot; // the robot whose code runs here now, else null
+FILE *real_stdout;
 
-// The C main model's timers (host/cmain.c) are the process's: CPU time
-// (a main that spins) and wall-clock time (the watchdog), each tick given
-// to the robot that runs.  SA_NODEFER: a robot whose main spins is taken
-// over inside the handler, which then never returns.
+// The C main model's timers (host/cmain.c), each thread's own (workers.h),
+// each tick given to the robot that runs on that thread.
 void on_timer(int sig)
 {
     Robot *r = running_robot;
     if (r != nullptr && r->cmain_signal != nullptr)
         r->cmain_signal(sig == SIGALRM);
-}
-
-void start_timers()
-{
-    struct sigaction sa;
-    std::memset(&sa, 0, sizeof sa);
-    sigemptyset(&sa.sa_mask);
-    sa.sa_flags = SA_RESTART | SA_NODEFER;
-    sa.sa_handler = on_timer;
-    sigaction(SIGVTALRM, &sa, nullptr);
-    sigaction(SIGALRM, &sa, nullptr);
-    struct itimerval every;
-    every.it_interval.tv_sec = 0;
-    every.it_interval.tv_usec = 10000;          // cmain.c's CPU_TICK_MS
-    every.it_value = every.it_interval;
-    setitimer(ITIMER_VIRTUAL, &every, nullptr);
-    every.it_interval.tv_usec = 100000;         // cmain.c's WALL_TICK_MS
-    every.it_value = every.it_interval;
-    setitimer(ITIMER_REAL, &every, nullptr);
 }
 
 // robot -> world
@@ -189,11 +138,58 @@ void start_robot()
     static char arg0[] = "robot";
     static char *argv[] = { arg0, nullptr };
     Robot *r = current;
+    r->run.entered();
     int status = r->main(1, argv);
     r->io.status = status;
     r->io.finished = 1;
     yield_robot(&r->io);
     std::abort();
+}
+
+// Several robots: stdout is this stream, unbuffered, whose every write
+// goes to the output of the robot the writing thread runs (each printf
+// reaches it whole, in the thread that called it).
+ssize_t write_robot_output(void *, const char *buf, size_t size)
+{
+    Robot *r = running_robot;
+    if (r != nullptr)
+        r->out.append(buf, size);
+    else
+        std::fwrite(buf, 1, size, real_stdout);
+    return (ssize_t)size;
+}
+
+FILE *robots_stdout()
+{
+    cookie_io_functions_t io;
+    std::memset(&io, 0, sizeof io);
+    io.write = write_robot_output;
+    FILE *f = fopencookie(nullptr, "w", io);
+    if (f == nullptr)
+        die("out of memory");
+    setvbuf(f, nullptr, _IONBF, 0);
+    return f;
+}
+
+// The robot's whole lines written since the last call (all: the rest too),
+// each prefixed with its name.
+void flush_output(Robot &r, bool all)
+{
+    if (r.out.empty())
+        return;
+    size_t last = r.out.rfind('\n');
+    size_t end = all ? r.out.size() : last == std::string::npos ? 0 : last + 1;
+    if (end == 0)
+        return;
+    size_t i = 0;
+    while (i < end) {
+        size_t j = r.out.find('\n', i);
+        if (j == std::string::npos || j > end)
+            j = end;
+        std::fprintf(real_stdout, "%s: %.*s\n", r.name.c_str(), (int)(j - i), r.out.data() + i);
+        i = j + 1;
+    }
+    r.out.erase(0, end);
 }
 
 std::string rest(const char *line, const char *word)
@@ -206,67 +202,53 @@ std::string rest(const char *line, const char *word)
     return s;
 }
 
-double read_prox(Enki::IRSensor &s)
-{
-    double v = std::floor(s.getValue() + 0.5);
-    return v < 0 ? 0 : v > 4095 ? 4095 : v;
-}
-
-std::vector<channel::Obstacle> obstacles;
 channel::Settings messages;
-bool walls = false;
-double width = 0, height = 0;
-std::vector<channel::Pose> poses;       // every robot's, after the last step
+ground::Floor floor_texture;
+sound::Scene sounds;
+sound::Playing playing;                     // in the coming world step
 
-channel::Pose pose_of(const Robot &r)
+// The samples the robots started playing in the step that began at
+// `from_ms`, then what plays in the next one (from `now_ms`): what the
+// robots' microphones hear before their next polls.
+void take_sounds(long from_ms, long now_ms, int step_ms)
 {
-    return channel::Pose{r.body->pos.x, r.body->pos.y, r.body->angle};
-}
-
-void sense(Robot &r)
-{
-    Enki::IRSensor *ir[8] = {
-        &r.body->infraredSensor0, &r.body->infraredSensor1, &r.body->infraredSensor2,
-        &r.body->infraredSensor3, &r.body->infraredSensor4, &r.body->infraredSensor5,
-        &r.body->infraredSensor6, &r.body->infraredSensor7,
-    };
-    for (int n = 0; n < 8; n++)
-        r.io.prox[n] = (int)read_prox(*ir[n]);
-    r.io.x_mm = r.body->pos.x * 10.0;
-    r.io.y_mm = r.body->pos.y * 10.0;
-    r.io.heading_rad = r.body->angle;
-    r.io.distance_mm = r.tof ? channel::tof_mm(pose_of(r), obstacles, poses, walls, width, height)
-                             : channel::TOF_NONE_MM;
-    if (r.camera) {
-        // Enki's pixels go counter-clockwise, from the right; the camera's
-        // line from the left
-        for (int i = 0; i < ENKI_CAMERA_PIXELS; i++) {
-            const Enki::Color &c = r.body->camera.image[ENKI_CAMERA_PIXELS - 1 - i];
-            for (int k = 0; k < 3; k++) {
-                double v = std::floor(c[k] * 255.0 + 0.5);
-                r.io.camera[3 * i + k] = (unsigned char)(v < 0 ? 0 : v > 255 ? 255 : v);
-            }
-        }
+    for (size_t i = 0; i < robots.size(); i++) {
+        enki_robot_io &io = robots[i].io;
+        if (io.sound_started > 0)
+            sounds.played(i, from_ms + io.sound_started - 1, io.sound_words);
+        io.sound_started = 0;
     }
+    sounds.playing(now_ms, now_ms + step_ms, &playing);
+    world->hear(playing);
 }
 
 // The messages sent in the world step just ended, to every robot the
 // channel lets hear them (in the SPEC's order: reproducible).
 void exchange(channel::Random &random)
 {
-    for (Robot &s : robots) {
+    std::vector<size_t> near;
+    auto blocked = [](const channel::Pose &a, const channel::Pose &b) {
+        return world->blocked(a, b);
+    };
+    for (size_t si = 0; si < robots.size(); si++) {
+        Robot &s = robots[si];
+        if (s.io.n_sent == 0)
+            continue;
+        world->near(si, messages.range_cm, &near);
+        const channel::Pose from = world->pose(si);
         for (int i = 0; i < s.io.n_sent; i++) {
-            for (Robot &r : robots) {
-                if (&r == &s || r.io.finished || r.io.n_inbox >= ENKI_MAX_INBOX)
+            for (size_t ri : near) {
+                Robot &r = robots[ri];
+                if (r.io.finished || r.io.n_inbox >= ENKI_MAX_INBOX)
                     continue;
                 enki_message m;
-                if (!channel::deliver(messages, obstacles, random, pose_of(s), pose_of(r),
-                                      &m.sensor, &m.direction_rad, &m.distance_cm))
+                if (!channel::deliver(messages, blocked, random, from, world->pose(ri), &m.sensor,
+                                      &m.direction_rad, &m.distance_cm))
                     continue;
                 m.value = s.io.sent[i];
                 m.from = s.name.c_str();
-                m.from_x_mm = s.body->pos.x * 10.0;
-                m.from_y_mm = s.body->pos.y * 10.0;
+                m.from_x_mm = from.x * 10.0;
+                m.from_y_mm = from.y * 10.0;
                 r.io.inbox[r.io.n_inbox++] = m;
             }
         }
@@ -274,28 +256,134 @@ void exchange(channel::Random &random)
     }
 }
 
-void flush_output(Robot &r, bool all)
+// The world as the last step left it, in robot i's io.
+void sense(size_t i)
 {
-    if (r.out == nullptr)
-        return;
-#ifdef __GLIBC__
-    if (!all && __fpending(r.out) == 0 && r.out_size == r.out_done)
-        return;                 // nothing written since the last step (most)
-#endif
-    std::fflush(r.out);
-    size_t end = r.out_size;
-    if (!all)
-        while (end > r.out_done && r.out_buf[end - 1] != '\n')
-            end--;
-    size_t i = r.out_done;
-    while (i < end) {
-        size_t j = i;
-        while (j < end && r.out_buf[j] != '\n')
-            j++;
-        std::printf("%s: %.*s\n", r.name.c_str(), (int)(j - i), r.out_buf + i);
-        i = j + 1;
+    Robot &r = robots[i];
+    const channel::Pose p = world->pose(i);
+    r.io.x_mm = p.x * 10.0;
+    r.io.y_mm = p.y * 10.0;
+    r.io.heading_rad = p.angle;
+    world->sense(i, r.io);
+}
+
+// Thread t's share of a world step: its robots' new readings (after the
+// first step), then their polls, each robot in its own coroutine.
+std::vector<std::vector<size_t>> shares;    // the robots of each thread, ascending
+bool first_polls = true;
+
+void poll_share(int t)
+{
+    const std::vector<size_t> &share = shares[t];
+    for (size_t n = 0; n < share.size(); n++) {
+        Robot &r = robots[share[n]];
+        const size_t i = share[n];
+        // the next robot's state and stack, on their way while this one runs
+        if (n + 1 < share.size()) {
+            const Robot &next = robots[share[n + 1]];
+            next.state.prefetch();
+            next.run.prefetch();
+            __builtin_prefetch(&next.io);
+        }
+        if (r.io.finished)
+            continue;
+        if (!first_polls) {
+            r.io.pending_left = r.io.window_left;
+            r.io.pending_right = r.io.window_right;
+            r.io.window_left = r.io.window_right = 0;
+            r.io.ms_in_window = 0;
+            sense(i);
+        }
+        current = &r;
+        r.state.swap_in();
+        running_robot = &r;
+        r.run.resume();
+        running_robot = nullptr;
+        r.state.swap_out();
     }
-    r.out_done = end < r.out_size ? end : r.out_size;
+}
+
+// EPUCK_WORLD_THREADS, else one per CPU this process may run on, at most
+// one per ROBOTS_PER_THREAD robots.
+int thread_count()
+{
+    const char *setting = std::getenv("EPUCK_WORLD_THREADS");
+    long wanted = setting != nullptr && *setting != '\0' ? std::atol(setting) : 0;
+    if (wanted < 0 || wanted > 256)
+        die("EPUCK_WORLD_THREADS is a number of threads from 1 to 256 (0 or unset: automatic)");
+    if (wanted == 0) {
+        cpu_set_t cpus;
+        wanted = sched_getaffinity(0, sizeof cpus, &cpus) == 0 ? CPU_COUNT(&cpus) : 1;
+        long most = (long)(robots.size() / ROBOTS_PER_THREAD);
+        wanted = std::max(1L, std::min(wanted, most));
+    }
+    return (int)std::min<long>(wanted, (long)robots.size());
+}
+
+// Each robot's object: the file itself, for the first robot of its path;
+// its copy for each other robot where the robots of a program cannot share
+// one (thread-local storage, more than 8 KB of state, EPUCK_WORLD_COPIES);
+// else one object per program and thread, the file itself for the first
+// thread that runs it and copies for the others (robot_loader.h).
+void load_robots(const std::string &folder, int threads)
+{
+    const char *copies_setting = std::getenv("EPUCK_WORLD_COPIES");
+    const bool copies = copies_setting != nullptr && *copies_setting != '\0'
+                        && std::strcmp(copies_setting, "0") != 0;
+    std::map<std::string, void *> firsts;               // by path
+    std::map<std::pair<void *, int>, void *> of_thread;  // (first, thread) -> its object
+    std::string error;
+    // the files first: which objects have thread-local storage, whose
+    // robots all run on the main thread (the one their constructors ran on)
+    for (size_t k = 0; k < robots.size(); k++) {
+        Robot &r = robots[k];
+        if (firsts.count(r.lib) != 0)
+            continue;
+        void *h = loader::load(r.lib, nullptr, folder + "robot" + std::to_string(k) + ".so", &error);
+        if (h == nullptr)
+            die("cannot load robot " + r.name + ": " + error);
+        // the same file by another name is the object loaded already
+        if (states.count(h) == 0)
+            states.emplace(h, loader::state_of(h));
+        firsts[r.lib] = h;
+    }
+    shares.assign(threads, {});
+    for (size_t k = 0; k < robots.size(); k++) {
+        Robot &r = robots[k];
+        void *first = firsts.at(r.lib);
+        r.thread = states.at(first).tls ? 0 : (int)(k * threads / robots.size());
+        shares[r.thread].push_back(k);
+        const std::string copy_path = folder + "robot" + std::to_string(k) + ".so";
+        if (copies || !states.at(first).swappable) {
+            bool taken = of_thread.count({first, -1}) != 0;
+            r.handle = taken ? loader::load(r.lib, first, copy_path, &error) : first;
+            of_thread[{first, -1}] = first;
+        } else {
+            auto found = of_thread.find({first, r.thread});
+            if (found != of_thread.end()) {
+                r.handle = found->second;
+            } else {
+                bool any = false;
+                for (int t = 0; t < threads; t++)
+                    any = any || of_thread.count({first, t}) != 0;
+                r.handle = any ? loader::load(r.lib, first, copy_path, &error) : first;
+                if (r.handle != nullptr && states.count(r.handle) == 0)
+                    states.emplace(r.handle, loader::state_of(r.handle));
+                of_thread[{first, r.thread}] = r.handle;
+            }
+        }
+        if (r.handle == nullptr)
+            die("cannot load robot " + r.name + ": " + error);
+        // host/cmain.c's entry, where a reset starts main again (the robot
+        // is linked with --wrap=main); a robot without it: its main
+        r.main = (int (*)(int, char **))dlsym(r.handle, "__wrap_main");
+        if (r.main == nullptr)
+            r.main = (int (*)(int, char **))dlsym(r.handle, "main");
+        r.cmain_signal = (void (*)(int))dlsym(r.handle, "epuck_cmain_signal");
+        if (dlsym(r.handle, "enki_robot_attach") == nullptr || r.main == nullptr)
+            die("robot " + r.name + ": " + r.lib + " is not a robot for this runner");
+    }
+    loader::loaded();
 }
 
 }  // namespace
@@ -304,12 +392,13 @@ int main(int argc, char **argv)
 {
     if (argc != 3)
         die("usage: epuck-world SPEC RESULTS");
+    // the robots' objects start their own timers as they load (host/cmain.c)
+    workers::hold_timer_signals(true);
     FILE *spec = std::fopen(argv[1], "r");
     if (spec == nullptr)
         die(std::string("cannot read ") + argv[1]);
 
-    double noise = 0.05, wall_colour[3] = {0.5, 0.5, 0.5};
-    unsigned long seed = 1;
+    physics::Scene scene;
     int step_ms = 10;
     using channel::Obstacle;
     robots.reserve(1024);
@@ -323,13 +412,13 @@ int main(int argc, char **argv)
         Obstacle o{};
         o.rgb[0] = o.rgb[1] = o.rgb[2] = 0.5;
         Robot r;
-        if (std::sscanf(line, "arena square %lf %lf %lf %lf %lf", &width, &height, &wall_colour[0],
-                        &wall_colour[1], &wall_colour[2]) >= 2)
-            walls = true;
+        if (std::sscanf(line, "arena square %lf %lf %lf %lf %lf", &scene.width, &scene.height,
+                        &scene.wall_rgb[0], &scene.wall_rgb[1], &scene.wall_rgb[2]) >= 2)
+            scene.walls = true;
         else if (std::strncmp(line, "arena none", 10) == 0)
-            walls = false;
-        else if (std::sscanf(line, "seed %lu", &seed) == 1
-                 || std::sscanf(line, "noise %lf", &noise) == 1
+            scene.walls = false;
+        else if (std::sscanf(line, "seed %lu", &scene.seed) == 1
+                 || std::sscanf(line, "noise %lf", &scene.noise) == 1
                  || std::sscanf(line, "step_ms %d", &step_ms) == 1
                  || std::sscanf(line, "messages %lf %lf %lf %lf %lf %d", &messages.range_cm,
                                 &messages.loss, &messages.emitter_rad, &messages.receiver_rad,
@@ -338,23 +427,31 @@ int main(int argc, char **argv)
         else if (std::sscanf(line, "box %lf %lf %lf %lf %lf %lf %lf %lf %lf", &o.x, &o.y, &o.a, &o.b,
                              &o.angle, &o.h, &o.rgb[0], &o.rgb[1], &o.rgb[2]) >= 6) {
             o.box = true;
-            obstacles.push_back(o);
+            scene.obstacles.push_back(o);
         } else if (std::sscanf(line, "cylinder %lf %lf %lf %lf %lf %lf %lf", &o.x, &o.y, &o.a, &o.h,
                                &o.rgb[0], &o.rgb[1], &o.rgb[2]) >= 4) {
             o.box = false;
-            obstacles.push_back(o);
-        } else if (std::sscanf(line, "robot %255s %lf %lf %lf", name, &r.x, &r.y, &r.angle) == 4) {
+            scene.obstacles.push_back(o);
+        } else if (std::sscanf(line, "robot %255s %lf %lf %lf", name, &r.placement.x,
+                               &r.placement.y, &r.placement.angle) == 4) {
             r.name = name;
             robots.push_back(std::move(r));
         } else if (std::strncmp(line, "lib ", 4) == 0 && !robots.empty())
             robots.back().lib = rest(line, "lib");
         else if (!robots.empty() && std::sscanf(line, "colour %lf %lf %lf", &rgb[0], &rgb[1],
                                                 &rgb[2]) == 3)
-            robots.back().colour = Enki::Color(rgb[0], rgb[1], rgb[2]);
+            std::memcpy(robots.back().placement.rgb, rgb, sizeof rgb);
         else if (std::strncmp(line, "camera", 6) == 0 && !robots.empty())
-            robots.back().camera = true;
+            robots.back().placement.camera = true;
         else if (std::strncmp(line, "tof", 3) == 0 && !robots.empty())
-            robots.back().tof = true;
+            robots.back().placement.tof = true;
+        else if (std::strncmp(line, "ground", 6) == 0 && !robots.empty())
+            robots.back().placement.ground = true;
+        else if (std::strncmp(line, "floor ", 6) == 0 || std::strncmp(line, "sound ", 6) == 0) {
+            std::string error;
+            if (!(line[0] == 'f' ? floor_texture.load(line, &error) : sounds.add_source(line, &error)))
+                die(std::string(argv[1]) + ":" + std::to_string(lineno) + ": " + error);
+        }
         else if (std::strncmp(line, "setting ", 8) == 0 && !robots.empty()) {
             std::string s = rest(line, "setting");
             size_t sp = s.find(' ');
@@ -370,34 +467,29 @@ int main(int argc, char **argv)
         die("the world has no robot");
     if (step_ms < 1)
         die("step_ms must be at least 1");
+    scene.dt = step_ms / 1000.0;
 
-    // Enki draws its noise from one generator (Enki::random); C's rand() is
-    // seeded too in case a part of Enki uses it.
-    std::srand((unsigned)seed);
-    world = walls ? new Enki::World(width, height, Enki::Color(wall_colour[0], wall_colour[1],
-                                                               wall_colour[2]))
-                  : new Enki::World();
-    world->setRandomSeed(seed);
-    for (const Obstacle &o : obstacles) {
-        Enki::PhysicalObject *p = new Enki::PhysicalObject;
-        if (o.box)
-            p->setRectangular(o.a, o.b, o.h, -1);
-        else
-            p->setCylindric(o.a, o.h, -1);
-        p->pos = Enki::Point(o.x, o.y);
-        p->angle = o.angle;
-        p->setColor(Enki::Color(o.rgb[0], o.rgb[1], o.rgb[2]));
-        world->addObject(p);
+    // a robot writing its own trace holds a file open: room for them all
+    struct rlimit files;
+    if (getrlimit(RLIMIT_NOFILE, &files) == 0 && files.rlim_cur < files.rlim_max) {
+        files.rlim_cur = files.rlim_max;
+        setrlimit(RLIMIT_NOFILE, &files);
     }
+
+    sounds.listen(robots.size());
+    scene.floor = &floor_texture;
+    scene.sounds = &sounds;
+    std::string error;
+    world = physics::make(scene, &error);
+    if (world == nullptr)
+        die(error);
 
     // the robots' copies go beside the SPEC where memory files are missing
     // (robot_loader.h)
     std::string folder(argv[1]);
     folder = folder.find('/') == std::string::npos ? "./" : folder.substr(0, folder.rfind('/') + 1);
-    const bool several = robots.size() > 1;
-    const char *copies_setting = std::getenv("EPUCK_WORLD_COPIES");
-    const bool copies = copies_setting != nullptr && *copies_setting != '\0'
-                        && std::strcmp(copies_setting, "0") != 0;
+    const int threads = thread_count();
+    load_robots(folder, threads);
     for (Robot &r : robots) {
         std::memset(&r.io, 0, sizeof r.io);
         r.io.version = ENKI_BRIDGE_VERSION;
@@ -405,61 +497,17 @@ int main(int argc, char **argv)
         r.io.runner = &r;
         r.io.step_ms = step_ms;
         r.io.message_frame_ms = messages.interval_ms;
-        r.io.camera_on = r.camera;
+        r.io.camera_on = r.placement.camera;
+        r.io.ground_on = r.placement.ground && scene.walls;    // open ground: the stub's white paper
         if (r.settings.size() / 2 > ENKI_MAX_SETTINGS)
             die("too many settings for robot " + r.name);
         for (size_t i = 0; i < r.settings.size(); i++)
             r.io.settings[i] = r.settings[i].c_str();
-        // the object of the first robot of its program, its own state
-        // swapped in and out (robot_loader.h); else (thread-local storage,
-        // more than 8 KB of state, or EPUCK_WORLD_COPIES for tests and
-        // benches) its own copy of the file, the code shared with the first
-        // robot's
-        void *first = nullptr;
-        for (Robot &o : robots) {
-            if (&o == &r)
-                break;
-            if (o.lib == r.lib) {
-                first = o.handle;
-                break;
-            }
-        }
-        std::string error;
-        const std::string copy_path = folder + "robot" + std::to_string(&r - &robots[0]) + ".so";
-        if (first == nullptr) {
-            r.handle = loader::load(r.lib, nullptr, copy_path, &error);
-            // the same file by another name is the object loaded already
-            if (r.handle != nullptr && states.count(r.handle) != 0)
-                first = r.handle;
-            else if (r.handle != nullptr)
-                states.emplace(r.handle, loader::state_of(r.handle));
-        }
-        if (first != nullptr)
-            r.handle = !copies && states.at(first).swappable
-                       ? first : loader::load(r.lib, first, copy_path, &error);
-        if (r.handle == nullptr)
-            die("cannot load robot " + r.name + ": " + error);
-        auto attach = (int (*)(enki_robot_io *))dlsym(r.handle, "enki_robot_attach");
-        r.main = (int (*)(int, char **))dlsym(r.handle, "main");
-        r.cmain_signal = (void (*)(int))dlsym(r.handle, "epuck_cmain_signal");
-        if (attach == nullptr || r.main == nullptr)
-            die("robot " + r.name + ": " + r.lib + " is not a robot for this runner");
         // the default geometry until the program sets its own (epuckrt.h)
         r.io.mm_per_step = 128.805 / 1000.0;
         r.io.axle_mm = 53.0;
-        r.body = new Body(r.camera);
-        r.body->setColor(r.colour);
-        r.body->pos = Enki::Point(r.x, r.y);
-        r.body->angle = r.angle;
-        r.body->setGeometry(r.io.axle_mm / 10.0, 1000.0, noise);
-        world->addObject(r.body);
-        if (several) {
-            r.out = open_memstream(&r.out_buf, &r.out_size);
-            if (r.out == nullptr)
-                die("out of memory");
-        }
+        world->add(r.placement);
     }
-    loader::loaded();
     // the robots that share an object each start from its data as loaded
     // (its constructors have run, no robot's code yet)
     std::map<void *, int> sharing;
@@ -471,13 +519,12 @@ int main(int argc, char **argv)
         r.state.share(states.at(r.handle));
     }
     // readings for the first poll: the world as placed, nothing moving
-    const double dt = step_ms / 1000.0;
-    channel::Random random(seed);
-    world->step(dt);
-    for (Robot &r : robots)
-        poses.push_back(pose_of(r));
-    for (Robot &r : robots) {
-        sense(r);
+    channel::Random random(scene.seed);
+    world->step(0);
+    take_sounds(0, 0, step_ms);
+    for (size_t i = 0; i < robots.size(); i++) {
+        Robot &r = robots[i];
+        sense(i);
         auto attach = (int (*)(enki_robot_io *))dlsym(r.handle, "enki_robot_attach");
         r.state.swap_in();
         if (attach(&r.io) != 0)
@@ -486,47 +533,36 @@ int main(int argc, char **argv)
         r.run.prepare(start_robot);
     }
 
-    FILE *real_stdout = stdout;
+    real_stdout = stdout;
+    if (robots.size() > 1)
+        stdout = robots_stdout();
+    workers::install_handler(on_timer);
+    workers::hold_timer_signals(false);
+    workers::start_thread_timers();
+    workers::Pool pool(threads, poll_share);
+    const double dt = scene.dt;
     long now_ms = 0;
-    start_timers();
     for (;;) {
+        pool.run();
+        first_polls = false;
         bool running = false;
         for (Robot &r : robots) {
-            if (r.io.finished)
-                continue;
-            current = &r;
-            if (r.out != nullptr)
-                stdout = r.out;
-            r.state.swap_in();
-            running_robot = &r;
-            r.run.resume();
-            running_robot = nullptr;
-            r.state.swap_out();
-            stdout = real_stdout;
+            flush_output(r, false);
             running = running || !r.io.finished;
         }
+        const long from_ms = now_ms;
         now_ms += step_ms;
         // the steps each robot made in this world step become its wheel
-        // speeds; Enki moves the body by them in its next step
-        for (Robot &r : robots) {
+        // speeds; the physics moves the body by them in its next step
+        for (size_t i = 0; i < robots.size(); i++) {
+            const Robot &r = robots[i];
             double cm_per_step = r.io.mm_per_step / 10.0;
-            r.body->setGeometry(r.io.axle_mm / 10.0, 1000.0, noise);
-            r.body->leftSpeed = r.io.window_left * cm_per_step / dt;
-            r.body->rightSpeed = r.io.window_right * cm_per_step / dt;
-            r.body->now_ms = now_ms;
+            world->drive(i, r.io.window_left * cm_per_step / dt,
+                         r.io.window_right * cm_per_step / dt, r.io.axle_mm / 10.0);
         }
-        world->step(dt);
-        for (size_t i = 0; i < robots.size(); i++)
-            poses[i] = pose_of(robots[i]);
+        world->step(now_ms);
         exchange(random);
-        for (Robot &r : robots) {
-            r.io.pending_left = r.io.window_left;
-            r.io.pending_right = r.io.window_right;
-            r.io.window_left = r.io.window_right = 0;
-            r.io.ms_in_window = 0;
-            sense(r);
-            flush_output(r, false);
-        }
+        take_sounds(from_ms, now_ms, step_ms);
         if (!running)
             break;
     }
@@ -535,14 +571,22 @@ int main(int argc, char **argv)
     FILE *results = std::fopen(argv[2], "w");
     if (results == nullptr)
         die(std::string("cannot write ") + argv[2]);
-    for (Robot &r : robots) {
+    for (size_t i = 0; i < robots.size(); i++) {
+        Robot &r = robots[i];
         flush_output(r, true);
-        std::fprintf(results, "%s %d %ld %ld %ld %ld\n", r.name.c_str(), r.io.status,
-                     r.body->wall_contacts, r.body->object_contacts, r.body->robot_contacts,
-                     r.body->first_contact_ms);
+        const physics::Contacts c = world->contacts(i);
+        std::fprintf(results, "%s %d %ld %ld %ld %ld %ld\n", r.name.c_str(), r.io.status, c.walls,
+                     c.objects, c.robots, c.first_ms, c.steps);
     }
     std::fclose(results);
-    std::fflush(stdout);
-    // the robots' trace files are flushed at each record; exit() closes them
+    std::fflush(real_stdout);
+    // the robots' trace files are flushed at each record; exit() closes
+    // them (the physics is left as it is, nothing reads it any more; under
+    // AddressSanitizer it is freed, so that LeakSanitizer finds nothing left)
+#if defined(COROUTINE_ASAN)
+    world.reset();
+#else
+    world.release();
+#endif
     return 0;
 }

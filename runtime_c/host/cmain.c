@@ -35,9 +35,18 @@
  * watchdog, both from the process's start (a constructor).  In an Enki
  * world the runner installs its own after loading its robots (they share
  * one process), which calls epuck_cmain_signal of the robot running.
+ *
+ * The chip's instructions (host/dspic.c calls chip()): a reset starts main
+ * again (the harness links the program with --wrap=main: __wrap_main keeps
+ * where main starts and, before its first run, what the program's globals
+ * hold; build/dspic_asm.py puts them in sections of their own), after the
+ * library's simulation went back to its state at reset; sleep ends main
+ * for good (the agendas and the motors stop, simulated time runs on);
+ * idle waits for the next interrupt.
  */
 #define _GNU_SOURCE
 #include <dlfcn.h>
+#include <setjmp.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -66,9 +75,9 @@ static volatile unsigned long progress;    /* main's blocks and calls, every ste
 static volatile sig_atomic_t taken_over;
 static void *volatile last_pc;      /* the last block of the user's C that ran */
 static long watchdog_ms = DEFAULT_WATCHDOG_MS;
-static unsigned long long reset_cycles;    /* resetTime */
 
 static void read_budget(void);
+static void take_over(void);
 
 static unsigned long long boundary(long ms)
 {
@@ -76,36 +85,13 @@ static unsigned long long boundary(long ms)
 }
 
 /* One simulated ms, main (or whoever called) preempted meanwhile. */
-static int gyro_on;                 /* the gyroscope was read: the rate is kept */
-static double turn_rate_dps;
-
-static double heading_now(void)
-{
-    double x, y, h;
-    stub_pose(&x, &y, &h);
-    return h;
-}
-
 static void sim_step(void)
 {
     sig_atomic_t was = ctx;
-    double before = gyro_on ? heading_now() : 0.0;
     ctx = CTX_SIM;
-    stub_sync_led_ports();
     rt_platform_idle();         /* exits at the time limit */
-    if (gyro_on) {
-        double turn = heading_now() - before;
-        turn += turn > 180.0 ? -360.0 : turn < -180.0 ? 360.0 : 0.0;
-        turn_rate_dps = turn * 1000.0;
-    }
     progress++;
     ctx = was;
-}
-
-double stub_turn_rate_dps(void)
-{
-    gyro_on = 1;
-    return turn_rate_dps;
 }
 
 static void on_init(void)
@@ -131,16 +117,30 @@ static void start_main(void)
 /* Main spent `count` times `cycles_each` cycles: the simulator takes every
  * ms main's clock passed.  Nothing outside main (mainloop, a step), nor
  * before main's own C ran. */
+static volatile sig_atomic_t reset_pending;    /* a reset from an agenda, for main */
+static void reset_now(void);
+
 static void charge(long count, int cycles_each)
 {
     if (ctx != CTX_MAIN || !started)
         return;
+    if (reset_pending)
+        reset_now();
     progress++;
     main_cycles += (unsigned long long)count * (unsigned long long)cycles_each;
     while (ctx == CTX_MAIN && main_cycles >= boundary(main_ms + 1)) {
         main_ms++;
         sim_step();
     }
+}
+
+/* a call of the library: the LEDs as main left them (a pin it wrote) are
+ * noted at main's clock before the call takes its time */
+static void library_call(long count, int cycles_each)
+{
+    if (ctx == CTX_MAIN && started)
+        stub_outputs_mark();
+    charge(count, cycles_each);
 }
 
 void __sanitizer_cov_trace_pc(void);     /* gcc's and clang's name */
@@ -154,30 +154,96 @@ void __sanitizer_cov_trace_pc(void)
     }
 }
 
-/* ---- utility.h's timing: the A/D interrupt's ticks (1/16384 s) ------------ */
+/* ---- main's clock, for the library's devices (epuck_stub.h) ------------------ */
 
 static unsigned long long now_cycles(void)
 {
-    return ctx == CTX_MAIN ? main_cycles : boundary(host_now_ms());
+    return ctx == CTX_MAIN && started ? main_cycles : boundary(host_now_ms());
 }
 
-void resetTime(void)
+static unsigned long long mains_cycles(void)
 {
-    reset_cycles = now_cycles();
+    return main_cycles;
 }
 
-float getDiffTimeMs(void)
+/* ---- the chip's instructions: reset, sleep, idle --------------------------------- */
+
+static sigjmp_buf restart;
+extern char __start_epuck_user_data[] __attribute__((weak));
+extern char __stop_epuck_user_data[] __attribute__((weak));
+extern char __start_epuck_user_bss[] __attribute__((weak));
+extern char __stop_epuck_user_bss[] __attribute__((weak));
+static char *user_data;             /* the program's globals before main first ran */
+
+static size_t section_size(const char *start, const char *stop)
 {
-    unsigned long long ticks = (now_cycles() - reset_cycles) * 10ULL * 16384ULL
-                               / (DECICYCLES_PER_MS * 1000ULL);
-    return (float)ticks * 0.061f;       /* ADC_ISR_PERIOD_MS, as the library */
+    return start != NULL && stop != NULL && stop > start ? (size_t)(stop - start) : 0;
 }
 
-float getDiffTimeMsAndReset(void)
+/* Where main starts, and again after a reset. */
+int __real_main(int argc, char **argv);
+int __wrap_main(int argc, char **argv);
+int __wrap_main(int argc, char **argv)
 {
-    float v = getDiffTimeMs();
-    resetTime();
-    return v;
+    size_t n = section_size(__start_epuck_user_data, __stop_epuck_user_data);
+    int status;
+    if (n > 0 && (user_data = malloc(n)) != NULL)
+        memcpy(user_data, __start_epuck_user_data, n);
+    sigsetjmp(restart, 1);
+    status = __real_main(argc, argv);
+    stub_outputs_end();         /* what the UARTs still had to say, the LEDs */
+    return status;
+}
+
+static void reset_now(void)
+{
+    size_t n = section_size(__start_epuck_user_data, __stop_epuck_user_data);
+    reset_pending = 0;
+    host_record("reset", "reset", ", \"cause\": \"reset instruction\"",
+                "reset     the reset instruction: main starts again");
+    stub_reset_library();
+    if (user_data != NULL)
+        memcpy(__start_epuck_user_data, user_data, n);
+    n = section_size(__start_epuck_user_bss, __stop_epuck_user_bss);
+    if (n > 0)
+        memset(__start_epuck_user_bss, 0, n);
+    ctx = CTX_MAIN;
+    siglongjmp(restart, 1);
+}
+
+/* The next interrupt after main's clock: the A/D scan's (1/16384 s) while
+ * it runs, else the agendas' timer's (0.1 ms); 0: none. */
+static unsigned long long next_interrupt(void)
+{
+    unsigned long long tick, per_s = stub_ad_scan_running() ? 16384ULL
+                                     : stub_agendas_running() ? 10000ULL : 0ULL;
+    if (per_s == 0)
+        return 0;
+    tick = (main_cycles * 10ULL * per_s) / (DECICYCLES_PER_MS * 1000ULL) + 1ULL;
+    return (tick * DECICYCLES_PER_MS * 1000ULL + per_s * 10ULL - 1ULL) / (per_s * 10ULL);
+}
+
+static void chip(int instruction)
+{
+    if (instruction == STUB_INSN_RESET) {
+        if (ctx == CTX_MAIN && started)
+            reset_now();
+        reset_pending = 1;          /* from an agenda: when main runs again */
+        return;
+    }
+    if (ctx != CTX_MAIN || !started)
+        return;
+    if (instruction == STUB_INSN_IDLE) {
+        unsigned long long wake = next_interrupt();
+        if (wake > main_cycles) {
+            charge((long)(wake - main_cycles), 1);
+            return;
+        }
+    }
+    /* sleep (or idle with nothing to wake it): main stops for good */
+    host_record("sleep", "sleep", "", "sleep     main stops: nothing wakes the chip");
+    stub_sleep_library();
+    take_over();
 }
 
 /* ---- the spin and the watchdog ----------------------------------------------- */
@@ -251,6 +317,7 @@ static void watchdog_fire(void)
             "(--watchdog SECONDS sets the budget)\n", function, role, where[0] ? ", last at " : "",
             where, watchdog_ms / 1000, watchdog_ms % 1000 / 100, host_now_ms());
     json_text(w_json, sizeof w_json, where);
+    stub_outputs_end();
     snprintf(extra, sizeof extra, ", \"where\": \"%s\", \"wall_ms\": %ld", w_json, watchdog_ms);
     snprintf(line, sizeof line, "watchdog  %s%s%s did not return within %ld ms of wall-clock time",
              function, where[0] ? " at " : "", where, watchdog_ms);
@@ -343,7 +410,10 @@ static void start_signals(void)
 
 __attribute__((constructor)) static void cmain_install(void)
 {
-    stub_cost_hook = charge;
+    stub_cost_hook = library_call;
+    stub_clock_hook = now_cycles;
+    stub_main_hook = mains_cycles;
+    stub_chip_hook = chip;
     host_init_hook = on_init;
     start_signals();
 }

@@ -1,133 +1,143 @@
 /*
- * epuck_more.c - the rest of the e-puck library that programs written
- * against it use, over the simulated robot of epuck_stub.c: the LED effects
- * of motor_led/advance_one_timer/e_led.h (agenda callbacks, one step a
- * call), the UARTs (what is sent goes to the trace and the terminal;
- * nothing is received), the LSM330 accelerometer and gyroscope of
- * acc_gyro/e_lsm330.h (a flat floor: gravity only; the body's rotation
- * about z), and the battery (full).  Written from the library's
- * documented behaviour; none of its code.
+ * epuck_more.c - more of the e-puck library's simulation: the UARTs, the
+ * A/D scan's timing (utility.h's resetTime/getDiffTimeMs, its flags), the
+ * battery.  Written from the library's documented behaviour; none of its
+ * code.
+ *
+ * UARTs.  What a program sends goes out at the UART's baud rate (uart1 at
+ * 115200, uart2 at what e_init_uart2 sets: FCY / 16 / (BRG + 1)), ten bits
+ * a byte: e_uartN_sending() is true meanwhile, and a send waits, as the
+ * library's does, for the one before to be out.  A UART that was not
+ * initialised sends nothing (and says so once on stderr): the robot's
+ * stays off.  The trace gets a "uart" record per burst of text: up to a
+ * newline, or what went out before the line stayed quiet for UART_QUIET_MS,
+ * or UART_LINE bytes; nothing is ever received.  With
+ * EPUCK_STUB_UART1_ELSEWHERE the UART1's sending is another file's (the
+ * 16-bit path's robot tracer sends on the AVR's USART0, int16/uart1_avr.c).
  */
 #include <stdio.h>
 #include <string.h>
 
 #include "epuck_stub.h"
-#include "motor_led/advance_one_timer/e_led.h"
-#include "motor_led/advance_one_timer/e_agenda.h"
+#include "library_sim.h"
+#include "p30F6014A.h"
 #include "uart/e_uart_char.h"
-#include "acc_gyro/e_lsm330.h"
 #include "utility/utility.h"
+#include "a_d/advance_ad_scan/e_ad_conv.h"
 
-/* ---- LED effects ----------------------------------------------------------- */
+/* ---- the A/D scan: its ticks (16384 a second) -------------------------------------- */
 
-#define TOGGLE 2
+int e_mic_scan[3][MIC_SAMP_NB];
+int e_acc_scan[3][ACC_SAMP_NB];
+unsigned int e_last_mic_scan_id;
+unsigned int e_last_acc_scan_id;
+int e_ambient_ir[10];
+int e_ambient_and_reflected_ir[10];
+unsigned char updateAccI2CCounter;
+unsigned int tickAdcIsr;
 
-void e_blink_led(void)
+#define AD_TICKS_PER_S 16384ULL
+
+static unsigned long long ticks_before;     /* of the scan's earlier runs */
+static unsigned long long started_at;       /* cycles; the run going on */
+static int running;
+static unsigned long long reset_at;         /* resetTime's tick */
+
+static unsigned long long ticks_at(unsigned long long cycles)
 {
-    e_set_led(8, (unsigned int)!stub_led(0));   /* the library inverts each; all follow led0 */
+    return cycles * AD_TICKS_PER_S / STUB_FCY;
 }
 
-void e_blink_led0(void) { e_set_led(0, TOGGLE); }
-void e_blink_led1(void) { e_set_led(1, TOGGLE); }
-void e_blink_led2(void) { e_set_led(2, TOGGLE); }
-void e_blink_led3(void) { e_set_led(3, TOGGLE); }
-void e_blink_led4(void) { e_set_led(4, TOGGLE); }
-void e_blink_led5(void) { e_set_led(5, TOGGLE); }
-void e_blink_led6(void) { e_set_led(6, TOGGLE); }
-void e_blink_led7(void) { e_set_led(7, TOGGLE); }
-
-void e_start_led_blinking(int cycle)
+unsigned long long stub_ad_ticks(void)
 {
-    e_activate_agenda(e_blink_led, cycle);
+    unsigned long long t = ticks_before;
+    if (running)
+        t += ticks_at(stub_now_cycles()) - ticks_at(started_at);
+    return t;
 }
 
-void e_stop_led_blinking(void)
+void stub_ad_scan_changed(int on)
 {
-    e_destroy_agenda(e_blink_led);
+    if (on && !running)
+        started_at = stub_now_cycles();
+    else if (!on && running)
+        ticks_before = stub_ad_ticks();
+    running = on;
 }
 
-void e_set_blinking_cycle(int cycle)
+/* the library's counters, as its A/D interrupt leaves them: tickAdcIsr up
+ * to 65535 ticks (4 s) since resetTime, updateAccI2CCounter up to 64 (the
+ * accelerometer's refresh, imu.c), the buffers' positions */
+static void ad_counters(void)
 {
-    if (cycle >= 0)
-        e_set_agenda_cycle(e_blink_led, cycle);
+    unsigned long long t = stub_ad_ticks(), since = t - reset_at;
+    tickAdcIsr = since > 65535ULL ? 65535u : (unsigned int)since;
+    e_last_mic_scan_id = (unsigned int)(t % MIC_SAMP_NB);
+    e_last_acc_scan_id = (unsigned int)(t / 64ULL % ACC_SAMP_NB);
 }
 
-/* Toggle the LEDs of `pair` (-1: none). */
-static void toggle_pair(const int pair[2])
+void resetTime(void)
 {
-    if (pair[0] >= 0)
-        e_set_led((unsigned int)pair[0], TOGGLE);
-    if (pair[1] >= 0)
-        e_set_led((unsigned int)pair[1], TOGGLE);
+    reset_at = stub_ad_ticks();
+    tickAdcIsr = 0;
 }
 
-/* A wave from the front to the back along both sides, on then off. */
-void flow_led(void)
+float getDiffTimeMs(void)
 {
-    static const int wave[5][2] = { {0, -1}, {1, 7}, {2, 6}, {3, 5}, {4, -1} };
-    static int step;
-    toggle_pair(wave[step]);
-    step = (step + 1) % 5;
+    if (stub_cost_hook != NULL)
+        stub_cost_hook(1L, STUB_CALL_CYCLES);
+    ad_counters();
+    return (float)tickAdcIsr * (float)ADC_ISR_PERIOD_MS;
 }
 
-/* One light around the ring. */
-void snake_led(void)
+float getDiffTimeMsAndReset(void)
 {
-    static int lit;
-    e_set_led((unsigned int)((lit + 7) % 8), 0);
-    e_set_led((unsigned int)lit, 1);
-    lit = (lit + 1) % 8;
+    float v = getDiffTimeMs();
+    resetTime();
+    return v;
 }
 
-/* One light swinging over the front LEDs: 1, 0, 7, 0, 1 ... */
-void k2000_led(void)
+/* the scan has filled the microphones' buffer once / taken all its channels */
+unsigned char e_ad_is_array_filled(void)
 {
-    static const int swing[4] = {1, 0, 7, 0};
-    static int lit, step;
-    e_set_led((unsigned int)lit, 0);
-    lit = swing[step];
-    e_set_led((unsigned int)lit, 1);
-    step = (step + 1) % 4;
+    return stub_ad_ticks() >= MIC_SAMP_NB;
 }
 
-/* A wave over one side, then all off: right (1, 2, 3 with 0 and 4), left
- * (7, 6, 5). */
-static void side_wave(const int steps[3][2], int *step)
+unsigned char e_ad_is_acquisition_completed(void)
 {
-    if (*step < 3)
-        toggle_pair(steps[*step]);
-    else
-        e_led_clear();
-    *step = (*step + 1) % 4;
+    return stub_ad_ticks() >= 64ULL;
 }
 
-void right_led(void)
-{
-    static const int steps[3][2] = { {0, 4}, {1, 3}, {2, -1} };
-    static int step;
-    side_wave(steps, &step);
-}
+/* ---- UARTs ---------------------------------------------------------------------------- */
 
-void left_led(void)
-{
-    static const int steps[3][2] = { {0, 4}, {7, 5}, {6, -1} };
-    static int step;
-    side_wave(steps, &step);
-}
+void *e_uart1_int_clr_addr;
+int e_uart1_int_clr_mask;
+void *e_uart2_int_clr_addr;
+int e_uart2_int_clr_mask;
+/* the receivers' buffers and counts (nothing is ever received here) */
+char U1RXBuf[64], U2RXBuf[64];
+int U1RXRcvCnt, U1RXReadCnt, U2RXRcvCnt, U2RXReadCnt;
 
-/* ---- UARTs -------------------------------------------------------------------- */
+#ifdef __AVR__
+#define UART_LINE 64            /* emit's buffers fit the AVR's 16 KB (--int16) */
+#else
+#define UART_LINE 512
+#endif
+#define UART_QUIET_MS 10
 
-void e_init_uart1(void) {}
-void e_init_uart2(int baud) { (void)baud; }
-int e_ischar_uart1(void) { return 0; }
-int e_ischar_uart2(void) { return 0; }
-int e_getchar_uart1(char *car) { (void)car; return 0; }
-int e_getchar_uart2(char *car) { (void)car; return 0; }
-int e_uart1_sending(void) { return 0; }
-int e_uart2_sending(void) { return 0; }
+typedef struct {
+    const char *name;
+    int on;                     /* initialised */
+    int warned;
+    unsigned long brg;          /* FCY / 16 / (brg + 1) baud */
+    unsigned long long busy_until;     /* cycles: the last byte is out */
+    char text[UART_LINE];
+    int used;
+} uart;
 
-/* The bytes as JSON string text (controls as \uXXXX, \r \n \t by name);
- * cut at `size`. */
+static uart uarts[2] = { { "uart1", 0, 0, 7, 0, {0}, 0 }, { "uart2", 0, 0, 7, 0, {0}, 0 } };
+
+/* The bytes as JSON string text (controls as \uXXXX, \r \n \t by name). */
 static void escape(char *out, size_t size, const char *buff, int length)
 {
     size_t used = 0;
@@ -147,96 +157,118 @@ static void escape(char *out, size_t size, const char *buff, int length)
     out[used] = '\0';
 }
 
-static void send(const char *uart, const char *buff, int length)
+/* the first `n` bytes of the line: a record; the rest stays */
+static void emit(uart *u, int n)
 {
-    char text[1024], extra[1100], line[1100];
+    /* static: a byte escapes to at most 6 (\u00XX), off the caller's stack */
+    static char text[6 * UART_LINE + 8], extra[6 * UART_LINE + 32], line[6 * UART_LINE + 32];
+    if (n <= 0)
+        return;
+    escape(text, sizeof text, u->text, n);
+    snprintf(extra, sizeof extra, ", \"text\": \"%s\"", text);
+    snprintf(line, sizeof line, "%-9s %s", u->name, text);
+    host_record("uart", u->name, extra, line);
+    memmove(u->text, u->text + n, (size_t)(u->used - n));
+    u->used -= n;
+}
+
+static void send(uart *u, const char *buff, int length)
+{
+    unsigned long long now;
+    int i;
     if (stub_cost_hook != NULL)
         stub_cost_hook(1L, STUB_CALL_CYCLES);
     if (buff == NULL || length <= 0)
         return;
-    escape(text, sizeof text, buff, length);
-    snprintf(extra, sizeof extra, ", \"text\": \"%s\"", text);
-    snprintf(line, sizeof line, "%-9s %s", uart, text);
-    host_record("uart", uart, extra, line);
-}
-
-void e_send_uart1_char(const char *buff, int length) { send("uart1", buff, length); }
-void e_send_uart2_char(const char *buff, int length) { send("uart2", buff, length); }
-
-/* ---- LSM330 ------------------------------------------------------------------------ */
-
-#define ACC_ONE_G 16384         /* +-2 g full scale, 16 bits */
-#define GYRO_DPS_PER_UNIT 0.00875
-
-void initAccAndGyro(void) {}
-void calibrateGyroscope(void) {}
-int getXAxisAcc(void) { return 0; }
-int getYAxisAcc(void) { return 0; }
-int getZAxisAcc(void) { return ACC_ONE_G; }
-int getXAxisGyro(void) { return 0; }
-int getYAxisGyro(void) { return 0; }
-signed char getTemperature(void) { return 25; }
-
-/* the body's rate of turn about z, from its heading over the last ms */
-int getZAxisGyro(void)
-{
-    double rate = stub_turn_rate_dps();
-    double raw = rate / GYRO_DPS_PER_UNIT;
-    if (raw > 32767.0)
-        return 32767;
-    if (raw < -32768.0)
-        return -32768;
-    return (int)(raw < 0 ? raw - 0.5 : raw + 0.5);
-}
-
-void getAllAxesAcc(signed int *x, signed int *y, signed int *z)
-{
-    *x = getXAxisAcc();
-    *y = getYAxisAcc();
-    *z = getZAxisAcc();
-}
-
-void getAllAxesGyro(signed int *x, signed int *y, signed int *z)
-{
-    *x = getXAxisGyro();
-    *y = getYAxisGyro();
-    *z = getZAxisGyro();
-}
-
-/* little-endian pairs x, y, z as the sensor's registers */
-static void raw_pairs(unsigned char *arr, int x, int y, int z)
-{
-    int v[3], i;
-    v[0] = x;
-    v[1] = y;
-    v[2] = z;
-    for (i = 0; i < 3; i++) {
-        arr[2 * i] = (unsigned char)(v[i] & 0xFF);
-        arr[2 * i + 1] = (unsigned char)((v[i] >> 8) & 0xFF);
+    if (!u->on) {
+        if (!u->warned)
+            fprintf(stderr, "epuckc: note: e_send_%s_char before e_init_%s: the robot's UART "
+                    "is off and sends nothing\n", u->name, u->name);
+        u->warned = 1;
+        return;
+    }
+    now = stub_now_cycles();
+    if (u->busy_until > now) {          /* the library waits for the one before */
+        stub_wait_cycles((long)(u->busy_until - now));
+        now = stub_now_cycles();
+    }
+    u->busy_until = (u->busy_until > now ? u->busy_until : now)
+                    + (unsigned long long)length * 10ULL * 16ULL * (u->brg + 1ULL);
+    for (i = 0; i < length; i++) {
+        if (u->used == UART_LINE)
+            emit(u, u->used);
+        u->text[u->used++] = buff[i];
+        if (buff[i] == '\n')
+            emit(u, u->used);
     }
 }
 
-void getAllAxesAccRaw(unsigned char *arr)
+static int sending(uart *u)
 {
-    raw_pairs(arr, getXAxisAcc(), getYAxisAcc(), getZAxisAcc());
+    if (stub_cost_hook != NULL)
+        stub_cost_hook(1L, STUB_CALL_CYCLES);
+    return u->on && u->busy_until > stub_now_cycles();
 }
 
-void getAllAxesGyroRaw(unsigned char *arr)
+#ifndef EPUCK_STUB_UART1_ELSEWHERE
+void e_init_uart1(void) { uarts[0].on = 1; uarts[0].brg = 7; }
+#endif
+void e_init_uart2(int baud) { uarts[1].on = 1; uarts[1].brg = (unsigned long)baud & 0xFFFFu; }
+int e_ischar_uart1(void) { return 0; }
+int e_ischar_uart2(void) { return 0; }
+int e_getchar_uart1(char *car) { (void)car; return 0; }
+int e_getchar_uart2(char *car) { (void)car; return 0; }
+#ifndef EPUCK_STUB_UART1_ELSEWHERE
+int e_uart1_sending(void) { return sending(&uarts[0]); }
+void e_send_uart1_char(const char *buff, int length) { send(&uarts[0], buff, length); }
+#endif
+int e_uart2_sending(void) { return sending(&uarts[1]); }
+void e_send_uart2_char(const char *buff, int length) { send(&uarts[1], buff, length); }
+
+/* the lines quiet for long enough; at the end (n < 0) every line's rest */
+static void quiet_lines(int end)
 {
-    raw_pairs(arr, getXAxisGyro(), getYAxisGyro(), getZAxisGyro());
+    int k;
+    unsigned long long now = stub_now_cycles();
+    for (k = 0; k < 2; k++) {
+        uart *u = &uarts[k];
+        if (u->used > 0 && (end || now > u->busy_until
+                                   + (unsigned long long)UART_QUIET_MS * STUB_FCY / 1000ULL))
+            emit(u, u->used);
+    }
 }
 
-float rawToDps(int value)
+void stub_uart_end(void)
 {
-    return (float)value * 0.00875f;
+    quiet_lines(1);
 }
 
-float rawToDpms(int value)
+/* ---- each ms, and a reset ------------------------------------------------------------ */
+
+void stub_more_ms(long now_ms, long n)
 {
-    return (float)value * 0.00000875f;
+    (void)now_ms;
+    (void)n;
+    ad_counters();
+    quiet_lines(0);
 }
 
-/* ---- battery: full ------------------------------------------------------------------ */
+void stub_more_reset(void)
+{
+    int k;
+    quiet_lines(1);
+    for (k = 0; k < 2; k++) {
+        uarts[k].on = 0;
+        uarts[k].busy_until = 0;
+    }
+    ticks_before = 0;
+    running = 0;
+    reset_at = 0;
+    tickAdcIsr = 0;
+    updateAccI2CCounter = 0;
+}
+
+/* ---- battery: full ----------------------------------------------------------------------- */
 
 unsigned int getBatteryValueRaw(void)
 {

@@ -1,6 +1,12 @@
 /*
- * epuck_stub.c - a stub of the e-puck library for the host harness: the
- * prototypes of ../epuck_api/ implemented over a virtual robot.
+ * epuck_stub.c - the e-puck library's simulation for the host harness (the
+ * prototypes of ../epuck_api/ over a virtual robot): the ports, agendas,
+ * motors, odometry, proximity sensors, remote control and selector; the
+ * simulation's time and its reset.  The other devices are in outputs.c
+ * (LEDs and the trace's output records), sound.c (the codec and the
+ * microphones), imu.c (the accelerometer and the gyroscope), camera.c,
+ * stub_devices.c (IR messages, ToF), epuck_more.c (UARTs, battery, the A/D
+ * scan's timing), dspic.c (the chip's registers, EEPROM, instructions).
  *
  * Motors: speeds clamped to +-1000 steps/s like the library; each wheel
  * steps whole steps (one every 1000/|speed| ms, phase restarted when the
@@ -23,13 +29,10 @@
 #include "motor_led/advance_one_timer/e_agenda.h"
 #include "a_d/advance_ad_scan/e_prox.h"
 #include "a_d/advance_ad_scan/e_ad_conv.h"
-#include "a_d/advance_ad_scan/e_micro.h"
-#include "a_d/advance_ad_scan/e_acc.h"
-#include "motor_led/e_led.h"
 #include "motor_led/e_epuck_ports.h"
 #include "motor_led/advance_one_timer/e_remote_control.h"
-#include "codec/e_sound.h"
 #include "utility/utility.h"
+#include "library_sim.h"
 
 #define STUB_PI 3.14159265358979323846
 static double mm_per_step = (double)EPUCK_WHEEL_CIRCUMFERENCE_UM / 1000.0 / (double)EPUCK_STEPS_PER_REV;
@@ -44,6 +47,8 @@ void stub_set_geometry(long wheel_circumference_um, long axle_um, long steps_per
 /* ---- the C main model: what main's calls cost (cmain.c on the host) ------- */
 
 void (*stub_cost_hook)(long count, int cycles_each);
+unsigned long long (*stub_clock_hook)(void);
+unsigned long long (*stub_main_hook)(void);
 
 #define COST(cycles) do { if (stub_cost_hook != NULL) stub_cost_hook(1L, cycles); } while (0)
 
@@ -54,11 +59,95 @@ void wait(long num)
         stub_cost_hook(num, STUB_WAIT_LOOP_CYCLES);
 }
 
+void stub_wait_cycles(long cycles)
+{
+    if (stub_cost_hook != NULL && cycles > 0)
+        stub_cost_hook(cycles, 1);
+}
+
+/* ---- the simulation's time --------------------------------------------------- */
+
+static long devices_ms;             /* the last ms stub_devices_ms was told of */
+
+/* ms * STUB_FCY / 1000 exactly, without a 64-bit division (the AVR's
+ * each-ms interrupt calls it: --int16): ms = 1000 s + r */
+unsigned long long stub_ms_cycles(long ms)
+{
+    unsigned long m = ms > 0 ? (unsigned long)ms : 0UL, s = m / 1000UL, r = m % 1000UL;
+    return (unsigned long long)s * STUB_FCY + r * (STUB_FCY / 1000UL)
+           + r * (STUB_FCY % 1000UL) / 1000UL;
+}
+
+unsigned long long stub_now_cycles(void)
+{
+    if (stub_clock_hook != NULL)
+        return stub_clock_hook();
+    return stub_ms_cycles(devices_ms);
+}
+
+unsigned long long stub_ms_began_cycles(void)
+{
+    return stub_ms_cycles(devices_ms);
+}
+
+void stub_devices_ms(long now_ms, long n)
+{
+    devices_ms = now_ms;
+    stub_sound_ms(now_ms, n);
+    stub_more_ms(now_ms, n);
+    stub_imu_ms(now_ms, n);
+    stub_camera_ms(now_ms, n);
+}
+
+/* ---- reset and sleep: the library's state as at the chip's reset ------------- */
+
+void stub_reset_library(void)
+{
+    stub_dspic_reset_registers();
+    stub_motors_reset();
+    stub_outputs_reset();
+    stub_sound_reset();
+    stub_imu_reset();
+    stub_camera_reset();
+    stub_more_reset();
+}
+
+/* sleep: the system clock stops, and with it Timer2 (the agendas, which
+ * step the motors on the robot) */
+void stub_sleep_library(void)
+{
+    e_end_agendas_processing();
+    e_set_speed_left(0);
+    e_set_speed_right(0);
+}
+
 /* ---- ports ---------------------------------------------------------------- */
 
+unsigned char isPresentFlag = 1;    /* the e-puck 1.3's I2C devices answered */
+
+/* As the library: the LEDs, the IR emitters, the audio and the camera's
+ * reset are outputs, off; the selector, the remote and the battery inputs. */
 void e_init_port(void)
 {
     COST(STUB_CALL_CYCLES);
+    LED0 = 0; LED1 = 0; LED2 = 0; LED3 = 0; LED4 = 0; LED5 = 0; LED6 = 0; LED7 = 0;
+    LED0_DIR = OUTPUT_PIN; LED1_DIR = OUTPUT_PIN; LED2_DIR = OUTPUT_PIN; LED3_DIR = OUTPUT_PIN;
+    LED4_DIR = OUTPUT_PIN; LED5_DIR = OUTPUT_PIN; LED6_DIR = OUTPUT_PIN; LED7_DIR = OUTPUT_PIN;
+    FRONT_LED = 0;
+    FRONT_LED_DIR = OUTPUT_PIN;
+    BODY_LED = 0;
+    BODY_LED_DIR = OUTPUT_PIN;
+    PULSE_IR0 = 0; PULSE_IR1 = 0; PULSE_IR2 = 0; PULSE_IR3 = 0;
+    PULSE_IR0_DIR = OUTPUT_PIN; PULSE_IR1_DIR = OUTPUT_PIN;
+    PULSE_IR2_DIR = OUTPUT_PIN; PULSE_IR3_DIR = OUTPUT_PIN;
+    AUDIO_ON = 0;
+    AUDIO_ON_DIR = OUTPUT_PIN;
+    CAM_RESET = 0;
+    CAM_RESET_DIR = OUTPUT_PIN;
+    SELECTOR0_DIR = INPUT_PIN; SELECTOR1_DIR = INPUT_PIN;
+    SELECTOR2_DIR = INPUT_PIN; SELECTOR3_DIR = INPUT_PIN;
+    REMOTE_DIR = INPUT_PIN;
+    BATT_LOW_DIR = INPUT_PIN;
 }
 
 unsigned char isEpuckVersion1_3(void)
@@ -90,16 +179,25 @@ static int agenda_find(void (*func)(void))
     return -1;
 }
 
+/* As the library: Timer2's interrupt runs them (STOP_TMR2, which clears
+ * its enable bit, stops them as on the robot). */
 void e_start_agendas_processing(void)
 {
     agendas_changed = 1;
     agendas_running = 1;
+    IEC0bits.T2IE = 1;
 }
 
 void e_end_agendas_processing(void)
 {
     agendas_changed = 1;
     agendas_running = 0;
+    IEC0bits.T2IE = 0;
+}
+
+int stub_agendas_running(void)
+{
+    return agendas_running && IEC0bits.T2IE;
 }
 
 /* Returns 0 on success, 1 when func already has an agenda or none is free. */
@@ -188,10 +286,12 @@ int stub_agendas_count_only(void (*clock)(void))
     static int only;
     static void (*seen)(void);
     int i;
-    if (agendas_changed || clock != seen) {
+    static unsigned int enabled;
+    if (agendas_changed || clock != seen || enabled != IEC0bits.T2IE) {
         agendas_changed = 0;
         seen = clock;
-        only = agendas_running;
+        enabled = IEC0bits.T2IE;
+        only = stub_agendas_running();
         for (i = 0; i < agendas_used && only; i++) {
             if (agendas[i].func != NULL && agendas[i].cycle > 0 && !agendas[i].paused
                     && agendas[i].func != clock && !agendas[i].counter)
@@ -204,7 +304,7 @@ int stub_agendas_count_only(void (*clock)(void))
 void stub_agendas_1ms(void)
 {
     int i;
-    if (!agendas_running)
+    if (!stub_agendas_running())
         return;
     for (i = 0; i < agendas_used; i++) {
         if (agendas[i].func == NULL || agendas[i].cycle <= 0 || agendas[i].paused)
@@ -347,9 +447,20 @@ long stub_total_steps_left(void)
     return left_wheel.total;
 }
 
-long stub_total_steps_right(void)
+int stub_speed_left(void)
 {
-    return right_wheel.total;
+    return left_wheel.speed;
+}
+
+int stub_speed_right(void)
+{
+    return right_wheel.speed;
+}
+
+void stub_geometry(double *mm, double *axle)
+{
+    *mm = mm_per_step;
+    *axle = axle_mm;
 }
 
 /* ---- odometry ------------------------------------------------------------------ */
@@ -483,7 +594,17 @@ void stub_pose(double *x_mm, double *y_mm, double *heading_deg)
 /* ---- proximity ---------------------------------------------------------------- */
 
 static int prox[8];
-static int ad_scan_on;      /* e_init_ad_scan(ALL_ADC) called */
+enum { AD_OFF, AD_ALL, AD_MICRO };
+static int ad_scan;         /* e_init_ad_scan: all the channels, or the microphones only */
+static int ad_scan_mode = AD_ALL;   /* what e_ad_scan_on starts again */
+static int ir_offset[8];    /* e_calibrate_ir's, what e_get_calibrated_prox subtracts */
+static int remote_on;
+static unsigned char remote_check = 2, remote_data;
+
+int stub_ad_scan_running(void)
+{
+    return ad_scan != AD_OFF;
+}
 
 /* ---- the inputs' epoch: each setter counts ---------------------------------- */
 
@@ -509,10 +630,24 @@ void stub_set_prox(int n, int value)
 void e_init_ad_scan(unsigned char only_micro)
 {
     /* MICRO_ONLY scans the microphones only: no proximity readings */
-    ad_scan_on = only_micro == ALL_ADC;
+    ad_scan = only_micro == MICRO_ONLY ? AD_MICRO : AD_ALL;
+    ad_scan_mode = ad_scan;
+    stub_ad_scan_changed(1);
 }
 
-static int ir_offset[8];     /* e_calibrate_ir's, what e_get_calibrated_prox subtracts */
+/* the scan stops, and starts again as it was configured (the buffers as
+ * they are) */
+void e_ad_scan_off(void)
+{
+    ad_scan = AD_OFF;
+    stub_ad_scan_changed(0);
+}
+
+void e_ad_scan_on(void)
+{
+    ad_scan = ad_scan_mode;
+    stub_ad_scan_changed(1);
+}
 
 /* As the library: 100 rounds of the ten channels, each reading followed by
  * a busy loop of 1000; the offset of a sensor is the mean of its readings
@@ -535,7 +670,7 @@ void e_calibrate_ir(void)
 int e_get_prox(unsigned int sensor_number)
 {
     COST(STUB_CALL_CYCLES);
-    if (!ad_scan_on || sensor_number > 7)
+    if (ad_scan != AD_ALL || sensor_number > 7)
         return 0;
     return prox[sensor_number];
 }
@@ -562,217 +697,23 @@ void stub_set_ambient(int n, int value)
 
 int e_get_ambient_light(unsigned int sensor_number)
 {
-    if (!ad_scan_on || sensor_number > 7)
+    COST(STUB_CALL_CYCLES);
+    if (ad_scan != AD_ALL || sensor_number > 7)
         return 0;
     return ambient[sensor_number];
 }
 
-/* ---- what the host is told about the robot's outputs ------------------------- */
-
-static stub_observer observer;
-
-void stub_set_observer(stub_observer f)
-{
-    observer = f;
-}
-
-static void observe(const char *device, const char *name, int value)
-{
-    if (observer != NULL)
-        observer(device, name, value);
-}
-
-void stub_observe(const char *device, const char *name, int value)
-{
-    observe(device, name, value);
-}
-
-/* ---- LEDs ---------------------------------------------------------------------- */
-
-static int ring[8], body_led, front_led;
-volatile e_epuck_port_bits e_epuck_ports;
-
-/* the pins follow the LEDs' states (a program reads LED0 ...) */
-static void leds_to_ports(void)
-{
-    e_epuck_ports.led0 = ring[0] & 1; e_epuck_ports.led1 = ring[1] & 1;
-    e_epuck_ports.led2 = ring[2] & 1; e_epuck_ports.led3 = ring[3] & 1;
-    e_epuck_ports.led4 = ring[4] & 1; e_epuck_ports.led5 = ring[5] & 1;
-    e_epuck_ports.led6 = ring[6] & 1; e_epuck_ports.led7 = ring[7] & 1;
-    e_epuck_ports.body = body_led & 1; e_epuck_ports.front = front_led & 1;
-}
-
-/* A program wrote the pins (LED3 = 1): the LEDs take them, traced as
- * e_set_led's.  The harness calls it every simulated ms. */
-void stub_sync_led_ports(void)
-{
-    int pins[8];
-    unsigned int n;
-    pins[0] = e_epuck_ports.led0; pins[1] = e_epuck_ports.led1;
-    pins[2] = e_epuck_ports.led2; pins[3] = e_epuck_ports.led3;
-    pins[4] = e_epuck_ports.led4; pins[5] = e_epuck_ports.led5;
-    pins[6] = e_epuck_ports.led6; pins[7] = e_epuck_ports.led7;
-    for (n = 0; n < 8; n++)
-        if (pins[n] != ring[n])
-            e_set_led(n, (unsigned int)pins[n]);
-    if ((int)e_epuck_ports.body != body_led)
-        e_set_body_led(e_epuck_ports.body);
-    if ((int)e_epuck_ports.front != front_led)
-        e_set_front_led(e_epuck_ports.front);
-}
-
-/* 0 off, 1 on, anything else toggles, as the library */
-static int led_value(int old, unsigned int value)
-{
-    return value == 0 ? 0 : value == 1 ? 1 : !old;
-}
-
-void e_set_led(unsigned int led_number, unsigned int value)
-{
-    static const char *const names[9] = {
-        "led0", "led1", "led2", "led3", "led4", "led5", "led6", "led7", "all"
-    };
-    unsigned int n;
-
-    if (led_number > 8)
-        led_number = 8;     /* the library sets all eight for any other number */
-    for (n = 0; n < 8; n++)
-        if (n == led_number || led_number == 8)
-            ring[n] = led_value(ring[n], value);
-    leds_to_ports();
-    observe("led", names[led_number], led_number == 8 ? ring[0] : ring[led_number]);
-}
-
-void e_led_clear(void)
-{
-    unsigned int n;
-    for (n = 0; n < 8; n++)
-        ring[n] = 0;
-    leds_to_ports();
-    observe("led", "all", 0);
-}
-
-void e_set_body_led(unsigned int value)
-{
-    body_led = led_value(body_led, value);
-    leds_to_ports();
-    observe("led", "body", body_led);
-}
-
-void e_set_front_led(unsigned int value)
-{
-    front_led = led_value(front_led, value);
-    leds_to_ports();
-    observe("led", "front", front_led);
-}
-
-int stub_led(int n)
-{
-    if (n >= 0 && n < 8)
-        return ring[n];
-    return n == 9 ? body_led : n == 10 ? front_led : 0;
-}
-
-/* ---- sound ------------------------------------------------------------------------ */
-
-static int sound_on;
-
-void e_init_sound(void)
-{
-    sound_on = 1;
-}
-
-/* The samples of codec/e_const_sound.s: a play is reported by its name. */
-void e_play_sound(int sound_offset, int sound_length)
-{
-    static const struct {
-        int offset, length;
-        const char *name;
-    } samples[] = {
-        { 0, 2112, "haa" }, { 2116, 1760, "spaah" }, { 3878, 3412, "ouah" },
-        { 7294, 3732, "yaouh" }, { 11028, 8016, "wouaaaaaaaah" }
-    };
-    size_t i;
-    const char *name = "sample";
-
-    if (!sound_on)
-        return;     /* the codec is not initialised: silence, as on the robot */
-    for (i = 0; i < sizeof samples / sizeof samples[0]; i++)
-        if (samples[i].offset == sound_offset && samples[i].length == sound_length)
-            name = samples[i].name;
-    observe("sound", name, sound_length);
-}
-
-void e_close_sound(void)
-{
-    sound_on = 0;
-}
-
-/* ---- microphones ------------------------------------------------------------------- */
-
-static int micro_volume[3];
-
-void stub_set_micro(int n, int volume)
-{
-    inputs_set++;
-    if (n >= 0 && n < 3)
-        micro_volume[n] = volume;
-}
-
-/* a quiet room: the samples sit at the middle of the 12-bit range */
-int e_get_micro(unsigned int micro_id)
-{
-    (void)micro_id;
-    return 2048;
-}
-
-int e_get_micro_average(unsigned int micro_id, unsigned int filter_size)
-{
-    (void)filter_size;
-    return e_get_micro(micro_id);
-}
-
-int e_get_micro_volume(unsigned int micro_id)
-{
-    COST(STUB_CALL_CYCLES);
-    return micro_id < 3 ? micro_volume[micro_id] : 0;
-}
-
-/* ---- accelerometer ----------------------------------------------------------------- */
-
-static int acc[3] = { STUB_ACC_REST, STUB_ACC_REST, STUB_ACC_REST };
-
-void stub_set_acc(int axis, int value)
-{
-    inputs_set++;
-    if (axis >= 0 && axis < 3)
-        acc[axis] = value;
-}
-
-int e_get_acc(unsigned int captor)
-{
-    COST(STUB_CALL_CYCLES);
-    return captor < 3 ? acc[captor] : 0;
-}
-
-int e_get_acc_filtered(unsigned int captor, unsigned int filter_size)
-{
-    (void)filter_size;
-    return e_get_acc(captor);
-}
-
-void e_acc_calibr(void)
-{
-}
-
 /* ---- IR remote control (RC5) ------------------------------------------------------- */
-
-static int remote_on;
-static unsigned char remote_check, remote_data;
 
 void e_init_remote_control(void)
 {
     remote_on = 1;
+}
+
+/* the library's agenda that decodes the receiver's pulses: here the keys
+ * arrive decoded (stub_press_key) */
+void e_read_remote_control(void)
+{
 }
 
 void stub_press_key(int key)
@@ -799,18 +740,51 @@ unsigned char e_get_data(void)
     return remote_data;
 }
 
-/* ---- selector ---------------------------------------------------------------------- */
+/* ---- selector: its four pins RG6..RG9 ------------------------------------------------ */
 
-static int selector;
+int selector;       /* the library's global (a_d/advance_ad_scan/e_ad_conv.c), for programs */
 
 void stub_set_selector(int position)
 {
     inputs_set++;
-    selector = position & 15;
+    PORTGbits.RG6 = (unsigned)position & 1u;
+    PORTGbits.RG7 = ((unsigned)position >> 1) & 1u;
+    PORTGbits.RG8 = ((unsigned)position >> 2) & 1u;
+    PORTGbits.RG9 = ((unsigned)position >> 3) & 1u;
 }
 
 int getselector(void)
 {
     COST(STUB_CALL_CYCLES);
-    return selector;
+    return SELECTOR0 + 2 * SELECTOR1 + 4 * SELECTOR2 + 8 * SELECTOR3;
+}
+
+/* ---- reset -------------------------------------------------------------------------- */
+
+/* A reset: the motors stop, their counters start again (the library's
+ * RAM), the agendas are gone; the wheels' totals and the pose (the
+ * world's) stay. */
+void stub_motors_reset(void)
+{
+    int i;
+    left_wheel.speed = right_wheel.speed = 0;
+    left_wheel.phase = right_wheel.phase = 0;
+    left_wheel.counter = right_wheel.counter = 0;
+    for (i = 0; i < STUB_MAX_AGENDAS; i++)
+        agendas[i].func = NULL;
+    agendas_used = 0;
+    agendas_running = 0;
+    agendas_changed = 1;
+    ad_scan = AD_OFF;
+    ad_scan_mode = AD_ALL;
+    for (i = 0; i < 8; i++)
+        ir_offset[i] = 0;
+    remote_on = 0;
+    remote_check = 2;
+    remote_data = 0;
+}
+
+long stub_total_steps_right(void)
+{
+    return right_wheel.total;
 }

@@ -13,10 +13,12 @@
  *   EPUCK_QUIET          set and not "0": no readable trace on stdout
  *   EPUCK_FRONTEND       "epuckc": messages name epuckc's options (--trace)
  *   EPUCK_POSE_MS        also a "pose" record every so many ms (JSON only)
+ *   EPUCK_TRACE_VARS     the variables whose changes are traced (var_traced)
  *   EPUCK_POLL_EVERY_MS  set and not "0": poll at every ms, none skipped in
  *                        bulk (the same trace, slower: for tests)
  *   EPUCK_POLL_STATS     a file: "ms N skipped K" appended at the end
- * Exit statuses: 2 bad setting or scenario, 3 time limit reached.
+ * Exit statuses: 2 bad setting or scenario, 3 time limit reached, 6 a call
+ * of what the simulation does not model (host/unsimulated.c).
  * docs/runtime.md describes the formats.
  */
 #include <ctype.h>
@@ -33,6 +35,7 @@
 
 #define EXIT_BAD_SETTING 2
 #define EXIT_TIMEOUT 3
+#define EXIT_UNSIMULATED 6
 #define DEFAULT_TIME_LIMIT_MS 60000L
 
 static long now_ms;                 /* virtual time */
@@ -265,6 +268,7 @@ static void record_extra(const char *kind, const char *name, int id, int step, i
                          const char *extra)
 {
     double x, y, h;
+    stub_outputs_flush();       /* the LEDs as they are, before anything else */
     stub_pose(&x, &y, &h);
     if (trace_file == NULL)
         return;
@@ -385,7 +389,7 @@ void rt_trace_suppressed(int event_id, int priority, int owner_event_id,
     }
     snprintf(extra + used, sizeof extra - used, "\", \"owner_priority\": %d", owner_priority);
     record_extra("suppressed", name, event_id, -1, 0, extra);
-    if (!quiet)
+    if (!is_quiet())
         printf("[%6ld ms] suppressed %s of #%d %s (priority %d); motors owned by #%d %s "
                "(priority %d)\n", now_ms, command, event_id, name, priority, owner_event_id,
                get_name(&event_names, owner_event_id, "event", owner_buf, sizeof owner_buf),
@@ -397,8 +401,33 @@ void rt_trace_mode(int mode)
     char buf[32];
     const char *name = get_name(&mode_names, mode, "mode", buf, sizeof buf);
     record("mode", name, mode, -1, 0);
-    if (!quiet)
+    if (!is_quiet())
         printf("[%6ld ms] mode      %s\n", now_ms, name);
+}
+
+/* EPUCK_TRACE_VARS (`epuckc run --trace-vars`): the variables whose
+ * changes are traced, their names separated by commas (an array's name
+ * stands for its elements, `counts` for `counts[2]`), empty for none;
+ * unset: every variable (epuckc/sim/tracevars.py is the same rule). */
+static int var_traced(const char *name)
+{
+    static int read;
+    static const char *list;
+    const char *p;
+    size_t n;
+
+    if (!read) {
+        list = getenv("EPUCK_TRACE_VARS");
+        read = 1;
+    }
+    if (list == NULL)
+        return 1;
+    for (p = list; *p != '\0'; p += n + (p[n] == ',')) {
+        n = strcspn(p, ",");
+        if (n > 0 && strncmp(p, name, n) == 0 && (name[n] == '\0' || name[n] == '['))
+            return 1;
+    }
+    return 0;
 }
 
 /* a variable changed: one line of its own, {"t_ms", "kind": "set", "var", "value"} */
@@ -407,6 +436,10 @@ void rt_trace_set(int id, int value)
     char buf[32];
     const char *name = get_name(&var_names, id, "var", buf, sizeof buf);
 
+    if (!var_traced(name))
+        return;
+
+    stub_outputs_flush();
     if (trace_file != NULL) {
         fprintf(trace_file, "{\"t_ms\": %ld, \"kind\": \"set\", \"var\": ", now_ms);
         json_string(trace_file, name);
@@ -458,17 +491,13 @@ static void observe_output(const char *device, const char *name, int value)
         snprintf(extra, sizeof extra, ", \"state\": %d, \"ring\": \"%s\", \"body\": %d, "
                  "\"front\": %d", value, ring, stub_led(9), stub_led(10));
         record_extra("led", name, -1, -1, 0, extra);
-        if (!quiet)
+        if (!is_quiet())
             printf("[%6ld ms] led       %-5s %-3s ring %s body %d front %d\n", now_ms, name,
                    value ? "on" : "off", ring, stub_led(9), stub_led(10));
-    } else if (strcmp(device, "sound") != 0) {  /* send, message: name is JSON (stub_devices.c) */
-        record_extra(device, device, -1, -1, 0, name);
-        if (!quiet)
-            printf("[%6ld ms] %-9s%s\n", now_ms, device, name + 1);
     } else {
         snprintf(extra, sizeof extra, ", \"length\": %d", value);
         record_extra("sound", name, -1, -1, 0, extra);
-        if (!quiet)
+        if (!is_quiet())
             printf("[%6ld ms] sound     %s\n", now_ms, name);
     }
 }
@@ -476,20 +505,21 @@ static void observe_output(const char *device, const char *name, int value)
 void host_record_input(const char *name, int index, int value)
 {
     char extra[64], full[16];
-    if (index >= 0 && strcmp(name, "acc") == 0)
-        snprintf(full, sizeof full, "acc%c", 'x' + index);
+    if (index >= 0 && (strcmp(name, "acc") == 0 || strcmp(name, "rot") == 0))
+        snprintf(full, sizeof full, "%s%c", name, 'x' + index);
     else if (index >= 0)
         snprintf(full, sizeof full, "%s%d", name, index);
     else
         snprintf(full, sizeof full, "%s", name);
     snprintf(extra, sizeof extra, ", \"value\": %d", value);
     record_extra("input", full, -1, -1, 0, extra);
-    if (!quiet)
+    if (!is_quiet())
         printf("[%6ld ms] input     %s=%d\n", now_ms, full, value);
 }
 
 void rt_trace_exit(void)
 {
+    stub_outputs_end();
     record("exit", "exit_main", -1, -1, 0);
     if (!is_quiet()) {
         printf("[%6ld ms] exit      ", now_ms);
@@ -507,6 +537,33 @@ void host_record(const char *kind, const char *name, const char *extra, const ch
     record_extra(kind, name, -1, -1, 0, extra);
     if (line != NULL && !is_quiet())
         printf("[%6ld ms] %s\n", now_ms, line);
+}
+
+/* the run ends here: what is still to say, the record, the summary */
+void host_stop(const char *kind, const char *name, const char *extra, const char *line,
+               int status)
+{
+    stub_outputs_end();
+    host_record(kind, name, extra, line);
+    summary(kind);
+    if (trace_file != NULL)
+        fclose(trace_file);
+    trace_file = NULL;
+    exit(status);
+}
+
+/* a call of what the simulation does not model (unsimulated.c) */
+void stub_unsimulated(const char *function, const char *device)
+{
+    char extra[512], line[600];
+    fflush(stdout);
+    fprintf(stderr, "epuckc: %s: %s is not simulated, and the run ends here at %ld ms "
+            "(the simulated e-puck has the motors, LEDs, proximity sensors, agendas, UARTs, "
+            "accelerometer and gyroscope, camera, sound and microphones, remote control, "
+            "selector and EEPROM)\n", function, device, now_ms);
+    snprintf(extra, sizeof extra, ", \"device\": \"%.400s\"", device);
+    snprintf(line, sizeof line, "unsimulated %s: %.400s is not simulated", function, device);
+    host_stop("unsimulated", function, extra, line, EXIT_UNSIMULATED);
 }
 
 /* ---- platform ------------------------------------------------------------------- */
@@ -585,7 +642,9 @@ void rt_platform_idle(void)
 {
     long n, left, right;
 
+    stub_outputs_ms_end();      /* the ms's LEDs, at its time */
     if (now_ms >= limit_ms) {
+        stub_outputs_end();
         record("timeout", "timeout", -1, -1, 0);
         if (!is_quiet()) {
             printf("[%6ld ms] timeout   ", now_ms);
@@ -606,6 +665,7 @@ void rt_platform_idle(void)
             stub_motors_1ms();
             now_ms++;
             host_scenario_apply(now_ms);
+            stub_devices_ms(now_ms, 1);
             stub_agendas_1ms();
             if (--n == 0 || stub_inputs_epoch() != inputs || !rt_idle_ms())
                 break;
@@ -621,6 +681,7 @@ void rt_platform_idle(void)
         stub_motors_ms_end();   /* a world steps at the end of its step, at this ms */
         now_ms++;
         host_scenario_apply(now_ms);    /* no line before it */
+        stub_devices_ms(now_ms, n);
         stub_agendas_ms(n, rt_clock_tick, rt_clock_ticks);
         rt_idle_skipped(n - 1);
         polls_skipped += n - 1;
@@ -628,6 +689,7 @@ void rt_platform_idle(void)
         stub_motors_1ms();      /* the wheels move during the ms ... */
         now_ms++;
         host_scenario_apply(now_ms); /* ... the readings of the new ms hold ... */
+        stub_devices_ms(now_ms, 1);  /* ... the devices move on ... */
         stub_agendas_1ms();     /* ... and the clock agenda ticks */
     }
     if (pose_every_ms > 0 && now_ms % pose_every_ms == 0)

@@ -12,6 +12,7 @@
 
 #include "epuck_stub.h"
 #include "host_harness.h"
+#include "stub_ground.h"
 
 /* ---- scenario ---------------------------------------------------------------
  * One line per change: "<time> [ms|s|min] NAME=V ...", values hold until
@@ -19,14 +20,15 @@
  * UTF-8 byte order mark is skipped; a NUL or another control character means
  * the file is not text.  The inputs: */
 
-enum { IN_IR, IN_AMB, IN_MIC, IN_ACC, IN_SELECTOR, IN_KEY };
+enum { IN_IR, IN_AMB, IN_MIC, IN_ACC, IN_ROT, IN_SELECTOR, IN_KEY, IN_GROUND };
 static const struct {
-    const char *prefix;     /* then a digit 0..count-1 (acc: x, y, z), or nothing */
+    const char *prefix;     /* then a digit 0..count-1 (acc, rot: x, y, z), or nothing */
     int count;              /* 1: no index */
-    int max;                /* values 0..max */
+    int max;                /* values 0..max (rot: -max..max) */
 } inputs[] = {
     { "ir", 8, 4095 }, { "amb", 8, 4095 }, { "mic", 3, 4095 }, { "acc", 3, 4095 },
-    { "selector", 1, 15 }, { "key", 1, 127 },
+    { "rot", 3, 1000 },
+    { "selector", 1, 15 }, { "key", 1, 127 }, { "ground", 3, 4095 },
 };
 /* remote control keys by name (RC5 codes), besides their numbers */
 static const struct {
@@ -124,14 +126,15 @@ static int parse_time(char **tok, int ntok, long *ms, const char **err)
 }
 
 /* "NAME=V": irN, ambN (N 0..7), micN (0..2) or mic (all three), accx, accy,
- * accz (0..4095), selector (0..15), key (0..127 or a key's name); names
+ * accz, groundN (N 0..2; 0..4095), rotx, roty, rotz (-1000..1000),
+ * selector (0..15), key (0..127 or a key's name); names
  * in any case.  Returns 0 when it is none of these. */
 static int parse_assignment(const char *s, int *input, int *index, int *v)
 {
     char name[16];
     size_t n = 0, i;
     long value = 0;
-    int digits = 0;
+    int digits = 0, negative = 0;
     const char *eq = strchr(s, '=');
 
     if (eq == NULL || eq == s || (size_t)(eq - s) >= sizeof name)
@@ -146,12 +149,14 @@ static int parse_assignment(const char *s, int *input, int *index, int *v)
             continue;
         if (inputs[i].count == 1 && name[len] == '\0') {
             *index = 0;
-        } else if (i == IN_ACC && name[len] >= 'x' && name[len] <= 'z' && name[len + 1] == '\0') {
+        } else if ((i == IN_ACC || i == IN_ROT) && name[len] >= 'x' && name[len] <= 'z'
+                   && name[len + 1] == '\0') {
             *index = name[len] - 'x';
         } else if (i == IN_MIC && name[len] == '\0') {
             *index = -1;
         } else if (inputs[i].count > 1 && name[len] >= '0'
-                   && name[len] < '0' + inputs[i].count && name[len + 1] == '\0' && i != IN_ACC) {
+                   && name[len] < '0' + inputs[i].count && name[len + 1] == '\0' && i != IN_ACC
+                   && i != IN_ROT) {
             *index = name[len] - '0';
         } else {
             continue;
@@ -170,6 +175,10 @@ static int parse_assignment(const char *s, int *input, int *index, int *v)
             }
         }
     }
+    if (*input == IN_ROT && *s == '-') {
+        negative = 1;
+        s++;
+    }
     while (isdigit((unsigned char)*s)) {
         value = value * 10 + (*s++ - '0');
         if (++digits > 5)
@@ -177,7 +186,7 @@ static int parse_assignment(const char *s, int *input, int *index, int *v)
     }
     if (digits == 0 || *s != '\0' || value > inputs[*input].max)
         return 0;
-    *v = (int)value;
+    *v = negative ? -(int)value : (int)value;
     return 1;
 }
 
@@ -275,7 +284,8 @@ static void parse_scenario_line(const char *path, long lineno, char *line, long 
             host_fail("%s:%ld: unknown time unit '%s' (use ms, s or min)", path, lineno, tok[i]);
         if (!parse_assignment(tok[i], &input, &n, &v))
             host_fail("%s:%ld: expected irN=V or ambN=V (N 0..7), micN=V (N 0..2) or mic=V, "
-                 "accx=V, accy=V or accz=V (V 0..4095), selector=V (0..15), or "
+                 "accx=V, accy=V or accz=V, groundN=V (N 0..2) (V 0..4095), rotx=V, roty=V or "
+                 "rotz=V (V -1000..1000 degrees/s), selector=V (0..15), or "
                  "key=K (0..127 or standby, mute, vol_up, vol_down, chan_up, chan_down), "
                  "got '%s'", path, lineno, tok[i]);
         if (sl.count == 0)
@@ -349,9 +359,17 @@ void host_scenario_apply(long t)
                 stub_set_acc(n, v);
                 host_record_input("acc", n, v);
                 break;
+            case IN_ROT:
+                stub_set_hand_rate(n, v);
+                host_record_input("rot", n, v);
+                break;
             case IN_SELECTOR:
                 stub_set_selector(v);
                 host_record_input("selector", -1, v);
+                break;
+            case IN_GROUND:
+                stub_set_ground(n, v);
+                host_record_input("ground", n, v);
                 break;
             default:
                 stub_press_key(v);

@@ -6,9 +6,7 @@
  * send and nothing is in the ToF's range; in an Enki world
  * (enki/robot_glue.c) the world takes the values sent and hands over the
  * messages its channel model delivered and the ToF ray's distance.
- * The camera (e_poxxxx, as the e-puck library declares it) sees what
- * stub_set_camera last gave it (grey on the harness alone), as one line of
- * RGB565 pixels, a capture ready at once.
+ * The camera is camera.c's.
  */
 #include <stdio.h>
 #include <string.h>
@@ -19,7 +17,6 @@
 #include "ircom/ircomMessages.h"
 #include "sensors/VL53L0X/VL53L0X.h"
 #include "leds.h"
-#include "camera/fast_2_timer/e_poxxxx.h"
 #include "motor_led/advance_one_timer/e_agenda.h"
 #include "epuck_stub.h"
 
@@ -31,7 +28,7 @@ static int frame_ms = STUB_IRCOM_FRAME_MS;
 static int on_air_ms;               /* what remains of the frame being sent */
 static long sent[STUB_SENT_MAX];
 static int n_sent;
-static char json[256];
+static char json[256], line[160];     /* a record's JSON keys, its readable line */
 static int distance_mm = STUB_DISTANCE_NONE;
 
 /* 1 ms of the frame on the air: an agenda of 10 ticks of 0.1 ms */
@@ -75,7 +72,8 @@ void ircomSend(long int value)
     if (n_sent < STUB_SENT_MAX)
         sent[n_sent++] = value;
     snprintf(json, sizeof json, ", \"value\": %ld", value);
-    stub_observe("send", json, (int)value);
+    snprintf(line, sizeof line, "send      %ld", value);
+    host_record("send", "send", json, line);
 }
 
 int stub_ircom_take_sent(long *values, int max)
@@ -110,7 +108,9 @@ void stub_ircom_receive(long value, double distance_cm, double direction_rad, in
     snprintf(json, sizeof json, ", \"from\": \"%.32s\", \"value\": %ld, \"bearing_deg\": %.1f, "
              "\"range_mm\": %.1f, \"sensor\": %d, \"from_x_mm\": %.1f, \"from_y_mm\": %.1f",
              from, value, bearing, distance_cm * 10.0, sensor, from_x_mm, from_y_mm);
-    stub_observe("message", json, (int)value);
+    snprintf(line, sizeof line, "message   %ld from %.32s, bearing %.1f deg, range %.1f mm "
+             "(sensor %d)", value, from, bearing, distance_cm * 10.0, sensor);
+    host_record("message", "message", json, line);
 }
 
 void ircomPopMessage(IrcomMessage *msg)
@@ -139,63 +139,6 @@ uint16_t VL53L0X_get_dist_mm(void)
     return (uint16_t)distance_mm;
 }
 
-/* ---- the camera ---------------------------------------------------------- */
-
-#define STUB_CAMERA_PIXELS 60
-
-static unsigned char camera_rgb[3 * STUB_CAMERA_PIXELS] = {0};
-static char *capture;
-
-void stub_set_camera(const unsigned char *rgb, int pixels)
-{
-    stub_input_set();
-    if (pixels > STUB_CAMERA_PIXELS)
-        pixels = STUB_CAMERA_PIXELS;
-    memcpy(camera_rgb, rgb, (size_t)(3 * pixels));
-}
-
-int e_poxxxx_init_cam(void)
-{
-    return 0;
-}
-
-int e_poxxxx_config_cam(unsigned int sensor_x1, unsigned int sensor_y1,
-                        unsigned int sensor_width, unsigned int sensor_height,
-                        unsigned int zoom_fact_width, unsigned int zoom_fact_height,
-                        int color_mode)
-{
-    /* the runtime asks for one row of STUB_CAMERA_PIXELS in RGB565 */
-    return sensor_width / zoom_fact_width == STUB_CAMERA_PIXELS
-           && sensor_height / zoom_fact_height == 1 && color_mode == RGB_565_MODE
-           && sensor_x1 + sensor_width <= ARRAY_WIDTH
-           && sensor_y1 + sensor_height <= ARRAY_HEIGHT ? 0 : -1;
-}
-
-void e_poxxxx_write_cam_registers(void)
-{
-}
-
-void e_poxxxx_launch_capture(char *buf)
-{
-    capture = buf;
-}
-
-/* The capture is taken now: the pixels as RGB565, big-endian. */
-int e_poxxxx_is_img_ready(void)
-{
-    int i;
-    if (capture == NULL)
-        return 0;
-    for (i = 0; i < STUB_CAMERA_PIXELS; i++) {
-        unsigned r = camera_rgb[3 * i], g = camera_rgb[3 * i + 1], b = camera_rgb[3 * i + 2];
-        unsigned v = ((r & 0xF8u) << 8) | ((g & 0xFCu) << 3) | (b >> 3);
-        capture[2 * i] = (char)(v >> 8);
-        capture[2 * i + 1] = (char)(v & 0xFFu);
-    }
-    capture = NULL;
-    return 1;
-}
-
 /* ---- the e-puck2's RGB LEDs: each change of a colour is traced ---------------- */
 
 void set_rgb_led(rgb_led_name_t led_number, uint8_t red_val, uint8_t green_val,
@@ -209,5 +152,7 @@ void set_rgb_led(rgb_led_name_t led_number, uint8_t red_val, uint8_t green_val,
     shown[led_number] = colour + 1;
     snprintf(json, sizeof json, ", \"led\": \"led%d\", \"red\": %d, \"green\": %d, "
              "\"blue\": %d", 2 * (int)led_number + 1, red_val, green_val, blue_val);
-    stub_observe("rgb", json, (int)led_number);
+    snprintf(line, sizeof line, "rgb       led%d red %d green %d blue %d",
+             2 * (int)led_number + 1, red_val, green_val, blue_val);
+    host_record("rgb", "rgb", json, line);
 }

@@ -84,6 +84,7 @@ def _library_sources() -> list:
     """The paths of GCtronic's library that the generated Makefile compiles
     (templates/dspic.mk.j2's `$(LIB)/...`)."""
     template = (REPO / "templates" / "dspic.mk.j2").read_text()
+    template = re.sub(r"\{% if trace %\}.*?\{% endif %\}", "", template, flags=re.S)
     return sorted(set(re.findall(r"\$\(LIB\)/([\w/.]+\.[cs])\b", template)))
 
 
@@ -228,6 +229,9 @@ def test_wheel_in_a_fresh_virtual_environment_runs_an_example(tmp_path):
     [wheel] = dist.glob("epuckc-*.whl")
     with zipfile.ZipFile(wheel) as archive:     # the C front end is built into it
         assert any(n.startswith("epuckc/syntax/_front.") and n.endswith(".so") for n in archive.namelist())
+        # and the studio's page, built (docs/studio.md): no node needed
+        assert {"epuckc/studio/static/index.html", "epuckc/studio/static/studio.js",
+                "epuckc/studio/static/studio.css"} <= set(archive.namelist())
     venv = tmp_path / "venv"
     subprocess.run([sys.executable, "-m", "venv", str(venv)], check=True)
     pip = venv / "bin" / "pip"

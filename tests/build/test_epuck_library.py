@@ -10,8 +10,9 @@ import subprocess
 
 import pytest
 
-from conftest import REPO, require_checkout, require_tool
+from conftest import REPO, require_epuck_library, require_tool
 from epuckc.base.resources import RUNTIME_CORE, RUNTIME_DSPIC_DEVICES
+from epuckc.build.common import ROBOT_COPIES
 from tests.support.programs import epuckc
 
 RUNTIME = REPO / "runtime_c"
@@ -20,11 +21,7 @@ STRICT = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", "-Os", "-DEPUC
 
 @pytest.fixture(scope="module")
 def library():
-    folder = require_checkout(
-        "EPUCK_LIB", "library",
-        "EPUCK_LIB does not name a checkout of GCtronic's e-puck library (git clone "
-        "https://github.com/gctronic/e-puck-library; the folder that holds library/)")
-    return folder / "library"
+    return require_epuck_library("library") / "library"
 
 
 def test_every_library_source_the_makefile_lists_exists(library):
@@ -45,8 +42,16 @@ def test_every_header_the_runtime_includes_is_the_librarys(library):
 
 def test_the_runtime_and_every_program_compile_against_the_library(library, tmp_path):
     avr = require_tool("avr-gcc")
-    flags = [f"-mmcu=atmega128", *STRICT, f"-I{RUNTIME}", f"-I{library}"]
-    # the camera (rt_camera.c) against the library's camera/fast_2_timer/e_poxxxx.h
+    # the headers the project has at other paths than runtime_c/ (sensors/ground.h)
+    for rel, source in ROBOT_COPIES.items():
+        (tmp_path / "copies" / rel).parent.mkdir(parents=True, exist_ok=True)
+        (tmp_path / "copies" / rel).write_bytes((RUNTIME / source).read_bytes())
+    # (the chip's register header, XC16's p30F6014A.h, which the library's I2C header
+    # includes, from runtime_c/epuck_api, the last place looked in)
+    flags = [f"-mmcu=atmega128", *STRICT, f"-I{RUNTIME}", f"-I{tmp_path / 'copies'}",
+             f"-I{library}", f"-I{RUNTIME / 'epuck_api'}"]
+    # the camera (rt_camera.c) against the library's camera/fast_2_timer/e_poxxxx.h, the
+    # ground-sensor module (ground_i2c.c) against its I2C/e_I2C_master_module.h
     for source in [*(RUNTIME / n for n in (*RUNTIME_CORE, *RUNTIME_DSPIC_DEVICES)),
                    RUNTIME / "platform_robot.c"]:
         subprocess.run([avr, *flags, "-c", str(source), "-o", str(tmp_path / "x.o")], check=True)

@@ -34,10 +34,10 @@ ranges = st.one_of(st.just((None, None)),
 
 def general(checker: Checker, number: ast.Number, param: Param):
     """The general path's integer, and whether it said anything."""
-    checker.diags = Collector(checker.diags.source)
-    q = checker._value(number, param.kind, param.name)
-    v = checker._to_runtime(q, param, number) if q is not None else None
-    return v, bool(checker.diags.items)
+    with checker.diags.capture() as said:
+        q = checker._value(number, param.kind, param.name)
+        v = checker._to_runtime(q, param, number) if q is not None else None
+    return v, bool(said)
 
 
 @settings(max_examples=2000, deadline=None)

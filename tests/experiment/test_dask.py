@@ -128,3 +128,26 @@ def test_an_unreachable_scheduler(tmp_path, capsys):
     status, out, err = run_cli(["experiment", str(exp), "--engine", "dask", "--scheduler",
                                 f"tcp://127.0.0.1:{port}"], capsys)
     assert status == 1 and "cannot reach the Dask scheduler" in err
+
+
+def test_a_tune_on_a_dask_cluster_has_the_local_history(tmp_path, cluster, capsys):
+    """`epuckc tune --engine dask`: the same candidates as on one local
+    worker (the rounds do not depend on the engine)."""
+    pytest.importorskip("optuna") if not os.environ.get("EPUCKC_REQUIRE_ALL_TOOLS") else None
+    from tests.experiment.helpers import REPO
+    for name in ("avoider.epk", "clutter.world", "avoider_tune.toml"):
+        text = (REPO / "examples" / name).read_text()
+        if name.endswith(".toml"):
+            text = (text.replace("budget = 96", "budget = 12").replace('"10 s"', '"1 s"')
+                    .replace("test_seeds = 20", "test_seeds = 2"))
+        (tmp_path / name).write_text(text)
+    tune = tmp_path / "avoider_tune.toml"
+    status, _, err = run_cli(["tune", str(tune), "-o", str(tmp_path / "dask"), "--engine", "dask",
+                              "--scheduler", cluster], capsys)
+    assert status == 0, err
+    status, _, err = run_cli(["tune", str(tune), "-o", str(tmp_path / "local"), "--workers", "1"],
+                             capsys)
+    assert status == 0, err
+    assert (tmp_path / "dask" / "history.csv").read_bytes() == \
+        (tmp_path / "local" / "history.csv").read_bytes()
+    assert (tmp_path / "dask" / "history.csv").read_text().count("\n") == 3

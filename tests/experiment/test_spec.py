@@ -35,7 +35,7 @@ def _errors(tmp_path, text):
     (GOOD.replace("brait.epk", "nowhere.epk"), "exp.toml:1:11:", "nowhere.epk does not exist"),
     (GOOD.replace("arena.world", "none.world"), "exp.toml:2:9:", "none.world does not exist"),
     (GOOD + 'metrics = ["distance", "speed"]\n', "exp.toml:5:24:", "unknown metric `speed`"),
-    (GOOD + 'metrics = ["messages"]\n', "exp.toml:5:12:", "no messages"),
+    (GOOD + 'metrics = ["messages"]\n', "exp.toml:5:12:", "not a metric of their own"),
     (GOOD + "[params]\nK = [1, true]\n", "exp.toml:6:9:", "True is not a value"),
     (GOOD + '[params]\nK = ["3; x"]\n', "exp.toml:6:6:", "not a value of the language"),
     (GOOD + "duration2 = [1,\n", "exp.toml:5:16:", "this is not TOML"),
@@ -52,6 +52,37 @@ def test_bad_files(tmp_path, text, where, words):
     # the caret under the column
     caret_line = message.split("\n")[2]
     assert caret_line.index("^") - caret_line.index("|") - 2 == col - 1
+
+
+@pytest.mark.parametrize("text, where, words, meant", [
+    (GOOD + "seed = 3\n", "exp.toml:5:8:", "unknown key `seed`", "did you mean `seeds`?"),
+    (GOOD + "[param]\nK = [1, 2]\n", "exp.toml:5:1:", "unknown table `param`",
+     "did you mean `params`?"),
+    (GOOD + 'metrics = ["distanse"]\n', "exp.toml:5:12:", "unknown metric `distanse`",
+     "did you mean `distance`?"),
+    (GOOD + "[params]\nKK = [1, 2]\n", "exp.toml:6:6:", "no program of the experiment has a "
+     "constant KK", "did you mean `K`?"),
+    (GOOD + 'metrics = ["var:left_nera"]\n', "exp.toml:5:12:", "declares a variable left_nera",
+     "did you mean `left_near`?"),
+])
+def test_a_misspelt_name_is_found_at_its_line_with_the_one_meant(tmp_path, text, where, words,
+                                                                  meant):
+    """Issue 41: a wrong table was reported at 1:1, and no name was suggested."""
+    message = _errors(tmp_path, text)
+    assert message.startswith(where) and words in message, message
+    assert f"help: {meant}" in message
+
+
+def test_every_problem_at_once_in_the_file_s_order(tmp_path):
+    """The spec's own problems and those of the names its programs
+    declare, in one report (issue 41: they came in rounds)."""
+    text = ("seed = 3\n" + GOOD + 'metrics = ["var:nope", "distanse"]\n'
+            "[params]\nNOPE = [1, 2]\nK = [1, 1]\n")
+    message = _errors(tmp_path, text)
+    lines = [line.split(" error:")[0] for line in message.splitlines() if " error: " in line]
+    assert lines == ["exp.toml:1:8:", "exp.toml:6:12:", "exp.toml:6:24:", "exp.toml:8:8:",
+                     "exp.toml:9:9:"], message
+    assert message.endswith("5 errors in exp.toml")
 
 
 def test_every_problem_at_once(tmp_path):

@@ -5,6 +5,7 @@ request at every position; and the formatter's layout of an `if`."""
 from epuckc.ide import completion, hover, navigate
 from epuckc.ide.fmt import format_text
 from epuckc.ide.incremental import Analyzer
+from tests.support.ide import where
 
 from tests.support.ide_walk import answer_everywhere
 
@@ -21,15 +22,6 @@ mode m {
 
 def analysis(text=TEXT):
     return Analyzer("ifelse.epk").analyse(text)
-
-
-def where(text, needle, offset=0, nth=0):
-    i = -1
-    for _ in range(nth + 1):
-        i = text.index(needle, i + 1)
-    i += offset
-    line = text.count("\n", 0, i) + 1
-    return line, i - (text.rfind("\n", 0, i) + 1) + 1
 
 
 def test_the_program_checks_clean():

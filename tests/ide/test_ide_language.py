@@ -5,6 +5,7 @@ the formatter's layout of the language's statements."""
 from epuckc.ide import completion, hover, navigate
 from epuckc.ide.fmt import format_text
 from epuckc.ide.incremental import Analyzer
+from tests.support.ide import where
 
 TEXT = """\
 var cruise = 300 steps/s
@@ -20,15 +21,6 @@ on immediate do start_sensor
 
 def analysis(text=TEXT):
     return Analyzer("lang.epk").analyse(text)
-
-
-def where(text, needle, offset=0, nth=0):
-    i = -1
-    for _ in range(nth + 1):
-        i = text.index(needle, i + 1)
-    i += offset
-    line = text.count("\n", 0, i) + 1
-    return line, i - (text.rfind("\n", 0, i) + 1) + 1
 
 
 def test_hover_on_a_variable_gives_its_kind_and_interval():
@@ -129,3 +121,18 @@ def test_a_statement_s_definition_is_the_first_of_its_occurrences():
             assert navigate.definition(s) == expected
             defined += expected is not None
     assert defined > 40
+
+
+def test_an_array_is_renamed_in_its_elements_and_indices():
+    """The uses of an array in `a[i]`, as an index and as an assigned
+    element are references (the walk over generated programs found them
+    missing: a rename left `a0[...]` behind, an unknown name)."""
+    text = ("var a = [0, 0]\nconst K = [1, 2]\nvar i = 0\n"
+            "every 10 ms do a[i] = K[a[1]], i = a[0], if a[i] > 0 { a[1] += 1 }\n")
+    a = analysis(text)
+    assert all(d.severity != "error" for d in a.diagnostics)
+    for name, count in (("a", 6), ("K", 2), ("i", 4)):
+        occ = navigate.occurrence_at(a, *where(text, f"{name} "))
+        target = navigate.renameable(a, occ)
+        edits = navigate.rename_edits(a, target, "renamed")
+        assert len(edits) == count, name

@@ -3,6 +3,7 @@ from epuckc/ide/ (hover.py, completion.py, navigate.py) directly: hover on an en
 of LED names and modes, document symbols and definitions of modes."""
 from epuckc.ide import completion, hover, navigate
 from epuckc.ide.incremental import Analyzer
+from tests.support.ide import where
 
 TEXT = """\
 const urgent = 3
@@ -19,13 +20,6 @@ mode home {
 
 def analysis(text=TEXT):
     return Analyzer("robot.epk").analyse(text)
-
-
-def where(text, needle, offset=0):
-    """(line, column) from 1 of the first `needle` in text, plus offset."""
-    i = text.index(needle) + offset
-    line = text.count("\n", 0, i) + 1
-    return line, i - (text.rfind("\n", 0, i) + 1) + 1
 
 
 def test_the_example_checks_clean():

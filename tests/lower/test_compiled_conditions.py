@@ -13,7 +13,7 @@ import os
 import subprocess
 from pathlib import Path
 
-from epuckc.base.resources import RUNTIME_CORE, RUNTIME_SIMULATED
+from epuckc.base.resources import LIBRARY_SIMULATION, RUNTIME_CORE, RUNTIME_SIMULATED
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
@@ -121,11 +121,12 @@ def build_and_run(text: str, scn: str, tmp_path: Path) -> list:
     c_file.write_text(emit_c(result.checked, text))
     exe = tmp_path / "rules"
     subprocess.run([require_tool("cc"), *STRICT, "-O1", "-DMAX_ACTIONS=1", "-DMAX_EVENTS=1",
-                    f"-I{RT}", f"-I{RT / 'epuck_api'}", f"-I{RT / 'host'}", str(c_file),
+                    f"-I{RT}", f"-I{RT / 'epuck_api'}", f"-I{RT / 'host'}",
+                    f"-I{RT / 'epuck_api_unsimulated'}", str(c_file),
                     *(str(RT / name) for name in (*RUNTIME_CORE, *RUNTIME_SIMULATED)),
-                    str(RT / "host" / "platform_host.c"),
-                    str(RT / "host" / "scenario.c"), str(RT / "host" / "epuck_stub.c"), "-o",
-                    str(exe)], check=True)
+                    str(RT / "host" / "platform_host.c"), str(RT / "host" / "scenario.c"),
+                    *(str(RT / name) for name in LIBRARY_SIMULATION), "-o", str(exe), "-lm"],
+                   check=True)
     (tmp_path / "rules.scn").write_text(scn)
     env = {k: v for k, v in os.environ.items() if not k.startswith("EPUCK_")}
     env.update(EPUCK_SCENARIO=str(tmp_path / "rules.scn"), EPUCK_TRACE=str(tmp_path / "t.jsonl"),

@@ -9,15 +9,16 @@ from pathlib import Path
 import pytest
 
 from conftest import REPO, require_tool
-from epuckc.base.resources import RUNTIME_CORE, RUNTIME_DEVICES, RUNTIME_SIMULATED
+from epuckc.base.resources import (LIBRARY_SIMULATION, RUNTIME_CORE, RUNTIME_DEVICES,
+                                   RUNTIME_SIMULATED)
 
 RUNTIME = REPO / "runtime_c"
 PROGRAMS = Path(__file__).resolve().parent / "programs"
 SOURCES = [*(RUNTIME / name for name in (*RUNTIME_CORE, *RUNTIME_SIMULATED, *RUNTIME_DEVICES)),
            RUNTIME / "host" / "platform_host.c", RUNTIME / "host" / "scenario.c",
-           RUNTIME / "host" / "epuck_stub.c",
-           RUNTIME / "host" / "stub_devices.c"]
-INCLUDES = [f"-I{RUNTIME}", f"-I{RUNTIME / 'epuck_api'}", f"-I{RUNTIME / 'host'}"]
+           *(RUNTIME / name for name in LIBRARY_SIMULATION)]
+INCLUDES = [f"-I{RUNTIME}", f"-I{RUNTIME / 'epuck_api'}", f"-I{RUNTIME / 'host'}",
+            f"-I{RUNTIME / 'epuck_api_unsimulated'}"]
 STRICT = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic"]
 SANITIZE = ["-g", "-fsanitize=address,undefined", "-fno-sanitize-recover=all"]
 
@@ -91,7 +92,7 @@ def build(tmp_path: Path, program, defines=(), sanitize=False, extra_flags=(),
         res = subprocess.run(cmd, capture_output=True, text=True)
         assert res.returncode == 0, f"compile failed: {' '.join(cmd)}\n{res.stderr}"
         sources = [str(obj), str(HERE / "static_path.c")]
-    cmd = [compiler, *flags, *sources, *map(str, SOURCES), "-o", str(exe)]
+    cmd = [compiler, *flags, *sources, *map(str, SOURCES), "-o", str(exe), "-lm"]
     res = subprocess.run(cmd, capture_output=True, text=True)
     assert res.returncode == 0, f"compile failed: {' '.join(cmd)}\n{res.stderr}"
     return exe

@@ -55,6 +55,20 @@ every 3 ms do a = -32768, b = -1, m = a % b, q = a / b
 every 5 ms do a = a + 1, b = b - 1
 after 40 ms do exit_main
 """,
+    # the bitwise operators on 16 bits: shifts by negative counts and by 16
+    # or more, of negative values, masks in hexadecimal and binary; whole
+    # arrays assigned (a swap), filled, and read in slices
+    "bits_and_arrays": """\
+var n = 0x1F
+var m = 0b101
+var k = 3
+var s = -0x7FFF
+var a = [1, 2, 3, 4]
+every 7 ms do n = (n + 0x123) & 0x7FFF, m = n << 2 | m >> 1 ^ ~n, k = (k + 1) % 40 - 20
+every 11 ms do s = s >> 1 | s << k, m = (m ^ 0xA5A5) >> k, a = [a[3], a[0] ^ n, a[1], a[2] >> 1]
+every 13 ms do fill(a, ir0 & 0b111 | m << 3), n = sum(a[1:3]) + max(a[:2]) + dot(a[2:], a[0:2])
+after 600 ms do exit_main
+""",
     "timers_and_modes": """\
 var n = 0
 var m = 0

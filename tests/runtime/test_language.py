@@ -11,15 +11,16 @@ import subprocess
 import pytest
 
 from conftest import REPO, require_tool
-from epuckc.base.resources import RUNTIME_CORE, RUNTIME_SIMULATED
+from epuckc.base.resources import LIBRARY_SIMULATION, RUNTIME_CORE, RUNTIME_SIMULATED
 from epuckc.stdlib import arith
 from tests.support.programs import epuckc, run_program
 
 RUNTIME = REPO / "runtime_c"
 HOST = [*(RUNTIME / n for n in (*RUNTIME_CORE, *RUNTIME_SIMULATED)),
         RUNTIME / "host" / "platform_host.c",
-        RUNTIME / "host" / "scenario.c", RUNTIME / "host" / "epuck_stub.c"]
-INCLUDES = [f"-I{RUNTIME}", f"-I{RUNTIME / 'epuck_api'}", f"-I{RUNTIME / 'host'}"]
+        RUNTIME / "host" / "scenario.c", *(RUNTIME / n for n in LIBRARY_SIMULATION)]
+INCLUDES = [f"-I{RUNTIME}", f"-I{RUNTIME / 'epuck_api'}", f"-I{RUNTIME / 'host'}",
+            f"-I{RUNTIME / 'epuck_api_unsimulated'}"]
 STRICT = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic"]
 UBSAN = ["-g", "-fsanitize=address,undefined", "-fno-sanitize-recover=all"]
 
@@ -85,7 +86,7 @@ def test_runtime_arithmetic_is_the_checkers(tmp_path):
     cc = require_tool("cc")
     src = _write(tmp_path, "arith.c", ARITH_HARNESS)
     exe = tmp_path / "arith"
-    subprocess.run([cc, *STRICT, *UBSAN, *INCLUDES, str(src), *map(str, HOST), "-o", str(exe)],
+    subprocess.run([cc, *STRICT, *UBSAN, *INCLUDES, str(src), *map(str, HOST), "-o", str(exe), "-lm"],
                    check=True)
     corners = [-2**31, -2**31 + 1, -46341, -32769, -32768, -32767, -30000, -256, -3, -1, 0, 1,
                2, 3, 181, 182, 255, 30000, 32767, 32768, 46340, 46341, 2**31 - 1]
@@ -259,7 +260,7 @@ def test_every_feature_runs_clean_under_ubsan(tmp_path):
     cc = require_tool("cc")
     prog, c = _compiled(tmp_path)
     exe = tmp_path / "every"
-    subprocess.run([cc, *STRICT, *UBSAN, *INCLUDES, str(c), *map(str, HOST), "-o", str(exe)],
+    subprocess.run([cc, *STRICT, *UBSAN, *INCLUDES, str(c), *map(str, HOST), "-o", str(exe), "-lm"],
                    check=True)
     scn = _write(tmp_path, "every.scn", SCENARIO)
     trace = tmp_path / "every.jsonl"

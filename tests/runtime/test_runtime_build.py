@@ -7,7 +7,9 @@ import subprocess
 import sys
 from pathlib import Path
 
-from epuckc.base.resources import RUNTIME_CORE, RUNTIME_DEVICES, RUNTIME_SIMULATED
+from epuckc.base.resources import (RUNTIME_CORE, RUNTIME_DEVICES, RUNTIME_DSPIC_DEVICES,
+                                   RUNTIME_SIMULATED, RUNTIME_TRACE, RUNTIME_TRACE_CHIBIOS,
+                                   RUNTIME_TRACE_UART1)
 import pytest
 
 from conftest import REPO, require_tool
@@ -327,10 +329,14 @@ def test_the_makefile_builds_the_runtime_the_compiler_builds():
     takes), and every file of the runtime is in it."""
     makefile = (RUNTIME / "Makefile").read_text()
     lists = {name: [line.split("=", 1)[1].split() for line in makefile.splitlines()
-                    if line.startswith(f"{name} =")] for name in ("CORE", "SIMULATED")}
+                    if line.startswith(f"{name} =")] for name in ("CORE", "SIMULATED", "TRACE")}
     assert lists["CORE"] == [list(RUNTIME_CORE)]
     assert lists["SIMULATED"] == [list(RUNTIME_SIMULATED)]
+    assert lists["TRACE"] == [list(RUNTIME_TRACE + RUNTIME_TRACE_UART1)]
     platform_files = {"platform_robot.c", "platform_epuck2.c", "check16.c"}
     top_level = {p.name for p in RUNTIME.glob("*.c")} - platform_files
-    assert top_level == set(RUNTIME_CORE) | set(RUNTIME_DEVICES) | set(RUNTIME_SIMULATED), \
-        "a runtime source missing from RUNTIME_CORE, RUNTIME_DEVICES or RUNTIME_SIMULATED"
+    assert top_level == (set(RUNTIME_CORE) | set(RUNTIME_DEVICES) | set(RUNTIME_DSPIC_DEVICES)
+                         | set(RUNTIME_SIMULATED)
+                         | set(RUNTIME_TRACE + RUNTIME_TRACE_UART1 + RUNTIME_TRACE_CHIBIOS)), \
+        "a runtime source missing from RUNTIME_CORE, _DEVICES, _DSPIC_DEVICES, _SIMULATED or " \
+        "_TRACE*"

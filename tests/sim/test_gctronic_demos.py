@@ -10,8 +10,9 @@ import re
 
 import pytest
 
-from conftest import REPO, require_checkout, require_enki, require_tool
+from conftest import REPO, require_enki, require_epuck_library, require_tool
 from tests.support.programs import epuckc
+from tests.support.world import pose_records
 
 EPUCKRT_H = (REPO / "runtime_c" / "epuckrt.h").read_text()
 
@@ -28,23 +29,21 @@ MAINS = {
                'int main(void) { run_breitenberg_shocker(); return 0; }\n',
     "follower": '#include "runbreitenberg_adv.h"\n'
                 'int main(void) { run_breitenberg_follower(); return 0; }\n',
-    # GCtronic's main_c.c defines the buffer and starts the A/D scan
-    "wallfollow": '#include <a_d/advance_ad_scan/e_ad_conv.h>\nchar buffer[60];\n'
-                  'void run_wallfollow(void);\n'
-                  'int main(void) { e_init_ad_scan(ALL_ADC); run_wallfollow(); return 0; }\n',
+    # GCtronic's main_c.c defines the buffer, starts the A/D scan and the UART
+    "wallfollow": '#include <a_d/advance_ad_scan/e_ad_conv.h>\n#include <uart/e_uart_char.h>\n'
+                  'char buffer[60];\nvoid run_wallfollow(void);\n'
+                  'int main(void) { e_init_uart1(); e_init_ad_scan(ALL_ADC); run_wallfollow();'
+                  ' return 0; }\n',
     "square": 'void run_square(void);\nint main(void) { run_square(); return 0; }\n',
 }
+DEMOS = "program/DemoGCtronic-complete"
 DEMO_FILE = {"shocker": "runbreitenberg_adv.c", "follower": "runbreitenberg_adv.c",
              "wallfollow": "runwallfollow.c", "square": "runsquare.c"}
 
 
 @pytest.fixture(scope="module")
 def demos():
-    folder = require_checkout(
-        "EPUCK_LIB", "program/DemoGCtronic-complete",
-        "EPUCK_LIB does not name a checkout of GCtronic's e-puck library (git clone "
-        "https://github.com/gctronic/e-puck-library; the folder that holds program/)")
-    return folder / "program" / "DemoGCtronic-complete"
+    return require_epuck_library(DEMOS) / DEMOS
 
 
 def _run(demos, tmp_path, demo, *extra, world=None, expect=3, env=None):
@@ -67,10 +66,6 @@ def _run(demos, tmp_path, demo, *extra, world=None, expect=3, env=None):
     return records, result
 
 
-def _poses(records):
-    return [r for r in records if r["kind"] == "pose"]
-
-
 def _path_mm(poses):
     return sum(math.hypot(b["x_mm"] - a["x_mm"], b["y_mm"] - a["y_mm"])
                for a, b in zip(poses, poses[1:]))
@@ -85,7 +80,7 @@ def test_the_avoider_explores_the_arena_without_hitting_it(demos, tmp_path):
     require_enki()
     world = (REPO / "examples" / "arena.world").read_text()
     records, _ = _run(demos, tmp_path, "shocker", "--time-limit", "2min", world=world)
-    poses = _poses(records)
+    poses = pose_records(records)
     assert poses[-1]["t_ms"] == 120000
     assert _path_mm(poses) >= 1500
     assert _contacts(records) <= 10
@@ -125,7 +120,7 @@ def test_the_follower_holds_its_distance_to_what_it_faces(demos, tmp_path):
     require_enki()
     world = "arena 100 cm x 60 cm\nrobot at 40 cm, 30 cm heading 0 deg\n"
     records, _ = _run(demos, tmp_path, "follower", "--time-limit", "30s", world=world)
-    poses = _poses(records)
+    poses = pose_records(records)
     assert _contacts(records) == 0
     late = [p["x_mm"] for p in poses if p["t_ms"] >= 15000]
     gap = 1000 - max(late)                      # to the wall in front, from the centre
@@ -140,10 +135,11 @@ def test_the_wall_follower_keeps_the_wall(demos, tmp_path):
     world = "arena 150 cm x 100 cm\nrobot at 110 cm, 25 cm heading 200 deg\n"
     records, result = _run(demos, tmp_path, "wallfollow", "--time-limit", "2min", world=world)
     assert "calibration done" in result.stdout
+    # the eight offsets and the line's end, sent back to back: one burst
     uart = [r["text"] for r in records if r["kind"] == "uart"]
-    assert len(uart) == 9 and uart[-1] == " calibration done\r\n"
+    assert len(uart) == 1 and re.fullmatch(r"(\d+, ){8} calibration done\r\n", uart[0]), uart
     assert _contacts(records) == 0
-    poses = _poses(records)
+    poses = pose_records(records)
     reached = next(p["t_ms"] for p in poses if p["y_mm"] <= 150)
     after = [p for p in poses if p["t_ms"] >= reached]
     # beside the bottom wall from then on, going along it
@@ -165,7 +161,7 @@ def _square_expectation():
 
 def test_the_square_closes_as_gctronics_constants_make_it(demos, tmp_path):
     records, _ = _run(demos, tmp_path, "square", "--time-limit", "45s")
-    poses = _poses(records)
+    poses = pose_records(records)
     side, turn_deg = _square_expectation()
     # the corners: where the heading starts to change after a side
     corners, straight_since = [], 0
@@ -194,7 +190,7 @@ def test_the_square_runs_in_a_world(demos, tmp_path):
     require_enki()
     world = "arena 100 cm x 100 cm\nrobot at 40 cm, 40 cm heading 0 deg\n"
     records, _ = _run(demos, tmp_path, "square", "--time-limit", "36s", world=world)
-    poses = _poses(records)
+    poses = pose_records(records)
     end = [p for p in poses if p["t_ms"] == 34600][0]   # after four sides and corners
     assert math.dist((end["x_mm"], end["y_mm"]), (400.0, 400.0)) < 40
     assert _contacts(records) == 0

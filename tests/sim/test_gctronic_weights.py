@@ -13,7 +13,7 @@ import json
 
 import pytest
 
-from conftest import REPO, require_checkout, require_enki
+from conftest import REPO, require_enki, require_epuck_library
 from tests.support.programs import epuckc
 
 PORT = """\
@@ -55,10 +55,7 @@ def _run(tmp_path, name, program, world, seconds=40):
 
 @pytest.mark.parametrize("seed", [1, 3])
 def test_the_weight_arrays_drive_as_gctronic_s_shock_neuron(tmp_path, seed):
-    library = require_checkout(
-        "EPUCK_LIB", "program/DemoGCtronic-complete",
-        "EPUCK_LIB does not name a checkout of GCtronic's e-puck library (git clone "
-        "https://github.com/gctronic/e-puck-library; the folder that holds program/)")
+    library = require_epuck_library("program/DemoGCtronic-complete")
     require_enki()
     demo = library / "program" / "DemoGCtronic-complete" / "runbreitenberg_adv.c"
     world = tmp_path / "arena.world"

@@ -101,6 +101,7 @@ C_MAIN = """\
 int main(void)
 {
     const char *hello = "hello\\r\\n";
+    e_init_uart1();                     /* off until then, as on the robot */
     e_send_uart1_char(hello, (int)strlen(hello));
     wait(100000L);                      /* 40.7 ms on the dsPIC */
     e_set_speed_left(200);
@@ -133,3 +134,17 @@ def test_a_c_main_runs_on_the_16_bit_path_as_on_the_host(program):
     assert avr[-1]["left_steps"] == pytest.approx(host[-1]["left_steps"], abs=1)
     assert avr[-1]["right_steps"] == pytest.approx(host[-1]["right_steps"], abs=1)
     assert avr[-1]["kind"] == host[-1]["kind"] == "timeout"
+
+
+def test_inline_dspic_instructions_are_refused_on_the_16_bit_path_with_the_way_out(program):
+    main = program / "reset.c"
+    main.write_text("#include <p30F6014A.h>\nint main(void)\n{\n"
+                    "    __asm__ volatile (\"reset\");\n    while (1);\n}\n")
+    trace = program / "r.jsonl"
+    refused = epuckc("run", main, "--int16", "--time-limit", "50ms", "--trace", trace)
+    assert refused.returncode != 0 and "Traceback" not in refused.stderr
+    assert "run it without --int16" in refused.stderr and not trace.exists()
+    # the same C without inline instructions builds on the 16-bit path
+    main.write_text("#include <p30F6014A.h>\nint main(void)\n{\n    while (1);\n}\n")
+    built = epuckc("run", main, "--int16", "--time-limit", "50ms", "--trace", trace)
+    assert built.returncode == 3 and "--int16" not in built.stderr, built.stderr

@@ -6,8 +6,6 @@ import math
 
 import pytest
 
-from conftest import require_enki
-
 from tests.support.world import EXAMPLES, epuckc, run
 
 # the channel's model error (docs/world.md): the bearing is the direction of
@@ -28,9 +26,7 @@ on message repeat do v = message, b = message_bearing, r = message_range, heard 
 """
 
 
-@pytest.fixture(autouse=True)
-def _enki():
-    require_enki()
+pytestmark = pytest.mark.usefixtures("enki")
 
 
 def _world(tmp_path, body: str, name="w.world"):

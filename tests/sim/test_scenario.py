@@ -21,6 +21,7 @@ GOOD = [
     b"0 ir0=0\n100 ms ir0=900\n0.2 s ir0=0\n0.005 min ir0=900\n",
     b"\xef\xbb\xbf0 ir0=0\r\n100ms IR7=12 amb3=4095\r250 ms mic=7 accx=2048 selector=15\n",
     b"# comment only\n\n10 ms key=mute key=7 mic2=1\n10 ms accz=0  # same time\n",
+    b"0 ground0=1000 GROUND2=0\n20 ms ground1=4095\n",
 ]
 BAD = [
     b"0 ir0=0\n100 xs ir0=900\n",
@@ -37,6 +38,9 @@ BAD = [
     b"20 min ir0=1\n" + b"2000000 s ir0=1\n",
     b"10 ms " + b"ir0=1 " * 70 + b"\n",
     b"10 ms accw=3 selector=16 mic3=1\n",
+    b"10 ms ground3=1\n",
+    b"10 ms ground=1\n",
+    b"10 ms ground1=4096\n",
 ]
 
 
@@ -79,7 +83,7 @@ def test_the_checker_and_the_harness_agree(harness, tmp_path, data):
 
 WORDS = ["0", "10", "10ms", "ms", "s", "1.5", "2.", "min", "ir0=5", "IR3=4095", "ir8=1", "amb7=0",
          "mic=1", "mic2=9", "mic3=1", "accx=1", "accw=1", "selector=15", "selector=16",
-         "key=mute", "key=128", "#", "x", "=", "\t"]
+         "key=mute", "key=128", "ground0=900", "ground3=1", "ground=5", "#", "x", "=", "\t"]
 
 
 @settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture])

@@ -68,9 +68,9 @@ def test_runner_spec_is_in_cm_and_radians(tmp_path):
     assert box[:5] == ["box", "50.0", "30.0", "10.0", "4.0"] and math.isclose(float(box[5]), math.pi / 2)
     robot = spec[6].split()
     assert robot[:4] == ["robot", "a", "20.0", "20.0"] and math.isclose(float(robot[4]), math.pi)
-    # devices not known (hand-written C): the camera and the ToF ray
+    # devices not known (hand-written C): the camera, the ToF ray and the ground sensors
     assert spec[7:] == ["lib /x/a.so", "colour 0.501961 0.501961 0.501961", "camera", "tof",
-                        "setting EPUCK_TRACE /x/a.jsonl"]
+                        "ground", "setting EPUCK_TRACE /x/a.jsonl"]
     # a program that reads neither gets neither (each costs a part of every step)
     spec = runner_spec(w, [("/x/a.so", {}, frozenset({"messages"}))]).splitlines()
     assert spec[7:] == ["lib /x/a.so", "colour 0.501961 0.501961 0.501961"]
@@ -94,6 +94,9 @@ def test_runner_spec_is_in_cm_and_radians(tmp_path):
     ("robot at 0 cm, 0 cm\nrobot at 5 cm, 0 cm\n", "w.world:2:1:", "overlaps robot r1"),
     ("cylinder at 0 cm, 8 cm radius 5 cm\nrobot at 0 cm, 0 cm\n", "w.world:2:1:", "overlaps the cylinder"),
     ("box at 0 cm, 4 cm size 10 cm x 2 cm\nrobot at 0 cm, 0 cm\n", "w.world:2:1:", "overlaps the box"),
+    ("robot at 0 cm, 0 cm selector 16\n", "w.world:1:30:", "from 0 to 15"),
+    ("robot at 0 cm, 0 cm scenario none.scn\n", "w.world:1:30:", "the scenario none.scn does not exist"),
+    ("scenario\n", "w.world:1:9:", "a scenario file"),
 ])
 def test_errors_point_at_the_problem(tmp_path, text, where, words):
     message = error(tmp_path, text)
@@ -161,7 +164,26 @@ def test_cli_reports_a_bad_world_with_status_2(tmp_path):
     assert missing.returncode == 2 and "does not exist" in missing.stderr
 
 
-def test_cli_refuses_a_world_with_a_scenario():
+def test_a_worlds_scenario_and_its_robots(tmp_path):
+    (tmp_path / "a.scn").write_text("0 ms selector=3\n500 ms key=mute mic=900\n")
+    w = parse(tmp_path, "scenario a.scn\nrobot a at 0 cm, 0 cm selector 5 scenario a.scn\n"
+                        "robot b at 20 cm, 0 cm\n")
+    assert w.scenario == tmp_path / "a.scn"
+    assert [(r.selector, r.scenario) for r in w.robots] == [(5, tmp_path / "a.scn"), (None, None)]
+
+
+def test_a_worlds_scenario_is_checked_where_it_is_written(tmp_path):
+    """Its own problems at the scenario's file:line:col, then the world's
+    line that names it; what Enki gives (the proximity sensors) refused."""
+    (tmp_path / "s.scn").write_text("0 ms selector=3\n200 ms ir0=900 bogus=1\n")
+    message = error(tmp_path, "arena 1 m x 1 m\nrobot at 50 cm, 50 cm scenario s.scn\n")
+    heads = [line.split(" error: ")[0] for line in message.splitlines() if " error: " in line]
+    assert heads == ["s.scn:2:16:", "s.scn:2:8:", "w.world:2:32:"], message
+    assert "read Enki's" in message
+
+
+def test_cli_refuses_a_scenario_of_proximity_readings_with_a_world():
     result = epuckc("run", EXAMPLES / "obstacle_avoidance.epk", "--world", EXAMPLES / "arena.world",
                     "--scenario", EXAMPLES / "obstacle.scn")
-    assert result.returncode == 2 and "cannot be combined" in result.stderr
+    assert result.returncode == 2 and "obstacle.scn:3:12: error:" in result.stderr
+    assert "the proximity sensors read Enki's" in result.stderr

@@ -93,3 +93,19 @@ def test_every_motor_command_is_arbitrated_by_the_runtime():
         runtime = stdlib.STANDARD_ACTIONS[name].runtime
         assert f'motors_refused("{name}")' in body(runtime), (name, runtime)
     assert set(re.findall(r'motors_refused\("(\w+)"\)', source)) == set(stdlib.MOTOR_ACTIONS)
+
+
+def test_every_reading_calls_a_function_the_runtime_declares():
+    """A reading, a reading's array and each of their choices become calls
+    of runtime functions: each is declared in epuckrt.h with as many
+    arguments as the call gives (a new reading without its runtime
+    function would be accepted by the checker and fail to build)."""
+    header = (REPO / "runtime_c" / "epuckrt.h").read_text()
+    arity = {name: 0 if args.strip() in ("", "void") else args.count(",") + 1
+             for name, args in re.findall(r"^\w[\w ]*?\b(rt_\w+)\(([^)]*)\);", header, re.M)}
+    calls = [r.c for r in stdlib.STANDARD_READINGS.values()]
+    calls += [f"{function}(0)" for _, function in stdlib.READING_ARRAYS.values()]
+    for call in calls:
+        name, args = re.fullmatch(r"(rt_\w+)\((.*)\)", call).groups()
+        assert name in arity, f"{call}: {name} is not declared in epuckrt.h"
+        assert arity[name] == (len(args.split(",")) if args else 0), call

@@ -15,7 +15,8 @@ from pathlib import Path
 
 from hypothesis import strategies as st
 
-from epuckc.base.resources import RUNTIME_CORE, RUNTIME_SIMULATED
+from epuckc.base.resources import (LIBRARY_SIMULATION, RUNTIME_CORE, RUNTIME_DEVICES,
+                                   RUNTIME_SIMULATED)
 
 REPO = Path(__file__).resolve().parents[2]
 RUNTIME = REPO / "runtime_c"
@@ -196,13 +197,14 @@ class Outcome:
 def runtime_objects(folder: Path, cc: str) -> list:
     """The host runtime, compiled once with the sanitizers."""
     objects = []
-    for src in (*RUNTIME_CORE, *RUNTIME_SIMULATED, "host/platform_host.c", "host/scenario.c",
-                "host/epuck_stub.c"):
+    # (the devices too: the language generator's programs send messages)
+    for src in (*RUNTIME_CORE, *RUNTIME_SIMULATED, *RUNTIME_DEVICES, "host/platform_host.c",
+                "host/scenario.c", *LIBRARY_SIMULATION):
         obj = folder / (Path(src).stem + ".o")
         if not obj.exists():
             subprocess.run([cc, *STRICT, *SANITIZE, f"-I{RUNTIME}", f"-I{RUNTIME / 'epuck_api'}",
-                            f"-I{RUNTIME / 'host'}", "-c", str(RUNTIME / src), "-o", str(obj)],
-                           check=True)
+                            f"-I{RUNTIME / 'host'}", f"-I{RUNTIME / 'epuck_api_unsimulated'}",
+                            "-c", str(RUNTIME / src), "-o", str(obj)], check=True)
         objects.append(obj)
     return objects
 

@@ -8,8 +8,17 @@ odometry, modes with their own rules and variables, priorities, arrays
 computed indices, `sum`/`min`/`max`/`argmin`/`argmax`/`dot`), the math
 functions (`atan2`, `hypot`, `sqrt`, `sin`, `cos`), `if` / `else if` /
 `else` actions (nested, now and then with a `then` inside a branch, which
-is E080), and now and then an expression, or `if`s, nested or chained
-right at or beyond the depth limit (syntax/limits.py).
+is E080), the bitwise operators with hexadecimal and binary numbers (shifts
+by any count, of any value), constant slices where whole arrays are read,
+whole arrays assigned (`a = [...]`, `fill`), and now and then an
+expression, or `if`s, nested or chained right at or beyond the depth limit
+(syntax/limits.py): sums, calls, parentheses, array indexes
+(`W0[W0[...]]`), `~`s, shifts, chains of `&`, `|` and `^`, a slice's
+bounds; long `else if` chains (up to 300
+branches), arrays of the largest size, many rules; and IR messages
+(`send`, `on message`, the `message` readings), always with
+`messages=True` (the world runs under the sanitizers,
+tests/sim/test_world_sanitizers.py).
 
 Most programs are well-kinded so that most are accepted and go on to the
 C compilers; some mix kinds or break the rules on purpose, so that the
@@ -19,15 +28,18 @@ from __future__ import annotations
 
 from hypothesis import strategies as st
 
-from epuckc.syntax.limits import IF_LEVELS, MAX_DEPTH
+from epuckc.check.arrays import MAX_SIZE as ARRAY_MAX
+from epuckc.syntax.limits import MAX_DEPTH
 
 from .hostile import Program
 
-INT_NUMBERS = ["0", "1", "-1", "2", "3", "7", "100", "300", "4095", "32767", "-32768", "-32767"]
+INT_NUMBERS = ["0", "1", "-1", "2", "3", "7", "100", "300", "4095", "32767", "-32768", "-32767",
+               "0x1F", "0xFF00", "0xFFFF", "0b101", "0x7FFF"]
 UNIT_NUMBERS = {"speed": ["0 steps/s", "300 steps/s", "-200 steps/s", "50 mm/s", "1000 steps/s"],
                 "distance": ["0 mm", "10 cm", "-50 mm", "2 m", "100 steps"],
                 "angle": ["0 deg", "90 deg", "-45 deg", "360 deg"]}
-READINGS = {"int": ["ir0", "ir3", "ir7", "ambient2", "mic0", "acc_x", "acc_z", "selector"],
+READINGS = {"int": ["ir0", "ir3", "ir7", "ambient2", "mic0", "acc_x", "acc_z", "selector",
+                    "message"],
             "distance": ["x", "y"], "angle": ["heading"], "speed": []}
 KINDS = ["int", "int", "int", "speed", "distance", "angle"]
 COMPARE = ["<", "<=", ">", ">=", "==", "!="]
@@ -77,7 +89,7 @@ def language_programs(draw) -> Program:
     return language_program(_Drawn(draw))
 
 
-def language_program(r: Choices) -> Program:
+def language_program(r: Choices, messages: bool = False) -> Program:
     variables: dict = {}        # name -> kind
     constants: dict = {}
     lines = []
@@ -94,7 +106,7 @@ def language_program(r: Choices) -> Program:
     arrays: dict = {"ir": 8, "ambient": 8, "mic": 3, "acc": 3}     # name -> size (int ones)
     var_arrays: list = []
     for i in range(r.integers(0, 2)):
-        size = r.choice([1, 3, 8])
+        size = r.choice([1, 3, 8] * 10 + [ARRAY_MAX])
         arrays[f"W{i}"] = size
         lines.append(f"const W{i} = [{', '.join(r.choice(INT_NUMBERS) for _ in range(size))}]")
     for i in range(r.integers(0, 2)):
@@ -112,6 +124,16 @@ def language_program(r: Choices) -> Program:
             return f"{name}[{index}]"
         if form == 1:
             return f"{r.choice(['sum', 'min', 'max', 'argmin', 'argmax'])}({name})"
+        if form == 2 and arrays[name] > 1:      # a constant slice, its ends now and then left out
+            lo = r.integers(0, arrays[name] - 1)
+            hi = r.integers(lo + 1, arrays[name])
+            shown = f"{'' if lo == 0 and r.boolean() else lo}:" \
+                    f"{'' if hi == arrays[name] and r.boolean() else hi}"
+            f = r.choice(["sum", "min", "max", "argmin", "argmax", "dot"])
+            if f == "dot":
+                other = r.choice([n for n in sorted(arrays) if arrays[n] >= hi - lo])
+                return f"dot({name}[{shown}], {other}[0:{hi - lo}])"
+            return f"{f}({name}[{shown}])"
         same = [n for n in sorted(arrays) if arrays[n] == arrays[name]]
         return f"dot({name}, {r.choice(same)})"
 
@@ -135,10 +157,24 @@ def language_program(r: Choices) -> Program:
             options.append(lambda: "-" + r.choice(names))
         return r.choice(options)()
 
+    def bits(depth):
+        """An int from the bitwise operators (on any ints: the checker
+        saturates operands beyond 16 bits, and shifts by any count)."""
+        form = r.integers(0, 3)
+        if form == 0:
+            return f"~({number('int', depth - 1)})"
+        if form == 1:
+            count = r.choice(["1", "4", "15", "16", "-3", "0b11", number("int", depth - 1)])
+            return f"({number('int', depth - 1)}) {r.choice(['<<', '>>'])} ({count})"
+        op = r.choice(["&", "|", "^"])
+        return f"({number('int', depth - 1)}) {op} ({number('int', depth - 1)})"
+
     def number(kind, depth):
         if depth <= 0 or r.integers(0, 3) == 0:
             return leaf(kind)
-        form = r.integers(0, 11)
+        form = r.integers(0, 12)
+        if form == 12:
+            return bits(depth) if kind == "int" else f"({bits(depth)}) * ({leaf(kind)})"
         if form == 10:
             return array_form(depth) if kind == "int" else f"({array_form(depth)}) * " \
                 f"({number(kind, depth - 1)})"
@@ -179,27 +215,60 @@ def language_program(r: Choices) -> Program:
                f"({condition(depth - 1)})"
 
     def deep(kind):
-        """An expression at or just beyond the depth limit."""
-        n = MAX_DEPTH + r.choice([-1, 0, 1])
-        shape = r.integers(0, 2)
+        """An expression at or just beyond the depth limit (the figures of
+        docs/language.md 2.9: n nested calls about 2n levels, n nested
+        indexes, `~`s, shifts or a slice's parentheses about n), or far
+        beyond it."""
+        # (a rule and its action take some 10 levels around an expression)
+        n = MAX_DEPTH + r.choice([-30, -16, -12, -8, 4 * MAX_DEPTH])
+        shape = r.integers(0, 7)
         if shape == 0:
-            return "abs(" * n + leaf(kind) + ")" * n
+            return "abs(" * (n // 2) + leaf(kind) + ")" * (n // 2)
         if shape == 1:
             return "(" * n + leaf(kind) + ")" * n
+        if kind == "int" and shape == 2:
+            name = r.choice(sorted(arrays))
+            return f"{name}[" * n + "0" + "]" * n
+        if kind == "int" and shape == 3:           # `~~~x`
+            return "~" * n + f"({leaf(kind)})"
+        if kind == "int" and shape == 4:           # `x << (x << (...))`, `x >> 1 >> 1 ...`
+            if r.boolean():
+                return f"{leaf(kind)} << (" * n + leaf(kind) + ")" * n
+            return leaf(kind) + f" {r.choice(['>>', '<<'])} 1" * n
+        if kind == "int" and shape == 5:           # `a & b | c ^ ...`
+            return leaf(kind) + "".join(f" {r.choice(['&', '|', '^'])} {leaf(kind)}"
+                                        for _ in range(n))
+        if kind == "int" and shape == 6:           # a slice's bound, nested (fixed: a number)
+            name = r.choice([a for a in sorted(arrays) if arrays[a] > 1] or ["ir"])
+            return f"sum({name}[" + "(" * n + "0" + ")" * n + ":1])"
         return leaf(kind) + "".join(f" + {leaf(kind)}" for _ in range(n))
 
     def expression(kind):
-        if r.integers(0, 79) == 79:
+        if r.integers(0, 159) == 159:
             return deep(kind)
         return number(kind, r.integers(0, 4))
 
     def if_action(depth):
         parts = [f"if {condition(r.integers(0, 2))} {{ {branch(depth)} }}"]
+        if depth == 0 and r.integers(0, 39) == 39:
+            return long_chain()
         for _ in range(r.integers(0, 2)):
             parts.append(f"else if {condition(r.integers(0, 2))} {{ {branch(depth)} }}")
         if r.boolean():
             parts.append(f"else {{ {branch(depth)} }}")
         return " ".join(parts)
+
+    def long_chain():
+        """An `if` of 20 to 300 `else if`s (of plain comparisons and
+        actions, so that most are accepted and built)."""
+        ints = sorted(n for n, k in variables.items() if k == "int")
+        names = ints + READINGS["int"]
+        parts = []
+        for k in range(r.integers(20, 300)):
+            act = f"{r.choice(ints)} = {k}" if ints and r.boolean() else \
+                r.choice(["led_toggle(body)", "stop_motor", f"led_on(led{k % 8})"])
+            parts.append(f"if {r.choice(names)} {r.choice(COMPARE)} {k * 13 - 900} {{ {act} }}")
+        return " else ".join(parts) + (" else { stop_motor }" if r.boolean() else "")
 
     def branch(depth):
         calls = [action(depth + 1) for _ in range(r.integers(1, 2))]
@@ -209,7 +278,7 @@ def language_program(r: Choices) -> Program:
 
     def deep_ifs():
         """`if`s nested at or just beyond the depth limit."""
-        n = MAX_DEPTH // IF_LEVELS + r.choice([-1, 0, 1])
+        n = MAX_DEPTH // 4 + r.choice([-3, -2, -1, 0])
         name = r.choice(sorted(variables)) if variables else "ir0"
         return f"if {name} > 0 {{ " * n + "led_toggle(body)" + " }" * n
 
@@ -219,6 +288,12 @@ def language_program(r: Choices) -> Program:
         if depth == 0 and r.integers(0, 199) == 199:
             return deep_ifs()
         form = r.integers(0, 9)
+        if form == 0 and var_arrays and r.integers(0, 3) == 3:     # the whole array
+            name = r.choice(var_arrays)
+            if r.boolean():
+                return f"fill({name}, {expression('int')})"
+            size = arrays[name] + (r.choice([-1, 1]) if r.integers(0, 19) == 19 else 0)
+            return f"{name} = [{', '.join(expression('int') for _ in range(max(size, 1)))}]"
         if form == 0 and var_arrays:
             name = r.choice(var_arrays)
             index = r.choice([str(r.integers(0, arrays[name] - 1)), expression("int")])
@@ -232,6 +307,8 @@ def language_program(r: Choices) -> Program:
         if form == 6:
             return f"start_straight({r.choice(UNIT_NUMBERS['speed'])}, " \
                    f"{r.choice(['5 cm', '-2 cm', '1 m'])})"
+        if form == 7 and (messages or r.integers(0, 9) == 9):
+            return f"send({expression('int')})"
         return r.choice(["stop_motor", "led_toggle(body)", "led_on(led3)",
                                      "start_sensor", "set_timer", "play_sound(haa)"])
 
@@ -260,7 +337,8 @@ def language_program(r: Choices) -> Program:
             head = f"after {r.choice(['10 ms', '300 ms', '1 s'])}"
         else:
             events = ["immediate", "stop_motor", "timer(100 ms)", "sensor(ir0 > 300)",
-                      "ambient(ir2 < 200)"] + (["enter"] if in_mode else [])
+                      "ambient(ir2 < 200)"] + (["enter"] if in_mode else []) + \
+                (["message"] * 3 if messages else ["message"])
             event = r.choice(events)
             repeat = " repeat" if event != "immediate" and r.boolean() else ""
             head = f"on {event}{repeat}"
@@ -269,8 +347,11 @@ def language_program(r: Choices) -> Program:
             actions += f", enter {r.choice(modes)}"
         return f"{head}{tail}{guard} do {actions}"
 
-    for _ in range(r.integers(1, 5)):
+    for _ in range(r.integers(1, 5) if r.integers(0, 49) < 49 else r.integers(50, 200)):
         lines.append(rule(False))
+    if messages:
+        lines.append(f"every {r.choice(['50 ms', '100 ms', '300 ms'])} do send({expression('int')})")
+        lines.append(f"on message repeat do {action()}")
     for k, mode in enumerate(modes):
         lines.append(("initial " if k == 0 else "") + f"mode {mode} {{")
         if r.integers(0, 9) == 9:

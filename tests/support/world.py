@@ -2,11 +2,10 @@
 from __future__ import annotations
 
 import json
-import os
-import subprocess
-import sys
 import xml.etree.ElementTree as ET
 from pathlib import Path
+
+from .programs import epuckc  # noqa: F401  (the sim tests take it from here)
 
 REPO = Path(__file__).resolve().parents[2]
 EXAMPLES = REPO / "examples"
@@ -25,13 +24,9 @@ after 4 s do shown = count, exit_main
 """
 
 
-def epuckc(*args, cwd=None, env=None):
-    """Run the CLI as a user does, in a subprocess."""
-    full_env = dict(os.environ)
-    full_env["PYTHONPATH"] = str(REPO) + os.pathsep + full_env.get("PYTHONPATH", "")
-    full_env.update(env or {})
-    return subprocess.run([sys.executable, "-m", "epuckc", *map(str, args)], cwd=cwd,
-                          env=full_env, capture_output=True, text=True)
+def pose_records(records) -> list:
+    """The pose records of a trace."""
+    return [r for r in records if r["kind"] == "pose"]
 
 
 def same_run_both_ways(tmp_path, env_a: dict, env_b: dict, *args):

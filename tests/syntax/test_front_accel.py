@@ -112,6 +112,9 @@ def test_a_different_program_is_told_apart(driver):
     "rule r: on timer(1 s) repeat priority p do set_timer then cancel r",
     "on sensor(ir0 > -5, ir1 < 3.25) do start_curve(radius: 5 cm, degrees: -90 deg, speed: 2 m/s)",
     "", "   \n\n# only a comment", "}", "{",
+    # the bitwise operators, hexadecimal and binary numbers, slices, arrays assigned
+    "var n = 0x1F\nvar m = 0B101\nevery 1 s do n = (n + 1) & 0xfF, m = ~n << 2 | m >> 1 ^ 0b1",
+    "var a = [0, 0, 0]\nwhen sum(a[1:3]) + max(a[:2]) + min(a[1:]) > 0x7 do a = [1, a[0] | 2, 3]",
 ])
 def test_written_cases(driver, text):
     compare(driver, text)
@@ -125,6 +128,9 @@ def test_written_cases(driver, text):
     "on immediate go",                  # E001
     "on immediate do go(1.)",
     'extern action f() from "a\\',
+    "var n = 0x1G",                     # E009
+    "var n = 0b",
+    "var n = 0b2",
 ])
 def test_the_c_front_end_leaves_mistakes_to_python(driver, text):
     assert not compare(driver, text)

@@ -3,7 +3,9 @@
  * wait(num) is the library's busy loop: on the simulated robot it takes
  * the time that loop takes on the dsPIC (docs/runtime.md, the C program
  * model); resetTime and getDiffTimeMs* count the A/D interrupt's ticks
- * (1/16384 s) in simulated time. */
+ * (1/16384 s, up to 65535 of them: 4 s) while the scan runs.  (void)
+ * where the library's header has (): compatible with its declarations, and
+ * a prototype for the runtime, which -Wstrict-prototypes builds (e-puck2). */
 #ifndef EPUCK_API_UTILITY_UTILITY_H
 #define EPUCK_API_UTILITY_UTILITY_H
 

@@ -1,8 +1,12 @@
-/* e-puck library API: a_d/e_prox.h, the timer-driven A/D variant (proximity), which
- * the simulated e-puck does not model: it has the advanced scan, whose
- * functions differ (e_get_micro, e_get_acc); stop at the build, never at a
- * link error. */
-#ifndef EPUCK_API_A_D_E_PROX_H
-#define EPUCK_API_A_D_E_PROX_H
-#error "a_d/e_prox.h: the timer-driven A/D variant is not simulated by epuckc; include <a_d/advance_ad_scan/e_prox.h> (the advanced A/D scan, e_init_ad_scan(ALL_ADC))"
+/* e-puck library API: a_d/e_prox.h, which the simulated e-puck does not
+ * model (the timer-driven A/D): the library's declarations, so that a program
+ * that includes it builds and links; a call of one of its functions
+ * ends the run with a message naming the timer-driven A/D (host/unsimulated.c;
+ * docs/runtime.md, "What is not simulated"). */
+#ifndef _PROX
+#define _PROX
+void e_init_prox(void);
+void e_stop_prox(void);
+int e_get_prox(unsigned int sensor_number);
+int e_get_ambient_light(unsigned int sensor_number);
 #endif

@@ -1,7 +1,23 @@
-/* e-puck library API: fft/e_fft.h, which the simulated e-puck does not model
- * (the FFT of the microphones' samples); a program that includes it stops at the build with this
- * message (docs/runtime.md, C programs), never at a link error. */
-#ifndef EPUCK_API_FFT_E_FFT_H
-#define EPUCK_API_FFT_E_FFT_H
-#error "fft/e_fft.h: the FFT of the microphones' samples is not simulated by epuckc; the simulated e-puck has the motors, LEDs, IR, agendas, UART, accelerometer and gyroscope, sound and microphones"
+/* e-puck library API: fft/e_fft.h, which the simulated e-puck does not
+ * model (the FFT of the microphones' samples): the library's declarations, so that a program
+ * that includes it builds and links; a call of one of its functions
+ * ends the run with a message naming the FFT of the microphones' samples (host/unsimulated.c;
+ * docs/runtime.md, "What is not simulated"). */
+#ifndef FFT_H
+#define FFT_H
+#include <dsp.h>
+#define FFT_BLOCK_LENGTH 256
+#if (FFT_BLOCK_LENGTH == 64)
+#define LOG2_BLOCK_LENGTH 6
+#endif
+#if (FFT_BLOCK_LENGTH == 128)
+#define LOG2_BLOCK_LENGTH 7
+#endif
+#if (FFT_BLOCK_LENGTH == 256)
+#define LOG2_BLOCK_LENGTH 8
+#endif
+#if (FFT_BLOCK_LENGTH == 512)
+#define LOG2_BLOCK_LENGTH 9
+#endif
+void e_doFFT_asm(fractcomplex* sigCmpx);
 #endif

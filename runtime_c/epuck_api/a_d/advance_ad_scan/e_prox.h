@@ -1,5 +1,6 @@
-/* e-puck library API, proximity sensors over the advanced A/D scan,
- * declarations only (see ../../README.md).  Readings 0..4095. */
+/* e-puck library API, proximity sensors over the advanced A/D scan
+ * (library/a_d/advance_ad_scan/e_prox.h), declarations only (see
+ * ../../README.md).  Readings 0..4095. */
 #ifndef EPUCK_API_E_PROX_H
 #define EPUCK_API_E_PROX_H
 
