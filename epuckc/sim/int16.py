@@ -22,8 +22,8 @@ from typing import Optional
 
 from ..base import cache
 from ..base.records import record
-from ..base.resources import (LIBRARY_SIMULATION, RUNTIME_CORE, RUNTIME_TRACE,
-                              RUNTIME_TRACE_UART1, runtime_dir)
+from ..base.resources import (LIBRARY_SIMULATION, RUNTIME_CORE, RUNTIME_DEVICES,
+                              RUNTIME_TRACE, RUNTIME_TRACE_UART1, runtime_dir)
 from ..build.common import USER_CFLAGS, BuildError, Program, _capacity_defines, _run_compiler
 from ..build.trace_table import TraceOptions, trace_defines
 from .scenario import _BLANKS, _time
@@ -167,8 +167,10 @@ def build_int16(program: Program, folder: Path, items: list, time_limit_ms: int,
                + [f"-I{folder}", f"-I{rt}", f"-I{rt / 'epuck_api'}", f"-I{rt / 'host'}",
                   f"-I{rt / 'epuck_api_unsimulated'}", *sources,
                   *(str(rt / n) for n in RUNTIME_CORE), *(str(rt / n) for n in LIBRARY_SIMULATION),
-                  # the ground-sensor module's readings (LIBRARY_SIMULATION has its stub)
-                  str(rt / "rt_ground.c"), *more,
+                  # the devices the host's build has (IR messages, ToF, camera,
+                  # RGB LEDs, ground module), over LIBRARY_SIMULATION's stubs
+                  # of them: a program the host runs builds here too
+                  *(str(rt / n) for n in RUNTIME_DEVICES), *more,
                   str(rt / "int16" / "platform_int16.c"), str(folder / "scenario.c"),
                   "-o", str(elf)])
     inline = any(re.search(rb"\basm\b|__asm__|\b(NOP|RESET|CLRWDT|SLEEP|IDLE)\(\)",

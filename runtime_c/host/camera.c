@@ -246,6 +246,19 @@ int e_poxxxx_is_img_ready(void)
     return cam.ready;
 }
 
+/* The first ms m whose stub_camera_ms takes the frame coming: the cycle m
+ * began at (stub_ms_cycles(m)) is past its ready time. */
+long stub_camera_next_ms(void)
+{
+    long m;
+    if (cam.buffer == NULL)
+        return -1L;
+    m = (long)(cam.ready_at * 1000ULL / STUB_FCY);
+    while (stub_ms_cycles(m) < cam.ready_at)
+        m++;
+    return m;
+}
+
 void stub_camera_ms(long now_ms, long n)
 {
     (void)now_ms;

@@ -160,8 +160,10 @@ static void escape(char *out, size_t size, const char *buff, int length)
 /* the first `n` bytes of the line: a record; the rest stays */
 static void emit(uart *u, int n)
 {
-    /* static: a byte escapes to at most 6 (\u00XX), off the caller's stack */
-    static char text[6 * UART_LINE + 8], extra[6 * UART_LINE + 32], line[6 * UART_LINE + 32];
+    /* a byte escapes to at most 6 (\u00XX); on the stack, not in the
+     * program's state: a world's robots sharing the object swap their
+     * state at every step (runtime_c/enki/robot_loader.h) */
+    char text[6 * UART_LINE + 8], extra[6 * UART_LINE + 32], line[6 * UART_LINE + 32];
     if (n <= 0)
         return;
     escape(text, sizeof text, u->text, n);

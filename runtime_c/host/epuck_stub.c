@@ -99,6 +99,11 @@ void stub_devices_ms(long now_ms, long n)
     stub_camera_ms(now_ms, n);
 }
 
+long stub_devices_next_ms(void)
+{
+    return stub_camera_next_ms();
+}
+
 /* ---- reset and sleep: the library's state as at the chip's reset ------------- */
 
 void stub_reset_library(void)

@@ -16,6 +16,10 @@
  * its clock passes it; stub_devices_ms for `n` of them at once (the idle
  * polls in bulk). */
 void stub_devices_ms(long now_ms, long n);
+/* The first ms at whose stub_devices_ms a device changes what the program
+ * reads without an input being set (a frame of the camera ready); -1:
+ * none coming.  A platform that advances several ms at once stops there. */
+long stub_devices_next_ms(void);
 
 /* Main's clock in the dsPIC's cycles (FCY 14.7456 MHz): stub_clock_hook's,
  * which cmain.c (the C main model) and platform_int16.c set; without one,

@@ -58,6 +58,8 @@ void stub_sound_ms(long now_ms, long n);
 void stub_more_ms(long now_ms, long n);
 void stub_imu_ms(long now_ms, long n);
 void stub_camera_ms(long now_ms, long n);
+/* the ms of the frame coming (stub_devices_next_ms), -1: none */
+long stub_camera_next_ms(void);
 /* the UARTs' lines not written yet, at the run's end (epuck_more.c) */
 void stub_uart_end(void);
 /* The A/D scan started (1) or stopped (0) now (epuck_stub.c tells

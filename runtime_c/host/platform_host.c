@@ -615,7 +615,8 @@ void rt_platform_init(void)
 /* How many ms this poll cycle may advance at once (docs/runtime.md, "Idle
  * polls in bulk"): the runtime's horizon (rt_idle.c) while the agendas only
  * count (the runtime's clock, libIrcom's frame), within the time limit (its
- * poll runs), before the next pose record and the scenario's next line. */
+ * poll runs), before the next pose record, the scenario's next line and
+ * the next change of a device of its own (the camera's frame ready). */
 static long bulk_ms(long *left, long *right)
 {
     long n, t;
@@ -633,7 +634,10 @@ static long bulk_ms(long *left, long *right)
     t = host_scenario_next_ms();
     if (t >= 0 && n > t - now_ms)
         n = t - now_ms;
-    return n;
+    t = stub_devices_next_ms();
+    if (t >= 0 && n > t - now_ms)
+        n = t - now_ms;
+    return n < 1 ? 1 : n;
 }
 
 /* One poll cycle = 1 ms of virtual time; or several, when the polls before

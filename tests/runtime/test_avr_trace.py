@@ -18,22 +18,10 @@ from tests.support.programs import epuckc
 LIMIT_MS = 5000
 
 
-def _without_devices(paths) -> list:
-    """The examples that use no device beyond the e-puck's own (messages,
-    the camera, ToF, RGB LEDs: check/devices.py): the AVR proxy has the
-    runtime's core and the stub robot, not the device layer; those examples
-    are tested in their worlds (tests/sim)."""
-    from epuckc.check.frontend import check_file
-    from epuckc.diagnostics import Report
-    kept = []
-    for path in paths:
-        result = check_file(path, Report())
-        if result.checked is None or not result.checked.devices:
-            kept.append(path)
-    return kept
-
-
-EXAMPLES = _without_devices(sorted((REPO / "examples").glob("*.epk")))
+# every example, those of the devices too (messages, camera, ground
+# module): the 16-bit path links the runtime's device files as the host's
+# build does, over the same simulated library (epuckc/sim/int16.py)
+EXAMPLES = sorted((REPO / "examples").glob("*.epk"))
 EXTRA = {
     "every_feature": EVERY_FEATURE,
     "arithmetic": """\
