@@ -34,7 +34,7 @@
  *
  * The robots of one `lib` share one loaded copy of it, each with its own
  * copy of its globals, swapped into the object's data pages while its code
- * runs (robot_loader.h; with thread-local storage, more than 8 KB of state,
+ * runs (robot_loader.h; with thread-local storage, more than 16 KB of state,
  * or the environment's EPUCK_WORLD_COPIES set, each robot loads its own copy
  * of the file instead, in memory or beside the SPEC).  A robot's main()
  * runs as a coroutine (coroutine.h): it runs step_ms poll cycles, then
@@ -322,7 +322,7 @@ int thread_count()
 
 // Each robot's object: the file itself, for the first robot of its path;
 // its copy for each other robot where the robots of a program cannot share
-// one (thread-local storage, more than 8 KB of state, EPUCK_WORLD_COPIES);
+// one (thread-local storage, more than 16 KB of state, EPUCK_WORLD_COPIES);
 // else one object per program and thread, the file itself for the first
 // thread that runs it and copies for the others (robot_loader.h).
 void load_robots(const std::string &folder, int threads)

@@ -28,7 +28,6 @@ static int frame_ms = STUB_IRCOM_FRAME_MS;
 static int on_air_ms;               /* what remains of the frame being sent */
 static long sent[STUB_SENT_MAX];
 static int n_sent;
-static char json[256], line[160];     /* a record's JSON keys, its readable line */
 static int distance_mm = STUB_DISTANCE_NONE;
 
 /* 1 ms of the frame on the air: an agenda of 10 ticks of 0.1 ms */
@@ -67,6 +66,7 @@ int ircomIsSending(void)
 
 void ircomSend(long int value)
 {
+    char json[256], line[160];      /* the record's JSON keys, its readable line */
     value &= 0xFFL;     /* one byte: IRCOM_WORDSIZE bits */
     on_air_ms = frame_ms;
     if (n_sent < STUB_SENT_MAX)
@@ -87,9 +87,10 @@ int stub_ircom_take_sent(long *values, int max)
 void stub_ircom_receive(long value, double distance_cm, double direction_rad, int sensor,
                         const char *from, double from_x_mm, double from_y_mm)
 {
-    stub_input_set();
+    char json[256], line[160];
     IrcomMessage *m;
     double bearing;
+    stub_input_set();
     if (in_count == IRCOM_MESSAGES_MAX) {     /* as libIrcom: the oldest goes */
         in_begin = (in_begin + 1) % IRCOM_MESSAGES_MAX;
         in_count--;
@@ -145,6 +146,7 @@ void set_rgb_led(rgb_led_name_t led_number, uint8_t red_val, uint8_t green_val,
                  uint8_t blue_val)
 {
     static long shown[NUM_RGB_LED];
+    char json[256], line[160];
     long colour = ((long)red_val << 16) | ((long)green_val << 8) | blue_val;
 
     if ((int)led_number < 0 || led_number >= NUM_RGB_LED || shown[led_number] == colour + 1)

@@ -201,3 +201,30 @@ def test_one_file_by_two_names_is_one_object_and_robots_still_count_alone(tmp_pa
     assert result.returncode == 0, result.stderr
     addresses = _counted_alone(result.stdout)
     assert (addresses["a"] == addresses["b"]) == (storage == "")
+
+
+def _swapped_state(lib) -> int:
+    """The bytes robot_loader.h's state_of swaps for the object: its
+    writable loaded segments less what RELRO makes read-only."""
+    import subprocess
+    headers = subprocess.run(["readelf", "-lW", str(lib)], capture_output=True, text=True,
+                             check=True).stdout.splitlines()
+    writable = sum(int(h.split()[5], 16) for h in headers
+                   if h.split()[:1] == ["LOAD"] and "RW" in h.split()[6:])
+    relro = sum(int(h.split()[5], 16) for h in headers if h.split()[:1] == ["GNU_RELRO"])
+    return writable - relro
+
+
+@pytest.mark.parametrize("example", ["wander.epk", "colour_seeker.epk", "aggregation.epk"])
+def test_the_examples_robots_are_shared(example):
+    """A rule program's state (the runtime's and the simulated library's)
+    stays under the bound with a quarter of it left for the program's own
+    C, so that a world's robots share its object: a buffer added to the
+    library's state shows here, not as a slower world."""
+    from epuckc.cli.driver import load_program
+    from epuckc.diagnostics import Report
+    from epuckc.sim import enki
+    header = (REPO / "runtime_c" / "enki" / "robot_loader.h").read_text()
+    limit = int(re.search(r"MAX_SWAPPED_STATE = (\d+);", header).group(1))
+    lib = enki.build_robot(load_program(EXAMPLES / example, Report()))
+    assert 0 < _swapped_state(lib) <= limit * 3 // 4
