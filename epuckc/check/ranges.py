@@ -167,10 +167,13 @@ class Ranges:
         if not self.vars:
             memo.solved = None
             return
-        # (the named actions: what an assignment in a branch counts as spoiling;
-        # the constant arrays: what an element read gives)
+        # (what a statement's assignments read beside the statement: the
+        # named actions, what an assignment in a branch counts as spoiling;
+        # the constant arrays, what an element read gives; the arrays'
+        # sizes, the elements a `fill` assigns, check/arrays.fill_assign)
         env = (self.geo, tuple(self.consts.items()), tuple(self.const_arrays.items()),
-               frozenset(self.actions))
+               frozenset(self.actions),
+               tuple((name, info.size) for name, info in self.vars.items() if info.size))
         if memo.env != env:
             memo.results, memo.ranges, memo.statements, memo.solved = {}, {}, {}, None
             memo.pieces, memo.where, memo.values = {}, {}, {}

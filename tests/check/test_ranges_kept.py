@@ -98,3 +98,17 @@ def test_kept_values_give_what_evaluating_afresh_gives(which, edits):
         assert _kept(text) == (intervals, diagnostics)
         analysis = analyzer.analyse(text)
         assert _intervals(analysis.checker) == intervals
+
+
+def test_an_edit_that_resizes_an_array_reaches_its_fills():
+    """`fill(a, v)` assigns as many elements as `a` has (check/arrays.py):
+    an edit of the declaration alone changes what the unchanged rule's
+    `fill` assigns, in the language server's analysis as afresh."""
+    before = "var a = [1, 2, 3]\nevery 10 ms do if ir0 > 5 { fill(a, 30000) } else { a[0] = 7 }\n"
+    # (an item the checker refuses is 0: E009, and the array has two)
+    after = before.replace("[1, 2, 3]", "[0x0x1, 2]")
+    analyzer = Analyzer("prog.epk")
+    for text in (before, after):
+        intervals, _ = _afresh(text)
+        assert intervals["a"] == ((0 if text == after else 1), 30000)
+        assert _intervals(analyzer.analyse(text).checker) == intervals
