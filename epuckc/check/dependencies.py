@@ -22,6 +22,40 @@ from .messages import _shown
 _ANY = object()     # (a statement whose assignments do not depend on its mode)
 
 
+class Entry:
+    """One assignment as the intervals keep it: the Assign; whether it runs
+    once; the names it reads (its conditions' too); its text, computed when
+    a component's result is first kept (ranges._inputs); its statement's id
+    and its place in the statement; the conditions that hold where it runs
+    (a Held chain, or None); the variables assigned before it since (True:
+    any). Equal when every field is, as the lists it replaced compared."""
+    __slots__ = ("assign", "once", "reads", "text", "statement", "place", "context", "spoiled")
+
+    def __init__(self, assign, once: bool, reads: frozenset, statement: int, place: int,
+                 context, spoiled):
+        self.assign, self.once, self.reads, self.text = assign, once, reads, None
+        self.statement, self.place, self.context, self.spoiled = statement, place, context, spoiled
+
+    def _fields(self) -> tuple:
+        return (self.assign, self.once, self.reads, self.text, self.statement, self.place,
+                self.context, self.spoiled)
+
+    def __eq__(self, other) -> bool:
+        return other.__class__ is Entry and self._fields() == other._fields()
+
+    __hash__ = None
+
+
+class StatementAssigns:
+    """A statement's assignments (statement_assignments): the statement
+    (kept alive, so that its id stays its own), the mode they were found
+    for (_ANY: any), and ((target, Entry), ...) in the statement's order."""
+    __slots__ = ("statement", "mode", "entries")
+
+    def __init__(self, statement, mode, entries: tuple):
+        self.statement, self.mode, self.entries = statement, mode, entries
+
+
 def _runs_once(stmt) -> bool:
     """A rule that runs at most once (its assignments are joined once each)."""
     return isinstance(stmt, ast.Rule) and not stmt.repeat and stmt.mode is None \
@@ -137,28 +171,24 @@ def _assignments(calls, context, actions, spoiled=frozenset(), variables=None) -
 
 def statement_assignments(checker, known: dict, stmt) -> tuple:
     """What the intervals need of a statement (`known`: the last ones, by
-    id, reused while the statement is the same object): (it, its mode when
-    it is a rule with assignments, else _ANY, ((target, entry), ...))."""
+    id, reused while the statement is the same object and, for a rule with
+    assignments, in the same mode): its StatementAssigns."""
     hit = known.get(id(stmt))
-    if hit is not None and hit[0] is stmt and (hit[1] is _ANY or hit[1] is stmt.mode):
+    if hit is not None and hit.statement is stmt and (hit.mode is _ANY or hit.mode is stmt.mode):
         return hit
     body = stmt.body if isinstance(stmt, (ast.Rule, ast.ActionDef)) else None
     runs_once = _runs_once(stmt)
-    # an entry: [the Assign, runs once, the names it reads (its
-    # conditions' too), its text (later), its statement's id, its
-    # place in the statement, the conditions that hold where it
-    # runs, the variables assigned before it since]
     guard = stmt.guard if isinstance(stmt, ast.Rule) else None
     calls = []
     for k, step in enumerate(() if body is None else body.steps):
         # (an `if`'s assignments may run, where its conditions held)
         start = Held(None, guard, True) if guard is not None and k == 0 else None
         calls += _assignments(step.calls, start, checker.actions, variables=checker.vars)
-    hit = known[id(stmt)] = (stmt, stmt.mode if calls and isinstance(stmt, ast.Rule) else _ANY,
-                             tuple((c.target.name, [c, runs_once, _names_read(c.value) | (
-                                 context.names if context is not None else frozenset()),
-                                 None, id(stmt), j, context, spoiled])
-                                   for j, (c, context, spoiled) in enumerate(calls)))
+    hit = known[id(stmt)] = StatementAssigns(
+        stmt, stmt.mode if calls and isinstance(stmt, ast.Rule) else _ANY,
+        tuple((c.target.name, Entry(c, runs_once, _names_read(c.value) | (
+            context.names if context is not None else frozenset()), id(stmt), j, context, spoiled))
+              for j, (c, context, spoiled) in enumerate(calls)))
     return hit
 
 
@@ -167,8 +197,8 @@ def _needs(name: str, entries: list, variables: dict) -> list:
     needs = set()
     keys = variables.keys()
     for entry in entries:
-        needs |= entry[2] & keys
-        if entry[0].op != "=":
+        needs |= entry.reads & keys
+        if entry.assign.op != "=":
             needs.add(name)
     return sorted(needs)
 

@@ -57,7 +57,7 @@ class RangeMemo:
     variable's interval."""
     def __init__(self):
         self.env = None
-        self.statements: dict = {}  # id(statement) -> (it, runs once, its assignments' entries)
+        self.statements: dict = {}  # id(statement) -> its StatementAssigns (dependencies.py)
         self.names = None           # the variables, in order
         self.assigns: dict = {}     # variable -> its assignments' entries, in file order
         self.decls: dict = {}       # variable -> (kind, initial value)
@@ -88,11 +88,12 @@ def _inputs(checker, entries: list, members: tuple, outside) -> tuple:
     (kept in their entries) and whether each runs once, its members'
     declarations, the intervals it reads of other components."""
     for entry in entries:
-        if entry[3] is None:        # (and the conditions that hold where it runs)
-            entry[3] = (entry[0].op, _shown(entry[0].value),
-                        entry[6].key() if entry[6] is not None else None, entry[7])
+        if entry.text is None:      # (and the conditions that hold where it runs)
+            entry.text = (entry.assign.op, _shown(entry.assign.value),
+                          entry.context.key() if entry.context is not None else None,
+                          entry.spoiled)
     variables = checker.vars
-    return (tuple((e[3], e[1]) for e in entries),
+    return (tuple((e.text, e.once) for e in entries),
             tuple((m, variables[m].kind, variables[m].init) for m in members),
             tuple((n, variables[n].kind, variables[n].lo, variables[n].hi)
                   for n in sorted(outside)))
@@ -284,8 +285,10 @@ class Ranges:
         else:
             for m in members:           # (solved from the declared intervals)
                 variables[m] = _copy(pristine[m])
-            self._contexts = {id(e[0]): (e[6], e[7]) for e in entries if e[6] is not None}
-            result = self._solve([e[0] for e in entries], {id(e[0]) for e in entries if e[1]})
+            self._contexts = {id(e.assign): (e.context, e.spoiled) for e in entries
+                              if e.context is not None}
+            result = self._solve([e.assign for e in entries],
+                                 {id(e.assign) for e in entries if e.once})
         results[members] = (inputs, result)
         return self._give(result, variables, pristine, last, old_ranges)
 
@@ -316,7 +319,7 @@ class Ranges:
         known, seen = memo.statements, {}
         for stmt in self.program.statements:
             hit = seen[id(stmt)] = statement_assignments(self, known, stmt)
-            for name, entry in hit[2]:
+            for name, entry in hit.entries:
                 found = assigns.get(name)
                 if found is not None:
                     found.append(entry)
@@ -326,7 +329,7 @@ class Ranges:
         def in_file_order(entry):
             if not place:
                 place.update(zip(seen, itertools.count()))
-            return place[entry[4]], entry[5]
+            return place[entry.statement], entry.place
         return assigns, None, in_file_order
 
     def _solve(self, calls: list, once: set) -> dict:

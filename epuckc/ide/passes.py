@@ -119,7 +119,7 @@ class PiecePasses:
             piece = pieces[at]
             by_name, order = {}, {}
             for i, stmt in enumerate(piece.statements):
-                found = statement_assignments(self, known, stmt)[2]
+                found = statement_assignments(self, known, stmt).entries
                 if found:
                     order[id(stmt)] = i
                     where[id(stmt)] = piece
@@ -343,8 +343,8 @@ class PiecePasses:
         def place(entry):
             if not index:
                 index.update((id(p), i) for i, p in enumerate(self.pieces))
-            piece = where[entry[4]]
-            return index[id(piece)], kept[id(piece)].order[entry[4]], entry[5]
+            piece = where[entry.statement]
+            return index[id(piece)], kept[id(piece)].order[entry.statement], entry.place
         return place
 
 
