@@ -146,8 +146,10 @@ class _Printer:
         op, args = e.op, e.args
         if op in ("<<", ">>"):
             a, n = args
-            plain = a.lo >= 0 and n.lo >= 0 and (
-                n.hi <= 15 if op == ">>" else arith.fits16(a.hi << n.hi, a.hi << n.hi))
+            # (a count of 16 or more is undefined in C where int is 16 bits,
+            # whatever the value: `0 << 16` too)
+            plain = a.lo >= 0 and 0 <= n.lo and n.hi <= 15 and (
+                op == ">>" or arith.fits16(a.hi << n.hi, a.hi << n.hi))
             if not plain:       # (each operand printed once: a chain is linear)
                 return f"{_CALLS[op]}({self.c(a, True)[0]}, {self.c(n, True)[0]})", False, 0
         parts = []

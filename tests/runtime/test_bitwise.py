@@ -141,3 +141,27 @@ def test_a_program_computes_as_arith_does(tmp_path):
         expected = [v for k, v in enumerate(want[name]) if v != ([0, 0, 0b1010, 0, 0][
             list(want).index(name)] if k == 0 else want[name][k - 1])]
         assert got == expected[:len(got)] and len(got) >= len(expected) - 2, name
+
+
+# values whose interval the checker knows to be small and >= 0 (the shape
+# C's own `<<` and `>>` are printed for), shifted by counts around 16
+SHIFTED = ["argmin(ir[0:1])", "v & 0", "ir0 & 3", "v & 0x7F", "7"]
+SHIFT_COUNTS = ["14", "15", "16", "17", "31", "(v & 0) + 16", "ir0 & 31"]
+
+
+def test_shifts_by_16_or_more_build_where_int_is_16_bits(tmp_path):
+    """A count of 16 or more is undefined in C's shifts of a 16-bit int,
+    whatever the value (`0 << 16` too): such a shift is the runtime's
+    rt_shl or rt_shr, and every accepted program builds with avr-gcc
+    (-Werror) and gcc (found by issue 42's campaign: `argmin(...) << 16`)."""
+    from tests.support.hostile import Outcome, Program, check_one
+    cc, avr = require_tool("cc"), require_tool("avr-gcc")
+    built = 0
+    for i, value in enumerate(SHIFTED):
+        for j, count in enumerate(SHIFT_COUNTS):
+            text = (f"var v = 1\nvar w = 0\nevery 10 ms do w = ({value}) << ({count}), "
+                    f"w = ({value}) >> ({count}), w = (({value}) << ({count})) >> 1\n")
+            outcome = check_one(Program(f"s{i}_{j}", text), tmp_path / f"s{i}_{j}", cc, avr, [],
+                                run=False)
+            built += outcome == Outcome.COMPILED
+    assert built == len(SHIFTED) * len(SHIFT_COUNTS)
