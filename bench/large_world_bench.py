@@ -43,6 +43,9 @@ import tempfile
 import time
 from pathlib import Path
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from world_bench import _cpu_model  # noqa: E402
+
 REPO = Path(__file__).resolve().parent.parent
 PROGRAM = REPO / "examples" / "wander.epk"
 SPACING_CM = 22
@@ -160,16 +163,6 @@ def main() -> int:
         print(f"goal {n:,} robots >= {x} x on one core: {measured[n]:.2f} x, "
               f"{'met' if met else 'NOT met'}")
     return 0 if ok else 1
-
-
-def _cpu_model() -> str:
-    try:
-        for line in Path("/proc/cpuinfo").read_text().splitlines():
-            if line.startswith("model name"):
-                return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return platform.processor() or "unknown CPU"
 
 
 if __name__ == "__main__":

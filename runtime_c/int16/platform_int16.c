@@ -142,6 +142,24 @@ void rt_platform_init(void)
     stub_set_observer(observe);
     int16_scenario(0L);
 }
+
+/* The simulator's ms ends (a rule program's poll cycle, a C main's Timer1
+ * interrupt): its LEDs, the end of the time, then the next ms as the
+ * host's platform makes it. */
+static void pass_ms(void)
+{
+    stub_outputs_ms_end();
+    if (now_ms >= INT16_LIMIT_MS) {
+        stub_outputs_end();
+        line('T', 2, stub_total_steps_left(), stub_total_steps_right(), 0);
+        stop();
+    }
+    stub_motors_1ms();
+    now_ms++;
+    int16_scenario(now_ms);
+    stub_devices_ms(now_ms, 1);
+    stub_agendas_1ms();
+}
 #endif
 
 #ifdef INT16_C_MAIN
@@ -199,17 +217,7 @@ static void busy(long count, int cycles_each)
 ISR(TIMER1_COMPA_vect)
 {
     unsigned int began = TCNT1;
-    stub_outputs_ms_end();
-    if (now_ms >= INT16_LIMIT_MS) {
-        stub_outputs_end();
-        line('T', 2, stub_total_steps_left(), stub_total_steps_right(), 0);
-        stop();
-    }
-    stub_motors_1ms();
-    now_ms++;
-    int16_scenario(now_ms);
-    stub_devices_ms(now_ms, 1);
-    stub_agendas_1ms();
+    pass_ms();
     TCNT1 = began;
     TIFR1 = _BV(OCF1A);         /* a match during the work: not main's */
 }
@@ -282,17 +290,7 @@ void stub_unsimulated(const char *function, const char *device)
 #ifndef INT16_ROBOT_TIME
 void rt_platform_idle(void)
 {
-    stub_outputs_ms_end();
-    if (now_ms >= INT16_LIMIT_MS) {
-        stub_outputs_end();
-        line('T', 2, stub_total_steps_left(), stub_total_steps_right(), 0);
-        stop();
-    }
-    stub_motors_1ms();
-    now_ms++;
-    int16_scenario(now_ms);
-    stub_devices_ms(now_ms, 1);
-    stub_agendas_1ms();
+    pass_ms();
 }
 #endif
 
