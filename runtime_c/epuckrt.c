@@ -1,9 +1,10 @@
 /*
- * epuckrt.c - the core of the event-driven runtime (Ochiai et al., sections
- * 3-4): the two fixed arrays and the static tables, registration, the
- * millisecond clock and the polling main loop (figure 4) with its walks.
- * Motion and the sequencer are rt_motion.c, the standard events, sensors and
- * devices rt_sensors.c, modes rt_modes.c; rt_internal.h is what they share.
+ * epuckrt.c - the walk of the event-driven runtime (Ochiai et al., section
+ * 4): the runtime's start and the polling main loop (figure 4), with its
+ * walks over the events, plain or by priority levels, and exit_main.  The
+ * top of the core: what is registered is rt_registry.c, motion and the
+ * sequencer rt_motion.c, modes rt_modes.c, the standard events and sensors
+ * rt_sensors.c, the clock rt_clock.c (rt_internal.h shows the layers).
  *
  * The hardware is reached only through the e-puck library API (the real
  * library on the robot, host/epuck_stub.c on a PC) and rt_platform.h.
@@ -11,122 +12,9 @@
  * 32767 is long; products that can pass 2^31 are long long.
  * docs/runtime.md describes the semantics implemented here.
  */
-#include "rt_internal.h"
+#include "rt_modes.h"
 
-#if MAX_ACTIONS < 1 || MAX_EVENTS < 1
-#error "MAX_ACTIONS and MAX_EVENTS must be at least 1"
-#endif
-
-/* ---- the two arrays (paper 4.1): ids are indices, slots never reused ---- */
-static action actions[MAX_ACTIONS];
-event rt_events[MAX_EVENTS];
-static int n_actions;   /* slots used so far, cancelled ones included */
-int rt_n_events;
-
-/* Each array event's priority and mode (rt_internal.h). */
-struct rt_event_ext rt_event_ext[MAX_EVENTS];
-/* 1 once any event has a priority or a mode: the walk then goes by
- * priority levels (poll_ranked); 0: every priority is 0 and there are no
- * modes, and the walk is the plain one in id order. */
-static int ranked;
-
-/* ---- the static tables (register_program) ----------------------------------
- * Ids 0..s_actions-1 and 0..s_events-1 are the program's table entries; the
- * arrays' ids follow (array index + s_actions / s_events).  The program's
- * RAM state is seven bit planes of 16-bit words for the events (and one
- * for the actions), bit k % 16 of word k / 16
- * for entry k: */
-const rt_program *rt_prog;      /* NULL: none registered */
-static int s_actions;               /* its table sizes, 0 without one */
-int rt_s_events;
-static unsigned s_words;            /* RT_WORDS(s_events) */
-static unsigned *action_off;        /* the action was cancelled */
-unsigned *rt_ev_armed;          /* the event is armed (valid_flag) */
-static unsigned *ev_repeat;         /* repeat_flag */
-unsigned *rt_ev_latch;          /* compiled condition at its last poll */
-static unsigned *ev_now;            /* compiled conditions of this poll */
-static unsigned *ev_compiled;       /* the event is a compiled condition */
-unsigned *rt_ev_dead;           /* cancel_event: not re-armed by enter_mode */
-unsigned *rt_ev_hold;           /* holds the motors by its condition or guard */
-static int conditions_valid;        /* ev_now holds this poll's conditions */
-
-
-/* An event's priority and mode, by id (table or array). */
-int rt_event_priority(int id)
-{
-    return id < rt_s_events ? rt_prog->events[id].priority : rt_event_ext[id - rt_s_events].priority;
-}
-
-int rt_event_mode(int id)
-{
-    return id < rt_s_events ? rt_prog->events[id].mode : rt_event_ext[id - rt_s_events].mode;
-}
-
-/* How an event's rule holds the motors it commanded (docs/runtime.md,
- * "Holding the motors"): the table entry's flags say it; a compiled
- * condition, event_sensor and event_ambient are conditions on either path. */
-int rt_hold_kind(int id)
-{
-    event_func f;
-    unsigned flags = 0;
-
-    if (id < rt_s_events) {
-        f = rt_prog->events[id].event_function;
-        flags = rt_prog->events[id].flags;
-        if (f == NULL)
-            return RT_HOLD_WHILE;
-    } else {
-        f = rt_events[id - rt_s_events].event_function;
-    }
-    if (flags & RT_HOLD_GUARD)
-        return RT_HOLD_GUARD;
-    if ((flags & RT_HOLD_WHILE) || f == event_sensor || f == sensor || f == event_ambient)
-        return RT_HOLD_WHILE;
-    return 0;
-}
-
-/* ---- millisecond clock ---------------------------------------------------
- * A 1 ms e-puck agenda (cycle 10 x 0.1 ms) counts; it runs in the Timer2
- * interrupt on the robot, hence volatile.  Unsigned so that the increment
- * never overflows a signed type. */
-static volatile unsigned long ms_ticks;
-
-void rt_clock_tick(void)
-{
-    ms_ticks++;
-}
-
-void rt_clock_ticks(long k)
-{
-    ms_ticks += (unsigned long)k;
-}
-
-long rt_millis(void)
-{
-    unsigned long a, b;
-    /* A 32-bit read is two 16-bit reads on the dsPIC: the interrupt may
-     * change the value in between, so read until two reads agree. */
-    do {
-        a = ms_ticks;
-        b = ms_ticks;
-    } while (a != b);
-    /* 30 bits: callers may add 1 and subtract without overflowing a 32-bit
-     * long.  Wraps after 12.4 days. */
-    return (long)(a & 0x3FFFFFFFUL);
-}
-
-int rt_initialised;
-static int remote_wanted;       /* an event_remote was registered */
-int rt_remote_started;      /* e_init_remote_control() has run */
-int rt_accel_wanted;             /* an event_tap or event_tilt was registered */
-
-static void remote_start(void)
-{
-    if (remote_wanted && rt_initialised && !rt_remote_started) {
-        rt_remote_started = 1;
-        e_init_remote_control();
-    }
-}
+static int conditions_valid;        /* rt_ev_now holds this poll's conditions */
 
 static void rt_init(void)
 {
@@ -141,256 +29,7 @@ static void rt_init(void)
     e_init_ad_scan(ALL_ADC);
     (void)e_activate_agenda(rt_clock_tick, 10);
     rt_platform_init();
-    remote_start();     /* only for programs that use the remote control */
-}
-
-/* ---- state of the standard actions and events --------------------------- */
-
-int rt_exit_requested;      /* set by exit_main, checked by mainloop */
-unsigned rt_stir;           /* counts what a poll can change (rt_internal.h) */
-int rt_looping;             /* mainloop is polling */
-int rt_current_action_id = -1;  /* the action being run by mainloop */
-int rt_current_event_id = -1;   /* the event whose action runs (-1: none) */
-int rt_current_rearmed;         /* its action entered its mode again: it stays armed */
-int rt_firing_event = -1;       /* the event whose action mainloop runs (-1: none) */
-int rt_polled_event = -1;       /* the event whose function was called last */
-
-/* ---- paper table 1 -------------------------------------------------------- */
-
-static int action_ok(int id)
-{
-    if (id >= 0 && id < s_actions)
-        return !BIT_GET(action_off, id);
-    id -= s_actions;
-    return id >= 0 && id < n_actions && actions[id].action_function != NULL;
-}
-
-/* A registered event that was not cancelled (it may have fired and disarmed). */
-static int event_ok(int id)
-{
-    if (id >= 0 && id < rt_s_events)
-        return 1;   /* table events stay registered: cancel_event disarms them */
-    id -= rt_s_events;
-    return id >= 0 && id < rt_n_events && rt_events[id].event_function != NULL;
-}
-
-int register_action(action_func f, void *action_param)
-{
-    int id;
-    if (f == NULL || n_actions >= MAX_ACTIONS)
-        return -1;
-    id = n_actions++;
-    actions[id].action_function = f;
-    actions[id].action_param = action_param;
-    rt_new_action(s_actions + id, f);
-    return s_actions + id;
-}
-
-int register_event(event_func f, void *event_param, int action_id)
-{
-    int id;
-    event *e;
-    if (f == NULL || rt_n_events >= MAX_EVENTS || !action_ok(action_id))
-        return -1;
-    id = rt_n_events++;
-    e = &rt_events[id];
-    e->event_function = f;
-    e->event_param = event_param;
-    e->action_id = action_id;
-    e->valid_flag = 1;
-    e->repeat_flag = 0;
-    e->status.occurred = 0;
-    e->status.memory = 0;
-    rt_event_ext[id].priority = 0;
-    rt_event_ext[id].mode = 0;
-    rt_event_ext[id].hold = 0;
-    if (f == event_remote) {
-        remote_wanted = 1;
-        remote_start();
-    }
-    if (f == event_tap || f == event_tilt)
-        rt_accel_wanted = 1;
-    rt_new_event(rt_s_events + id, f);
-    return rt_s_events + id;
-}
-
-void cancel_action(int action_id)
-{
-    if (!action_ok(action_id))
-        return;
-    if (action_id < s_actions) {
-        BIT_SET(action_off, action_id);
-        return;
-    }
-    /* A NULL function marks the slot cancelled; it is never reused. */
-    action_id -= s_actions;
-    actions[action_id].action_function = NULL;
-    actions[action_id].action_param = NULL;
-}
-
-void cancel_event(int event_id)
-{
-    if (!event_ok(event_id))
-        return;
-    rt_hold_release(event_id);
-    if (event_id < rt_s_events) {
-        BIT_CLEAR(rt_ev_armed, event_id);
-        BIT_SET(rt_ev_dead, event_id);
-        return;
-    }
-    event_id -= rt_s_events;
-    rt_events[event_id].valid_flag = 0;
-    rt_events[event_id].event_function = NULL;
-}
-
-void set_event_repeat(int event_id, int repeat)
-{
-    if (!event_ok(event_id))
-        return;
-    if (event_id < rt_s_events) {
-        if (repeat)
-            BIT_SET(ev_repeat, event_id);
-        else
-            BIT_CLEAR(ev_repeat, event_id);
-        return;
-    }
-    rt_events[event_id - rt_s_events].repeat_flag = repeat != 0;
-}
-
-/* Priorities and modes of the arrays' events; a table event's are in its
- * rt_event (these ignore table ids). */
-void set_event_priority(int event_id, int priority)
-{
-    if (event_id >= rt_s_events && event_ok(event_id)) {
-        rt_event_ext[event_id - rt_s_events].priority = priority;
-        if (priority != 0)
-            ranked = 1;
-    }
-}
-
-void set_event_mode(int event_id, int mode)
-{
-    if (event_id >= rt_s_events && event_ok(event_id) && mode >= 0) {
-        rt_event_ext[event_id - rt_s_events].mode = mode;
-        if (mode != 0)
-            ranked = 1;
-    }
-}
-
-void disarm_event(int event_id)
-{
-    if (!event_ok(event_id))
-        return;
-    rt_hold_release(event_id);
-    if (event_id < rt_s_events)
-        BIT_CLEAR(rt_ev_armed, event_id);
-    else
-        rt_events[event_id - rt_s_events].valid_flag = 0;
-}
-
-void (name_mode)(int mode, const char *name)
-{
-    if (mode > 0)
-        rt_name_mode(mode, name);
-}
-
-/* Parenthesised: epuckrt.h may define them as macros (EPUCKRT_NO_NAMES). */
-void (name_action)(int action_id, const char *name)
-{
-    if (action_id >= 0 && action_id < s_actions + n_actions)
-        rt_name_action(action_id, name);
-}
-
-void (name_steps)(int action_id, const char *const *names, int count)
-{
-    if (action_id >= 0 && action_id < s_actions + n_actions && names != NULL && count > 0)
-        rt_name_steps(action_id, names, count);
-}
-
-void (name_event)(int event_id, const char *name)
-{
-    if (event_id >= 0 && event_id < rt_s_events + rt_n_events)
-        rt_name_event(event_id, name);
-}
-
-int register_program(const rt_program *p)
-{
-    int k, words_a, words_e;
-
-    if (p == NULL || rt_prog != NULL || n_actions != 0 || rt_n_events != 0
-            || p->n_actions < 0 || p->n_events < 0 || p->state == NULL
-            || (p->n_actions > 0 && p->actions == NULL)
-            || (p->n_events > 0 && p->events == NULL))
-        return -1;
-    for (k = 0; k < p->n_actions; k++) {
-        if (p->actions[k].action_function == NULL)
-            return -1;
-    }
-    for (k = 0; k < p->n_events; k++) {
-        const rt_event *e = &p->events[k];
-        if (e->action_id < 0 || e->action_id >= p->n_actions
-                || (e->event_function == NULL && p->conditions == NULL)
-                || (e->memory != RT_NO_MEMORY && (e->memory < 0 || p->memory == NULL))
-                || e->mode < 0)
-            return -1;
-    }
-    /* the order, strictly increasing by (priority downwards, id): then it
-     * holds every event once */
-    for (k = 0; p->order != NULL && k < p->n_events; k++) {
-        int id = p->order[k], before;
-        if (id < 0 || id >= p->n_events)
-            return -1;
-        if (k > 0) {
-            before = p->order[k - 1];
-            if (p->events[before].priority < p->events[id].priority
-                    || (p->events[before].priority == p->events[id].priority && before >= id))
-                return -1;
-        }
-    }
-    words_a = RT_WORDS(p->n_actions);
-    words_e = RT_WORDS(p->n_events);
-    action_off = p->state;
-    rt_ev_armed = action_off + words_a;
-    ev_repeat = rt_ev_armed + words_e;
-    rt_ev_latch = ev_repeat + words_e;
-    ev_now = rt_ev_latch + words_e;
-    ev_compiled = ev_now + words_e;
-    rt_ev_dead = ev_compiled + words_e;
-    rt_ev_hold = rt_ev_dead + words_e;
-    for (k = 0; k < words_a + 7 * words_e; k++)
-        p->state[k] = 0;
-    for (k = 0; k < p->n_actions; k++)
-        rt_new_action(k, p->actions[k].action_function);
-    for (k = 0; k < p->n_events; k++) {
-        const rt_event *e = &p->events[k];
-        /* a mode's events are armed when it is entered (rt_mode_arm) */
-        if (e->mode == 0 || (e->mode == rt_current_mode && !rt_mode_arm_pending))
-            BIT_SET(rt_ev_armed, k);
-        if (e->flags & RT_REPEAT)
-            BIT_SET(ev_repeat, k);
-        if (e->event_function == NULL)
-            BIT_SET(ev_compiled, k);
-        if (e->memory != RT_NO_MEMORY)
-            p->memory[e->memory] = 0;
-        /* epuckc numbers the events by priority, highest first: the table's
-         * order is then the walk's, sixteen at a time; another order needs
-         * the walk by levels */
-        if (e->priority < 0 || (k > 0 && e->priority > p->events[k - 1].priority))
-            ranked = 1;
-        if (e->event_function == event_remote)
-            remote_wanted = 1;
-        if (e->event_function == event_tap || e->event_function == event_tilt)
-            rt_accel_wanted = 1;
-        rt_new_event(k, e->event_function);
-    }
-    if (p->order != NULL)
-        ranked = 1;
-    remote_start();
-    rt_prog = p;
-    s_actions = p->n_actions;
-    rt_s_events = p->n_events;
-    s_words = (unsigned)words_e;
-    return 0;
+    rt_remote_start();     /* only for programs that use the remote control */
 }
 
 void action_exit_main(void *param)
@@ -399,22 +38,7 @@ void action_exit_main(void *param)
     rt_exit_requested = 1;
 }
 
-/* ---- the paper's short spellings -------------------------------------------- */
-
-void start_straight(void *param) { action_start_straight(param); }
-void start_curve(void *param) { action_start_curve(param); }
-void straight_steps(void *param) { action_straight_steps(param); }
-void curve_steps(void *param) { action_curve_steps(param); }
-void stop_motor(void *param) { action_stop_motor(param); }
-void set_timer(void *param) { action_set_timer(param); }
-void reset_timer(void *param) { action_reset_timer(param); }
-void start_sensor(void *param) { action_start_sensor(param); }
-void stop_sensor(void *param) { action_stop_sensor(param); }
 void exit_main(void *param) { action_exit_main(param); }
-void run_sequence(void *param) { action_run_sequence(param); }
-void sensor(void *param, void *status) { event_sensor(param, status); }
-void timer(void *param, void *status) { event_timer(param, status); }
-void immediate(void *param, void *status) { event_immediate(param, status); }
 
 /* ---- main loop (paper figure 4) ---------------------------------------------- */
 
@@ -424,15 +48,8 @@ static void run_action(int action_id)
     action_func f;
     void *param;
 
-    if (!action_ok(action_id))
+    if (!rt_action_of(action_id, &f, &param))
         return;     /* cancelled: the event fires but runs nothing */
-    if (action_id < s_actions) {
-        f = rt_prog->actions[action_id].action_function;
-        param = (void *)rt_prog->actions[action_id].action_param;
-    } else {
-        f = actions[action_id - s_actions].action_function;
-        param = actions[action_id - s_actions].action_param;
-    }
     rt_trace_action(action_id, -1, 0);
     rt_current_action_id = action_id;
     f(param);
@@ -454,13 +71,13 @@ static void fire_static(int id)
     run_action(rt_prog->events[id].action_id);
     rt_current_event_id = -1;
     rt_firing_event = -1;
-    if (!BIT_GET(ev_repeat, id) && !rt_current_rearmed)
+    if (!BIT_GET(rt_ev_repeat, id) && !rt_current_rearmed)
         BIT_CLEAR(rt_ev_armed, id);
 }
 
 /* ~0u while the sensors are on (this poll's compiled conditions are then
- * in ev_now, computed at the first call of the poll), 0 while they are off:
- * a mask for ev_now. */
+ * in rt_ev_now, computed at the first call of the poll), 0 while they are off:
+ * a mask for rt_ev_now. */
 static unsigned conditions_mask(void)
 {
     if (rt_prog->conditions == NULL
@@ -469,7 +86,7 @@ static unsigned conditions_mask(void)
     if (!conditions_valid) {
         if (rt_sensors_on)
             rt_read_prox(rt_prog->sensors);
-        rt_prog->conditions(rt_sensors_on ? rt_prox : NULL, ev_now);
+        rt_prog->conditions(rt_sensors_on ? rt_prox : NULL, rt_ev_now);
         conditions_valid = 1;
     }
     return ~0u;
@@ -511,13 +128,13 @@ void rt_holds_update(void)
     int left = rt_holds, id;   /* the holders not met yet: none after the last */
     unsigned w;
 
-    for (w = 0; w < s_words && left > 0; w++) {
+    for (w = 0; w < rt_s_words && left > 0; w++) {
         unsigned held = rt_ev_hold[w] & WORD_MASK, rest, drop;
         if (held == 0)
             continue;
         /* compiled conditions: their bits of this poll, sixteen at once */
-        drop = held & ev_compiled[w] & ~(conditions_mask() & ev_now[w]);
-        rest = held & ~ev_compiled[w];
+        drop = held & rt_ev_compiled[w] & ~(conditions_mask() & rt_ev_now[w]);
+        rest = held & ~rt_ev_compiled[w];
         for (; held != 0; held &= held - 1u)
             left--;
         rt_ev_hold[w] &= ~drop;
@@ -561,10 +178,10 @@ static void poll_static_function(int id)
 static int poll_static(void)
 {
     unsigned w;
-    unsigned *armed = rt_ev_armed, *latch = rt_ev_latch, *compiled = ev_compiled, *now = ev_now;
+    unsigned *armed = rt_ev_armed, *latch = rt_ev_latch, *compiled = rt_ev_compiled, *now = rt_ev_now;
     unsigned on = conditions_mask();
 
-    for (w = 0; w < s_words; w++) {
+    for (w = 0; w < rt_s_words; w++) {
         unsigned todo = armed[w];       /* armed and not polled yet */
         while (todo != 0) {
             unsigned comp = todo & compiled[w];
@@ -616,7 +233,7 @@ static void fire_dynamic(int i)
         e->valid_flag = 0;
 }
 
-/* ---- the walk by priority levels (ranked: priorities or modes in use) ---- */
+/* ---- the walk by priority levels (rt_ranked: priorities or modes in use) ---- */
 
 /* A mode's events are polled only while it is the current mode, and not in
  * the poll that entered it. */
@@ -636,16 +253,16 @@ static int dynamic_armed(int i)
            && mode_ok(rt_event_ext[i].mode);
 }
 
-/* Polls one table event (the ranked walk's, one at a time). */
+/* Polls one table event (the rt_ranked walk's, one at a time). */
 static void poll_static_one(int k)
 {
     int cond, was;
 
-    if (!BIT_GET(ev_compiled, k)) {
+    if (!BIT_GET(rt_ev_compiled, k)) {
         poll_static_function(k);
         return;
     }
-    cond = (conditions_mask() & ev_now[k >> 4] & BIT_OF(k)) != 0;
+    cond = (conditions_mask() & rt_ev_now[k >> 4] & BIT_OF(k)) != 0;
     was = BIT_GET(rt_ev_latch, k);
     if (cond)
         BIT_SET(rt_ev_latch, k);
@@ -709,7 +326,7 @@ static int poll_dynamic_level(int level)
     return 0;
 }
 
-/* The ranked walk over the table's order (rt_program.order): one pass
+/* The rt_ranked walk over the table's order (rt_program.order): one pass
  * over the table, the array events of each level after the table's. */
 static int poll_ordered(void)
 {
@@ -802,10 +419,6 @@ static int poll_ranked(void)
 /* Phase (5): poll the armed events; without priorities and modes in index
  * order: the table's, then the registered ones.  Returns 1 when exit_main
  * ran. */
-unsigned long rt_poll_count;
-void (*rt_device_poll)(void);
-int (*rt_device_idle)(void);
-
 static int poll_events(void)
 {
     int i;
@@ -821,7 +434,7 @@ static int poll_events(void)
     }            /* the other readings are read anew (rt_lang.c) */
     if (rt_mode_arm_pending && rt_prog != NULL)
         rt_mode_arm();
-    if (ranked)
+    if (rt_ranked)
         return poll_ranked();
     rt_mode_entered_in_poll = 0;
     if (rt_mode_entry_pending && poll_enter_events())

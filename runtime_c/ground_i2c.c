@@ -16,7 +16,7 @@
  * thread reads it 25 times a second).  Only in the e-puck's project
  * (RUNTIME_DSPIC_DEVICES).
  */
-#include "rt_internal.h"
+#include "rt_clock.h"
 
 #include "I2C/e_I2C_master_module.h"
 #include "sensors/ground.h"

@@ -19,7 +19,7 @@
  * of a poll takes the line if a capture is ready (and starts the next); the
  * line's pixels are classified once, when it is taken.
  */
-#include "rt_internal.h"
+#include "rt_clock.h"
 
 #include "camera/fast_2_timer/e_poxxxx.h"
 

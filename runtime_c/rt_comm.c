@@ -17,7 +17,7 @@
  * where the others are now).  event_message takes one message a poll.
  * Messages with a transmission error (libIrcom's CRC) are dropped.
  */
-#include "rt_internal.h"
+#include "rt_clock.h"
 
 #include "ircom/ircom.h"
 #include "ircom/ircomSend.h"

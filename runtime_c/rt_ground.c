@@ -9,7 +9,7 @@
  * Enki's ground sensors over the floor).  Each reading is taken at most
  * once per poll and kept within 0..4095, the interval the checker knows.
  */
-#include "rt_internal.h"
+#include "rt_clock.h"
 
 #include "sensors/ground.h"
 

@@ -23,7 +23,7 @@
  * that reads the odometry or random numbers, the accelerometer's taps, a
  * device whose poll has work) is polled at every ms, as before.
  */
-#include "rt_internal.h"
+#include "rt_modes.h"
 
 #define NEVER 0x7FFFFFFFL           /* ms: only after a change */
 /* At most this many ms at once: the next poll measures the wheels' progress

@@ -1,43 +1,26 @@
 /*
  * rt_modes.c - modes (extension): entering a mode, what it re-arms and
- * disarms, and the `on enter` event.  Part of the runtime behind epuckrt.h;
- * see epuckrt.c.
+ * disarms, and the `on enter` event.  The current mode, and whether a mode
+ * was entered during this poll's walk (then no mode's event fires until the
+ * next poll), are the registry's (rt_registry.h).  A layer of the core on
+ * rt_motion.c (rt_modes.h); part of the runtime behind epuckrt.h.
  */
-#include "rt_internal.h"
-
-/* Modes: the current one (0: none), entries so far, and whether a mode was
- * entered during this poll's walk (then no mode's event fires until the
- * next poll). */
-int rt_current_mode;
-int rt_mode_entered_in_poll;
-int rt_mode_entry_pending;           /* its `on enter` events go first */
-int rt_mode_trace_pending;      /* enter_mode before mainloop */
-int rt_mode_arm_pending;        /* the current mode's table events wait to be armed */
+#include "rt_modes.h"
 
 /* At the start of the poll after an entry: the current mode's table events
  * are re-armed as at registration (their latch and memory too); those
  * cancelled with cancel_event are gone for good. */
 void rt_mode_arm(void)
 {
-    int i, mode = rt_current_mode;
-
     rt_mode_arm_pending = 0;
-    for (i = 0; i < rt_s_events; i++) {
-        const rt_event *e = &rt_prog->events[i];
-        if (e->mode == mode && mode != 0 && !BIT_GET(rt_ev_dead, i)) {
-            BIT_SET(rt_ev_armed, i);
-            BIT_CLEAR(rt_ev_latch, i);
-            if (e->memory != RT_NO_MEMORY)
-                rt_prog->memory[e->memory] = 0;
-        }
-    }
+    rt_arm_table_mode(rt_current_mode);
 }
 
 /* ---- extension: modes ---------------------------------------------------------- */
 
 void enter_mode(int mode)
 {
-    int i, left = rt_current_mode;
+    int left = rt_current_mode;
 
     if (mode <= 0)
         return;
@@ -45,18 +28,9 @@ void enter_mode(int mode)
     /* No event of any mode fires in the rest of this poll: the table's are
      * disarmed now, and the new mode's armed at the next poll
      * (rt_mode_arm), so that the poll's walk needs no mode test. */
-    for (i = 0; i < rt_s_events; i++) {
-        if (rt_prog->events[i].mode != 0)
-            BIT_CLEAR(rt_ev_armed, i);
-    }
+    rt_disarm_table_modes();
     rt_mode_arm_pending = 1;
-    for (i = 0; i < rt_n_events; i++) {
-        if (rt_event_ext[i].mode == mode && rt_events[i].event_function != NULL) {
-            rt_events[i].valid_flag = 1;
-            rt_events[i].status.occurred = 0;
-            rt_events[i].status.memory = 0;
-        }
-    }
+    rt_arm_array_mode(mode);
     if (rt_current_event_id >= 0 && rt_event_mode(rt_current_event_id) == mode)
         rt_current_rearmed = 1;     /* the rule entering its own mode again */
     rt_mode_entry_pending = 1;

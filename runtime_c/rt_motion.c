@@ -1,12 +1,13 @@
 /*
  * rt_motion.c - motion control (start_straight, start_curve, their exact-step
- * forms, stop_motor, the robot's geometry, motor arbitration under
- * priorities) and the sequencer (`then`).  Part of the runtime behind
- * epuckrt.h; see epuckrt.c.
+ * forms, stop_motor, motor arbitration under priorities) and the sequencer
+ * (`then`), with the paper's short spellings of their actions.  A layer of
+ * the core on rt_registry.c and rt_odometry.c (rt_motion.h); part of the
+ * runtime behind epuckrt.h.
  */
-#include "rt_internal.h"
+#include "rt_motion.h"
 
-/* The motion in progress (rt_internal.h). */
+/* The motion in progress (rt_motion.h). */
 struct rt_motion rt_motion = { 0, 0, 0, 0, 0, -1, 0 };
 int rt_last_left;           /* raw counters at the previous poll */
 int rt_last_right;
@@ -14,9 +15,8 @@ static unsigned motion_starts;  /* incremented at every motion start */
 static int traced_active;       /* who holds the motors, as last traced */
 static int traced_owner = -1;
 
-/* stop_motor event latch: see event_stop_motor. */
+/* stop_motor event latch: see event_stop_motor (rt_sensors.c). */
 int rt_seen_moving;
-int rt_stop_sample;         /* the stop_motor condition of this poll */
 
 /* Sequencer: the sequence in progress, if any. */
 const param_sequence *rt_seq;   /* NULL: none */
@@ -91,73 +91,6 @@ void rt_motors_retrace(void)
 
 static void sequence_outside_command(void);
 
-/* ---- holding the motors (docs/runtime.md, "Holding the motors") ----------
- * An event holds the motors while its bounded motion runs (rt_motion.owner),
- * while its sequence is in progress (rt_seq_event_id), and, for a condition
- * (RT_HOLD_WHILE) or a guarded periodic rule (RT_HOLD_GUARD) that commanded
- * them when it fired, while its condition stays true or until a period whose
- * guard is false: its hold bit (a table event's plane, an array event's
- * rt_event_ext).  rt_holds counts the bits, so that a program that holds
- * nothing by a condition pays nothing for them. */
-int rt_holds;
-
-static int hold_bit(int id)
-{
-    return id < rt_s_events ? BIT_GET(rt_ev_hold, id) : rt_event_ext[id - rt_s_events].hold;
-}
-
-static void hold_put(int id, int on)
-{
-    if (hold_bit(id) == on)
-        return;
-    if (id >= rt_s_events)
-        rt_event_ext[id - rt_s_events].hold = on;
-    else if (on)
-        BIT_SET(rt_ev_hold, id);
-    else
-        BIT_CLEAR(rt_ev_hold, id);
-    rt_holds += on ? 1 : -1;
-    rt_stir++;
-}
-
-void rt_hold_release(int id)
-{
-    if (rt_holds > 0 && id >= 0 && id < rt_s_events + rt_n_events)
-        hold_put(id, 0);
-}
-
-void rt_holds_release(int mode)
-{
-    int id;
-
-    for (id = 0; rt_holds > 0 && id < rt_s_events + rt_n_events; id++) {
-        if (mode < 0 || rt_event_mode(id) == mode)
-            hold_put(id, 0);
-    }
-}
-
-/* The first event from `id` on whose hold bit is set, or -1: the table's a
- * word at a time (epuckc numbers the events by priority, highest first, so
- * the holders, of high priority, come first), then the arrays'. */
-int rt_next_holder(int id)
-{
-    while (id < rt_s_events) {
-        unsigned w = rt_ev_hold[id >> 4] & WORD_MASK & ~(BIT_OF(id) - 1u);
-        if (w != 0) {
-            int k = 0;
-            while (!((w >> k) & 1u))
-                k++;
-            return (id & ~15) + k;
-        }
-        id = (id | 15) + 1;
-    }
-    for (; id < rt_s_events + rt_n_events; id++) {
-        if (rt_event_ext[id - rt_s_events].hold)
-            return id;
-    }
-    return -1;
-}
-
 /* The event of highest priority above `level` that holds the motors, or -1. */
 static int holder_over(int level)
 {
@@ -205,7 +138,7 @@ static int motors_refused(const char *command)
         return 1;
     }
     if (rt_firing_event == me && rt_hold_kind(me) != 0)
-        hold_put(me, 1);
+        rt_hold_put(me, 1);
     return 0;
 }
 
@@ -308,23 +241,6 @@ int rt_motion_idle(void)
     rt_last_right = r;
     rt_odometry(dl, dr);
     return 1;
-}
-
-/* The geometry that converts millimetres and degrees (set_robot_geometry). */
-long rt_geo_circumference_um = EPUCK_WHEEL_CIRCUMFERENCE_UM;
-long rt_geo_axle_um = EPUCK_AXLE_UM;
-long rt_geo_steps_per_rev = EPUCK_STEPS_PER_REV;
-
-void set_robot_geometry(long wheel_circumference_um, long axle_um, long steps_per_rev)
-{
-    if (wheel_circumference_um <= 0 || wheel_circumference_um > EPUCK_MAX_GEOMETRY_UM
-        || axle_um <= 0 || axle_um > EPUCK_MAX_GEOMETRY_UM
-        || steps_per_rev <= 0 || steps_per_rev > EPUCK_MAX_STEPS_PER_REV)
-        return;
-    rt_geo_circumference_um = wheel_circumference_um;
-    rt_geo_axle_um = axle_um;
-    rt_geo_steps_per_rev = steps_per_rev;
-    rt_geometry(wheel_circumference_um, axle_um, steps_per_rev);
 }
 
 #define LONG_MAX_STEPS 0x7FFFFFFFL
@@ -574,3 +490,12 @@ void rt_sequence_advance(void)
         sequence_run_steps();
     }
 }
+
+/* ---- the paper's short spellings -------------------------------------------- */
+
+void start_straight(void *param) { action_start_straight(param); }
+void start_curve(void *param) { action_start_curve(param); }
+void straight_steps(void *param) { action_straight_steps(param); }
+void curve_steps(void *param) { action_curve_steps(param); }
+void stop_motor(void *param) { action_stop_motor(param); }
+void run_sequence(void *param) { action_run_sequence(param); }

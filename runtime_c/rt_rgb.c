@@ -5,7 +5,7 @@
  * none: the checker refuses led_rgb for the dspic target (E070) and this
  * file is not in its project.
  */
-#include "rt_internal.h"
+#include "rt_clock.h"
 
 #include "leds.h"
 

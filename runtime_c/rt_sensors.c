@@ -2,9 +2,14 @@
  * rt_sensors.c - the standard events (immediate, stop_motor, timer, sensor),
  * the timer and proximity actions, and the devices of the extension: LEDs,
  * sound, selector, microphones, accelerometer, remote control, ambient
- * light.  Part of the runtime behind epuckrt.h; see epuckrt.c.
+ * light, and the paper's short spellings of the timer's, the sensors' and
+ * the standard events' functions.  A layer of the core on rt_clock.c
+ * (rt_sensors.h); part of the runtime behind epuckrt.h.
  */
-#include "rt_internal.h"
+#include "rt_sensors.h"
+
+/* stop_motor event latch: see event_stop_motor (the walk samples it). */
+int rt_stop_sample;
 
 /* Timer (set_timer / reset_timer / event_timer). */
 int rt_timer_running;
@@ -311,6 +316,26 @@ void event_tilt(void *param, void *status)
     edge((event_status *)status, cond);
 }
 
+/* The remote control's receiver is started only for programs with an
+ * event_remote (registered or in the table), once the library is. */
+static int remote_wanted;
+static int remote_started;      /* e_init_remote_control() has run */
+int rt_accel_wanted;            /* an event_tap or event_tilt was registered */
+
+void rt_remote_want(void)
+{
+    remote_wanted = 1;
+    rt_remote_start();
+}
+
+void rt_remote_start(void)
+{
+    if (remote_wanted && rt_initialised && !remote_started) {
+        remote_started = 1;
+        e_init_remote_control();
+    }
+}
+
 /* status->memory: 0 before the first poll, else 1 + the check bit seen at
  * the previous poll; a new press toggles the bit. */
 void event_remote(void *param, void *status)
@@ -320,7 +345,7 @@ void event_remote(void *param, void *status)
     int check;
 
     st->occurred = 0;
-    if (p == NULL || !rt_remote_started)
+    if (p == NULL || !remote_started)
         return;
     check = e_get_check() != 0;
     st->occurred = st->memory != 0 && check != st->memory - 1 && e_get_data() == p->key;
@@ -338,3 +363,13 @@ void event_ambient(void *param, void *status)
 
     edge((event_status *)status, p != NULL && thresholds_passed(p, ambient_reading));
 }
+
+/* ---- the paper's short spellings -------------------------------------------- */
+
+void set_timer(void *param) { action_set_timer(param); }
+void reset_timer(void *param) { action_reset_timer(param); }
+void start_sensor(void *param) { action_start_sensor(param); }
+void stop_sensor(void *param) { action_stop_sensor(param); }
+void sensor(void *param, void *status) { event_sensor(param, status); }
+void timer(void *param, void *status) { event_timer(param, status); }
+void immediate(void *param, void *status) { event_immediate(param, status); }

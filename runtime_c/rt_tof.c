@@ -6,7 +6,7 @@
  * the checker refuses `distance` for the dspic target (E070) and this file
  * is not in its project.
  */
-#include "rt_internal.h"
+#include "rt_clock.h"
 
 #include "sensors/VL53L0X/VL53L0X.h"
 

@@ -244,3 +244,116 @@ def test_a_diagnostics_sink_is_given_and_never_swapped():
                         if isinstance(leaf, ast.Attribute) and leaf.attr == "diags":
                             found.append(f"{path.relative_to(REPO)}:{leaf.lineno}")
     assert not found, found
+
+
+# ---- the C runtime's layers (issue 44) ---------------------------------------------
+
+RUNTIME = REPO / "runtime_c"
+# rt_platform.h and the e-puck library's headers are what every layer stands on
+_BASE_HEADERS = {"rt_internal.h", "rt_platform.h", "epuckrt.h"}
+
+
+def _layer_order() -> list:
+    """The runtime's files, bottom layer first: the core in RUNTIME_CORE's
+    order, then what a simulated platform adds and the devices."""
+    from epuckc.base.resources import RUNTIME_CORE, RUNTIME_DEVICES, RUNTIME_SIMULATED
+    return [*RUNTIME_CORE, *RUNTIME_SIMULATED, *RUNTIME_DEVICES]
+
+
+def _symbols(tmp_path) -> tuple:
+    """Which runtime file defines each external symbol, and which each file
+    uses, read by nm from the files compiled as the host compiles them."""
+    import subprocess
+    from conftest import require_tool
+    cc, nm = require_tool("cc"), require_tool("nm")
+    defined, used = {}, {}
+    for name in _layer_order():
+        obj = tmp_path / (name + ".o")
+        subprocess.run([cc, "-std=c99", "-c", f"-I{RUNTIME}", f"-I{RUNTIME / 'epuck_api'}",
+                        f"-I{RUNTIME / 'host'}", str(RUNTIME / name), "-o", str(obj)], check=True)
+        for line in subprocess.run([nm, str(obj)], capture_output=True, text=True,
+                                   check=True).stdout.splitlines():
+            fields = line.split()
+            if len(fields) == 2 and fields[0] == "U":
+                used.setdefault(name, set()).add(fields[1])
+            elif len(fields) == 3 and fields[1] in "TDBRCG":
+                defined[fields[2]] = name
+    return defined, used
+
+
+def _calls(tmp_path) -> dict:
+    """file -> {file it uses: the symbols}, among the runtime's files (the
+    platforms, the providers of rt_platform.h both ways, are not in it)."""
+    defined, used = _symbols(tmp_path)
+    calls = {}
+    for name, symbols in used.items():
+        for symbol in symbols:
+            owner = defined.get(symbol)
+            if owner is not None and owner != name:
+                calls.setdefault(name, {}).setdefault(owner, set()).add(symbol)
+    return calls
+
+
+def test_the_runtimes_files_call_only_the_layers_below_them(tmp_path):
+    """No circle among the runtime's files: each uses only files listed
+    before it (RUNTIME_CORE is bottom layer first), so the core can be read,
+    tested and changed from the bottom up (docs/runtime.md)."""
+    order = _layer_order()
+    calls = _calls(tmp_path)
+    assert calls, "nm found no call between the runtime's files"
+    upward = [f"{a} uses {b}'s {sorted(symbols)}" for a, targets in calls.items()
+              for b, symbols in targets.items() if order.index(b) > order.index(a)]
+    assert not upward, "\n".join(upward)
+
+
+def _includes(path: Path) -> list:
+    import re
+    return re.findall(r'^#include "([\w/.]+)"', path.read_text(encoding="utf-8"), flags=re.M)
+
+
+def _seen_headers(path: Path) -> set:
+    """The runtime's headers a file includes, directly or through others."""
+    seen, todo = set(), [path]
+    while todo:
+        for header in _includes(todo.pop()):
+            if header not in seen and (RUNTIME / header).is_file():
+                seen.add(header)
+                todo.append(RUNTIME / header)
+    return seen
+
+
+def test_no_include_circle_and_each_file_sees_only_its_layers(tmp_path):
+    """The layers' headers (rt_clock.h ... rt_modes.h) include only the
+    headers of layers below them, with no circle; a file that uses another
+    layer's state or helpers sees them through that layer's header, and no
+    file includes the header of a layer above it."""
+    order = _layer_order()
+    headers = {n[:-2] + ".h": n for n in order
+               if (RUNTIME / (n[:-2] + ".h")).is_file() and n[:-2] + ".h" not in _BASE_HEADERS}
+    assert len(headers) >= 5, headers
+    # the header graph has no circle: a depth-first walk finds no back edge
+    state = {}
+
+    def visit(header, path):
+        state[header] = "open"
+        for child in _includes(RUNTIME / header):
+            if child not in headers and child not in _BASE_HEADERS:
+                continue
+            assert state.get(child) != "open", f"include circle: {' -> '.join(path + [child])}"
+            if child not in state:
+                visit(child, path + [child])
+        state[header] = "done"
+    for header in headers:
+        if header not in state:
+            visit(header, [header])
+    upward = []
+    for name in order:
+        for header in _seen_headers(RUNTIME / name) & set(headers):
+            if order.index(headers[header]) > order.index(name):
+                upward.append(f"{name} includes {header}, a layer above it")
+    for a, targets in _calls(tmp_path).items():
+        for b in targets:
+            own = b[:-2] + ".h"
+            if own in headers and own not in _seen_headers(RUNTIME / a):
+                upward.append(f"{a} uses {b} without its header {own}")
+    assert not upward, "\n".join(upward)

@@ -12,11 +12,12 @@ from pathlib import Path
 _PACKAGE = Path(__file__).resolve().parent.parent   # epuckc/
 
 # The runtime's own sources, one file per concern (docs/runtime.md), behind
-# epuckrt.h; rt_internal.h is what they share. Every build (host, Enki, the
+# epuckrt.h, bottom layer first (rt_internal.h shows the layers; each file
+# calls only the files before it, tests/test_architecture.py). Every build (host, Enki, the
 # robot's projects), cache key and test takes the list from here;
 # runtime_c/Makefile repeats it (CORE), and a test keeps the two equal.
-RUNTIME_CORE = ("epuckrt.c", "rt_motion.c", "rt_sensors.c", "rt_modes.c", "rt_lang.c",
-                "rt_math.c")
+RUNTIME_CORE = ("rt_math.c", "rt_clock.c", "rt_sensors.c", "rt_registry.c", "rt_odometry.c",
+                "rt_motion.c", "rt_lang.c", "rt_modes.c", "epuckrt.c")
 # The runtime's device files (IR messages, the ToF sensor, the camera, the
 # e-puck2's RGB LEDs, the ground-sensor module): in
 # the builds of the targets that have the devices (host, Enki worlds, the
@@ -32,7 +33,9 @@ RUNTIME_DSPIC_DEVICES = ("rt_camera.c", "rt_ground.c", "ground_i2c.c")
 # harness, the robots of Enki worlds): rt_idle.c tells host/platform_host.c
 # which polls it may run in bulk. A robot polls in real time: not in its builds.
 RUNTIME_SIMULATED = ("rt_idle.c",)
-RUNTIME_CORE_HEADERS = ("epuckrt.h", "rt_internal.h", "rt_platform.h", "utility.h")
+RUNTIME_CORE_HEADERS = ("epuckrt.h", "rt_internal.h", "rt_clock.h", "rt_sensors.h",
+                        "rt_registry.h", "rt_odometry.h", "rt_motion.h", "rt_modes.h",
+                        "rt_platform.h", "utility.h")
 # The robot's trace (`build --trace`, docs/runtime.md "The robot's trace"):
 # the tracer, and its link on each robot: the e-puck library's UART1 (the
 # e-puck, and the 16-bit simulator's model of it), ChibiOS's serial drivers

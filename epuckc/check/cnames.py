@@ -175,8 +175,10 @@ def scan(preprocessed: str, names: CNames, label) -> None:
 def _runtime_headers() -> list:
     """The runtime's headers, relative to runtime_c/, in include order."""
     rt = runtime_dir()
-    found = ["utility.h", "epuckrt.h", "rt_internal.h", "rt_platform.h", "host/epuck_stub.h",
-             "host/stub_ground.h", "host/host_harness.h", "host/library_sim.h"]
+    found = ["utility.h", "epuckrt.h", "rt_internal.h", "rt_clock.h", "rt_sensors.h",
+             "rt_registry.h", "rt_odometry.h", "rt_motion.h", "rt_modes.h", "rt_platform.h",
+             "host/epuck_stub.h", "host/stub_ground.h", "host/host_harness.h",
+             "host/library_sim.h"]
     found += sorted(p.relative_to(rt / "epuck_api").as_posix()
                     for p in (rt / "epuck_api").rglob("*.h"))
     return found

@@ -6,7 +6,7 @@ import subprocess
 
 import pytest
 
-from epuckc.base.resources import LIBRARY_SIMULATION
+from epuckc.base.resources import LIBRARY_SIMULATION, RUNTIME_CORE
 
 from conftest import require_enki, require_tool
 from epuckc.sim.world import COLOURS
@@ -37,8 +37,7 @@ int main(void) {{
 }}
 """)
     cc = require_tool("cc")
-    sources = [RUNTIME / n for n in ("epuckrt.c", "rt_motion.c", "rt_sensors.c", "rt_modes.c",
-                                     "rt_lang.c", "rt_camera.c", "rt_idle.c")]
+    sources = [RUNTIME / n for n in (*RUNTIME_CORE, "rt_camera.c", "rt_idle.c")]
     sources += [RUNTIME / "host" / n for n in ("platform_host.c", "scenario.c")]
     sources += [RUNTIME / n for n in LIBRARY_SIMULATION]
     exe = tmp_path / "t"
