@@ -463,13 +463,9 @@ void mainloop(void)
 {
     rt_init();
     rt_exit_requested = 0;
-    if (rt_mode_trace_pending) {
-        rt_mode_trace_pending = 0;
-        rt_trace_mode(rt_current_mode);
-    }
+    rt_modes_loop_start();          /* a mode that main entered */
     rt_motors_retrace();            /* a motion that main started */
-    rt_last_left = e_get_steps_left();
-    rt_last_right = e_get_steps_right();
+    rt_motion_loop_start();
     rt_looping = 1;
     for (;;) {
         RT_TRACE_POLL_END();        /* the robot's trace: the LEDs the poll changed */
@@ -479,8 +475,7 @@ void mainloop(void)
         rt_sequence_advance();         /* (3) */
         if (rt_exit_requested)
             break;
-        rt_stop_sample = rt_seen_moving && !rt_motion.active;    /* (4) */
-        rt_seen_moving = rt_motion.active;
+        rt_stop_sample = rt_motion_stop_sample();       /* (4) */
         if (rt_accel_wanted)
             rt_accel_sample();
         if (poll_events())          /* (5) */
@@ -489,12 +484,7 @@ void mainloop(void)
     }
     /* exit_main: stop at once */
     rt_looping = 0;
-    rt_motion.active = 0;
-    rt_wheels(0, 0);
-    rt_seq = NULL;
-    rt_seq_waiting = 0;
-    rt_seq_delay = 0;
-    rt_seen_moving = 0;
+    rt_motion_halt();
     rt_holds_release(-1);
     rt_motors_changed();
     rt_exit_requested = 0;

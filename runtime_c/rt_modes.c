@@ -7,6 +7,8 @@
  */
 #include "rt_modes.h"
 
+static int trace_pending;       /* enter_mode before mainloop */
+
 /* At the start of the poll after an entry: the current mode's table events
  * are re-armed as at registration (their latch and memory too); those
  * cancelled with cancel_event are gone for good. */
@@ -14,6 +16,15 @@ void rt_mode_arm(void)
 {
     rt_mode_arm_pending = 0;
     rt_arm_table_mode(rt_current_mode);
+}
+
+/* mainloop starts: a mode entered before it is traced now. */
+void rt_modes_loop_start(void)
+{
+    if (trace_pending) {
+        trace_pending = 0;
+        rt_trace_mode(rt_current_mode);
+    }
 }
 
 /* ---- extension: modes ---------------------------------------------------------- */
@@ -35,7 +46,7 @@ void enter_mode(int mode)
         rt_current_rearmed = 1;     /* the rule entering its own mode again */
     rt_mode_entry_pending = 1;
     if (!rt_initialised) {
-        rt_mode_trace_pending = 1;     /* traced when mainloop starts */
+        trace_pending = 1;     /* traced when mainloop starts */
         return;
     }
     rt_mode_entered_in_poll = 1;
@@ -44,21 +55,7 @@ void enter_mode(int mode)
         return;
     /* what the rules of the mode left were doing with the motors ends */
     rt_holds_release(left);
-    if (rt_seq != NULL && rt_seq_event_id >= 0 && rt_event_mode(rt_seq_event_id) == left) {
-        rt_seq_generation++;
-        rt_seq = NULL;
-        rt_seq_waiting = 0;
-        rt_seq_delay = 0;
-    }
-    if (rt_motion.active && rt_motion.owner >= 0 && rt_event_mode(rt_motion.owner) == left) {
-        /* stopped without a stop_motor event: the motion did not end, its
-         * mode did (the new mode's stop_motor rules must not take it for
-         * the end of a motion of theirs) */
-        rt_motion.active = 0;
-        rt_seen_moving = 0;
-        rt_wheels(0, 0);
-        rt_motors_changed();
-    }
+    rt_motion_leave_mode(left);
 }
 
 void action_enter_mode(void *param)

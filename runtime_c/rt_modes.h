@@ -10,5 +10,7 @@
 /* At the start of the poll after an entry: the current mode's table events
  * are armed again. */
 void rt_mode_arm(void);
+/* mainloop starts: traces a mode entered before it */
+void rt_modes_loop_start(void);
 
 #endif

@@ -9,8 +9,8 @@
 
 /* The motion in progress (rt_motion.h). */
 struct rt_motion rt_motion = { 0, 0, 0, 0, 0, -1, 0 };
-int rt_last_left;           /* raw counters at the previous poll */
-int rt_last_right;
+static int last_left;           /* raw counters at the previous poll */
+static int last_right;
 static unsigned motion_starts;  /* incremented at every motion start */
 static int traced_active;       /* who holds the motors, as last traced */
 static int traced_owner = -1;
@@ -22,9 +22,9 @@ int rt_seen_moving;
 const param_sequence *rt_seq;   /* NULL: none */
 static int seq_next;                /* index of the next step to run */
 static int seq_action_id;           /* id used in the trace of its steps */
-int rt_seq_event_id;            /* the event whose action started it */
+static int seq_event_id;            /* the event whose action started it */
 int rt_seq_waiting;             /* a step's motion is under way */
-unsigned rt_seq_generation;     /* changes when a sequence replaces one */
+static unsigned seq_generation;     /* changes when a sequence replaces one */
 static int in_step;                 /* > 0 while a step's function runs */
 int rt_seq_delay;               /* a wait step runs: go on at rt_seq_until */
 long rt_seq_until;
@@ -101,8 +101,8 @@ static int holder_over(int level)
         best = rt_motion.owner;
         level = rt_event_priority(best);
     }
-    if (rt_seq != NULL && rt_seq_event_id >= 0 && rt_event_priority(rt_seq_event_id) > level) {
-        best = rt_seq_event_id;
+    if (rt_seq != NULL && seq_event_id >= 0 && rt_event_priority(seq_event_id) > level) {
+        best = seq_event_id;
         level = rt_event_priority(best);
     }
     for (id = left > 0 ? rt_next_holder(0) : -1; id >= 0; id = --left > 0 ? rt_next_holder(id + 1) : -1) {
@@ -176,8 +176,8 @@ static void motion_begin(int left, int right, long target, int watch)
     rt_motion.right = 0;
     rt_wheels(left, right);
     /* steps made since this poll's measurement belong to the replaced motion */
-    rt_last_left = e_get_steps_left();
-    rt_last_right = e_get_steps_right();
+    last_left = e_get_steps_left();
+    last_right = e_get_steps_right();
     rt_seen_moving = 1;
     motion_starts++;
     rt_motors_changed();
@@ -201,12 +201,12 @@ void rt_motion_update(void)
 {
     int l = e_get_steps_left();
     int r = e_get_steps_right();
-    long dl = wheel_delta(l, rt_last_left);
-    long dr = wheel_delta(r, rt_last_right);
+    long dl = wheel_delta(l, last_left);
+    long dr = wheel_delta(r, last_right);
     long progress;
 
-    rt_last_left = l;
-    rt_last_right = r;
+    last_left = l;
+    last_right = r;
     rt_odometry(dl, dr);
     if (!rt_motion.active || rt_motion.endless)
         return;
@@ -228,8 +228,8 @@ int rt_motion_idle(void)
 {
     int l = e_get_steps_left();
     int r = e_get_steps_right();
-    long dl = wheel_delta(l, rt_last_left);
-    long dr = wheel_delta(r, rt_last_right);
+    long dl = wheel_delta(l, last_left);
+    long dr = wheel_delta(r, last_right);
 
     if (rt_motion.active && !rt_motion.endless) {
         if (progress_after(dl, dr) >= rt_motion.target)
@@ -237,8 +237,8 @@ int rt_motion_idle(void)
         rt_motion.left += dl;
         rt_motion.right += dr;
     }
-    rt_last_left = l;
-    rt_last_right = r;
+    last_left = l;
+    last_right = r;
     rt_odometry(dl, dr);
     return 1;
 }
@@ -389,7 +389,7 @@ static void sequence_outside_command(void)
  * and each of its steps' motor commands is arbitrated on its own. */
 static int sequence_refused(void)
 {
-    int owner = rt_seq_event_id, me = rt_current_event_id;
+    int owner = seq_event_id, me = rt_current_event_id;
 
     if (rt_seq == NULL || owner < 0 || me < 0 || owner == me)
         return 0;
@@ -404,7 +404,7 @@ static int sequence_refused(void)
  * to end) or the sequence is over. */
 static void sequence_run_steps(void)
 {
-    unsigned generation = rt_seq_generation;
+    unsigned generation = seq_generation;
 
     while (rt_seq != NULL && seq_next < rt_seq->count) {
         const action *step = &rt_seq->steps[seq_next];
@@ -418,14 +418,14 @@ static void sequence_run_steps(void)
             /* a step that runs a sequence names it after this one; its
              * motor commands are those of the event that started it */
             rt_current_action_id = seq_action_id;
-            rt_current_event_id = rt_seq_event_id;
+            rt_current_event_id = seq_event_id;
             in_step++;
             step->action_function(step->action_param);
             in_step--;
             rt_current_action_id = previous;
             rt_current_event_id = previous_event;
         }
-        if (generation != rt_seq_generation || rt_seq == NULL)
+        if (generation != seq_generation || rt_seq == NULL)
             return;     /* the step ran a sequence that replaced this one */
         if (rt_exit_requested) {
             rt_seq = NULL;
@@ -446,7 +446,7 @@ void action_run_sequence(void *param)
 
     if (sequence_refused())
         return;
-    rt_seq_generation++;
+    seq_generation++;
     rt_seq = NULL;
     rt_seq_waiting = 0;
     rt_seq_delay = 0;
@@ -455,7 +455,7 @@ void action_run_sequence(void *param)
     rt_seq = p;
     seq_next = 0;
     seq_action_id = rt_current_action_id;
-    rt_seq_event_id = rt_current_event_id;
+    seq_event_id = rt_current_event_id;
     if (in_step > 0) {
         /* run by a step of a sequence: it starts at the next poll (once the
          * step's motion, if any, has ended), so a sequence that runs itself
@@ -488,6 +488,57 @@ void rt_sequence_advance(void)
         }
         rt_seq_waiting = 0;
         sequence_run_steps();
+    }
+}
+
+/* ---- the walk's and the modes' ends of motion ------------------------------------ */
+
+/* mainloop starts: the wheels' counters are where its first poll measures
+ * from. */
+void rt_motion_loop_start(void)
+{
+    last_left = e_get_steps_left();
+    last_right = e_get_steps_right();
+}
+
+/* Phase (4) of a poll: 1 when the wheels went from moving to at rest since
+ * the previous poll (the stop_motor event's condition). */
+int rt_motion_stop_sample(void)
+{
+    int stopped = rt_seen_moving && !rt_motion.active;
+
+    rt_seen_moving = rt_motion.active;
+    return stopped;
+}
+
+/* exit_main: the motion and the sequence stop at once. */
+void rt_motion_halt(void)
+{
+    rt_motion.active = 0;
+    rt_wheels(0, 0);
+    rt_seq = NULL;
+    rt_seq_waiting = 0;
+    rt_seq_delay = 0;
+    rt_seen_moving = 0;
+}
+
+/* The mode `left` was left: what its rules were doing with the motors ends
+ * (their sequence; their motion, stopped without a stop_motor event: the
+ * motion did not end, its mode did, and the new mode's stop_motor rules
+ * must not take it for the end of a motion of theirs). */
+void rt_motion_leave_mode(int left)
+{
+    if (rt_seq != NULL && seq_event_id >= 0 && rt_event_mode(seq_event_id) == left) {
+        seq_generation++;
+        rt_seq = NULL;
+        rt_seq_waiting = 0;
+        rt_seq_delay = 0;
+    }
+    if (rt_motion.active && rt_motion.owner >= 0 && rt_event_mode(rt_motion.owner) == left) {
+        rt_motion.active = 0;
+        rt_seen_moving = 0;
+        rt_wheels(0, 0);
+        rt_motors_changed();
     }
 }
 

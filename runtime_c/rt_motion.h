@@ -28,18 +28,18 @@ extern struct rt_motion rt_motion;
  * again at mainloop's start (a trace opens there). */
 void rt_motors_changed(void);
 void rt_motors_retrace(void);
-extern int rt_last_left;   /* raw counters at the previous poll */
-extern int rt_last_right;
 extern int rt_seen_moving;
 extern const param_sequence *rt_seq;   /* NULL: none */
-extern int rt_seq_event_id;   /* the event whose action started it */
 extern int rt_seq_waiting;   /* a step's motion is under way */
-extern unsigned rt_seq_generation;   /* changes when a sequence replaces one */
 extern int rt_seq_delay;   /* a wait step runs: the sequence goes on at rt_seq_until */
 extern long rt_seq_until;
 void rt_wheels(int left, int right);
 void rt_motion_update(void);
 int rt_motion_idle(void);   /* an idle poll's phase (2); 0: the motion would end */
 void rt_sequence_advance(void);
+void rt_motion_loop_start(void);   /* mainloop starts: the counters as they are */
+int rt_motion_stop_sample(void);   /* phase (4): moving at the last poll, at rest now */
+void rt_motion_halt(void);   /* exit_main */
+void rt_motion_leave_mode(int left);   /* the mode's sequence and motion end */
 
 #endif

@@ -42,7 +42,7 @@ unsigned *rt_ev_repeat;            /* repeat_flag */
 unsigned *rt_ev_latch;          /* compiled condition at its last poll */
 unsigned *rt_ev_now;               /* compiled conditions of this poll */
 unsigned *rt_ev_compiled;          /* the event is a compiled condition */
-unsigned *rt_ev_dead;           /* cancel_event: not re-armed by enter_mode */
+static unsigned *ev_dead;           /* cancel_event: not re-armed by enter_mode */
 unsigned *rt_ev_hold;           /* holds the motors by its condition or guard */
 
 
@@ -93,7 +93,6 @@ int rt_polled_event = -1;       /* the event whose function was called last */
 int rt_current_mode;
 int rt_mode_entered_in_poll;
 int rt_mode_entry_pending;      /* its `on enter` events go first */
-int rt_mode_trace_pending;      /* enter_mode before mainloop */
 int rt_mode_arm_pending;        /* the current mode's table events wait to be armed */
 
 /* ---- holding the motors (docs/runtime.md, "Holding the motors") ----------
@@ -241,7 +240,7 @@ void cancel_event(int event_id)
     rt_hold_release(event_id);
     if (event_id < rt_s_events) {
         BIT_CLEAR(rt_ev_armed, event_id);
-        BIT_SET(rt_ev_dead, event_id);
+        BIT_SET(ev_dead, event_id);
         return;
     }
     event_id -= rt_s_events;
@@ -361,8 +360,8 @@ int register_program(const rt_program *p)
     rt_ev_latch = rt_ev_repeat + words_e;
     rt_ev_now = rt_ev_latch + words_e;
     rt_ev_compiled = rt_ev_now + words_e;
-    rt_ev_dead = rt_ev_compiled + words_e;
-    rt_ev_hold = rt_ev_dead + words_e;
+    ev_dead = rt_ev_compiled + words_e;
+    rt_ev_hold = ev_dead + words_e;
     for (k = 0; k < words_a + 7 * words_e; k++)
         p->state[k] = 0;
     for (k = 0; k < p->n_actions; k++)
@@ -436,7 +435,7 @@ void rt_arm_table_mode(int mode)
 
     for (i = 0; i < rt_s_events; i++) {
         const rt_event *e = &rt_prog->events[i];
-        if (e->mode == mode && mode != 0 && !BIT_GET(rt_ev_dead, i)) {
+        if (e->mode == mode && mode != 0 && !BIT_GET(ev_dead, i)) {
             BIT_SET(rt_ev_armed, i);
             BIT_CLEAR(rt_ev_latch, i);
             if (e->memory != RT_NO_MEMORY)

@@ -34,7 +34,6 @@ extern unsigned *rt_ev_repeat;   /* repeat_flag */
 extern unsigned *rt_ev_latch;   /* compiled condition at its last poll */
 extern unsigned *rt_ev_now;   /* compiled conditions of this poll (the walk's) */
 extern unsigned *rt_ev_compiled;   /* the event is a compiled condition */
-extern unsigned *rt_ev_dead;   /* cancel_event: not re-armed by enter_mode */
 extern unsigned *rt_ev_hold;   /* holds the motors by its condition or guard */
 /* 1 once any event has a priority or a mode: the walk goes by levels. */
 extern int rt_ranked;
@@ -63,7 +62,6 @@ extern int rt_polled_event;   /* the event whose function was called last */
 extern int rt_current_mode;   /* 0: none */
 extern int rt_mode_entered_in_poll;
 extern int rt_mode_entry_pending;   /* a mode was entered: its `on enter` events go first */
-extern int rt_mode_trace_pending;   /* enter_mode before mainloop */
 extern int rt_mode_arm_pending;   /* the current mode's table events wait to be armed */
 void rt_disarm_table_modes(void);   /* the table's events of every mode */
 void rt_arm_table_mode(int mode);   /* as at registration, unless cancelled */
