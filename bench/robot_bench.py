@@ -58,7 +58,11 @@ from epuckc.base.resources import LIBRARY_SIMULATION, RUNTIME_CORE, RUNTIME_SIMU
 
 HOST_CFLAGS = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", "-O2"]
 # as epuckc's robot builds: no name labels
-AVR_CFLAGS = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", "-Os", "-DEPUCKRT_NO_NAMES"]
+# -fno-common: a global defined without a value is then in the object's .bss,
+# where avr-size counts it, not in COMMON, where it does not (the figures of
+# RAM before 2026-12-02 left those out)
+AVR_CFLAGS = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", "-Os", "-fno-common",
+              "-DEPUCKRT_NO_NAMES"]
 CORE = [RT / name for name in RUNTIME_CORE]     # the runtime, one file per concern
 HOST_SOURCES = [*CORE, *(RT / name for name in RUNTIME_SIMULATED), RT / "host" / "platform_host.c", RT / "host" / "scenario.c",
                 *(RT / name for name in LIBRARY_SIMULATION)]
