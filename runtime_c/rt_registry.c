@@ -19,7 +19,7 @@ event rt_events[MAX_EVENTS];
 static int n_actions;   /* slots used so far, cancelled ones included */
 int rt_n_events;
 
-/* Each array event's priority and mode (rt_internal.h). */
+/* Each array event's priority, mode and hold (rt_registry.h). */
 struct rt_event_ext rt_event_ext[MAX_EVENTS];
 /* 1 once any event has a priority or a mode: the walk then goes by
  * priority levels (poll_ranked); 0: every priority is 0 and there are no
@@ -97,8 +97,8 @@ int rt_mode_arm_pending;        /* the current mode's table events wait to be ar
 
 /* ---- holding the motors (docs/runtime.md, "Holding the motors") ----------
  * An event holds the motors while its bounded motion runs (rt_motion.owner),
- * while its sequence is in progress (rt_seq_event_id), and, for a condition
- * (RT_HOLD_WHILE) or a guarded periodic rule (RT_HOLD_GUARD) that commanded
+ * while its sequence is in progress (rt_motion.c's seq_event_id), and, for
+ * a condition (RT_HOLD_WHILE) or a guarded periodic rule (RT_HOLD_GUARD) that commanded
  * them when it fired, while its condition stays true or until a period whose
  * guard is false: its hold bit (a table event's plane, an array event's
  * rt_event_ext).  rt_holds counts the bits, so that a program that holds
