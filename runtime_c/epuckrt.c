@@ -123,7 +123,7 @@ static int function_condition_now(int id)
  * guard lets go in rt_guard).  A compiled condition's is its bit of this
  * poll, sixteen events a word; an event function's, function_condition_now.
  * One-shot rules that fired and disarmed are followed as well. */
-void rt_holds_update(void)
+static void holds_update(void)
 {
     int left = rt_holds, id;   /* the holders not met yet: none after the last */
     unsigned w;
@@ -397,7 +397,7 @@ static int poll_ranked(void)
     if (rt_mode_entry_pending && poll_enter_events())
         return 1;
     if (rt_holds > 0)
-        rt_holds_update();
+        holds_update();
     if (rt_prog != NULL && rt_prog->order != NULL)
         return poll_ordered();
     more = next_level(0, 0, &level);
@@ -440,7 +440,7 @@ static int poll_events(void)
     if (rt_mode_entry_pending && poll_enter_events())
         return 1;
     if (rt_holds > 0)
-        rt_holds_update();
+        holds_update();
     if (rt_prog != NULL && poll_static())
         return 1;
     /* n_events is re-read: an action may register events, polled at once */

@@ -92,8 +92,8 @@ static int mode_ok(int mode)
 
 /* The earliest due() of the events the next poll would poll, and of those
  * that hold the motors by their condition (a one-shot rule that fired and
- * disarmed is still read at each poll, rt_holds_update: when its condition
- * can change is when its event could occur). */
+ * disarmed is still read at each poll, by the walk's holds_update: when its
+ * condition can change is when its event could occur). */
 static long events_due(long now)
 {
     long n = NEVER, d;
