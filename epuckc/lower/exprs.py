@@ -10,7 +10,8 @@ the exact result fits 16 bits (an int on every target), `long` where it
 fits 32 (`(long)a * b`), and the runtime's saturating call where it may
 not, or where C would be undefined (`/` or `%` by a divisor that can be 0
 or -1 of the smallest value). A stored value that can leave 16 bits is
-saturated by `rt_sat16`.
+saturated by `rt_sat16`; C arithmetic computed in long whose value fits
+16 bits is converted to int with a cast.
 """
 from __future__ import annotations
 
@@ -60,7 +61,13 @@ def c_expr(e: Expr, top: bool = True, readings: dict = None, consts=(),
     `readings`: C names that hold readings already read (name -> C);
     `consts`: the names of the constant arrays; `index_name`: the C of the
     index of the element an assignment assigns."""
-    text, _, level = _Printer(readings, index_name, consts).c(e, top)
+    text, is_long, level = _Printer(readings, index_name, consts).c(e, top)
+    if is_long and e.op in _MUL + _ADD + ("neg",) and arith.fits16(e.lo, e.hi):
+        # C arithmetic in long whose value is an int's: converted in the
+        # open, where an int is wanted (gcc's -Woverflow takes the implicit
+        # conversion of arithmetic it folds to a constant, `v + (-200L + -v)`,
+        # for one that overflows; found by issue 42's campaign, seed 42172)
+        return f"(int)({text})"
     return text if top or level == 0 else f"({text})"
 
 

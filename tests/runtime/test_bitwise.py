@@ -7,6 +7,7 @@ tests/runtime/test_avr_trace.py)."""
 import json
 import random
 import subprocess
+from pathlib import Path
 
 from conftest import require_tool
 from epuckc.stdlib import arith
@@ -165,3 +166,17 @@ def test_shifts_by_16_or_more_build_where_int_is_16_bits(tmp_path):
                                 run=False)
             built += outcome == Outcome.COMPILED
     assert built == len(SHIFTED) * len(SHIFT_COUNTS)
+
+
+def test_a_long_sum_whose_value_is_an_ints_builds_where_int_is_16_bits(tmp_path):
+    """A value computed in long that the checker knows fits an int is
+    converted with a cast where an int is wanted: gcc's -Woverflow (and
+    avr-gcc's) took `v1 + (-200L + -v1)`, which it folds to the constant
+    -200, for an overflow in the implicit conversion. The program is the
+    campaign's input that found it (issue 42, seed 42172, input 923)."""
+    from tests.support.hostile import Outcome, Program, check_one
+    cc, avr = require_tool("cc"), require_tool("avr-gcc")
+    text = (Path(__file__).parent / "programs" / "folded_long_sum.epk").read_text()
+    assert "v1 += K0 + -v1" in text
+    outcome = check_one(Program("folded", text), tmp_path / "folded", cc, avr, [], run=False)
+    assert outcome == Outcome.COMPILED
