@@ -45,7 +45,7 @@ unsigned *rt_ev_compiled;          /* the event is a compiled condition */
 static unsigned *ev_dead;           /* cancel_event: not re-armed by enter_mode */
 unsigned *rt_ev_hold;           /* holds the motors by its condition or guard */
 
-
+/* An event's priority and mode, by id (table or array). */
 int rt_event_priority(int id)
 {
     return id < rt_s_events ? rt_prog->events[id].priority : rt_event_ext[id - rt_s_events].priority;
@@ -78,6 +78,7 @@ int rt_hold_kind(int id)
         return RT_HOLD_WHILE;
     return 0;
 }
+
 /* ---- what runs now (the walk sets it; motion, modes and the language read it) ---- */
 
 int rt_exit_requested;      /* set by exit_main, checked by mainloop */
@@ -88,6 +89,7 @@ int rt_current_event_id = -1;   /* the event whose action runs (-1: none) */
 int rt_current_rearmed;         /* its action entered its mode again: it stays armed */
 int rt_firing_event = -1;       /* the event whose action mainloop runs (-1: none) */
 int rt_polled_event = -1;       /* the event whose function was called last */
+
 /* The current mode (0: none) and what its entry left to do (rt_modes.c
  * enters modes; the registry arms a new table's events by it). */
 int rt_current_mode;
@@ -98,11 +100,11 @@ int rt_mode_arm_pending;        /* the current mode's table events wait to be ar
 /* ---- holding the motors (docs/runtime.md, "Holding the motors") ----------
  * An event holds the motors while its bounded motion runs (rt_motion.owner),
  * while its sequence is in progress (rt_motion.c's seq_event_id), and, for
- * a condition (RT_HOLD_WHILE) or a guarded periodic rule (RT_HOLD_GUARD) that commanded
- * them when it fired, while its condition stays true or until a period whose
- * guard is false: its hold bit (a table event's plane, an array event's
- * rt_event_ext).  rt_holds counts the bits, so that a program that holds
- * nothing by a condition pays nothing for them. */
+ * a condition (RT_HOLD_WHILE) or a guarded periodic rule (RT_HOLD_GUARD)
+ * that commanded them when it fired, while its condition stays true or
+ * until a period whose guard is false: its hold bit (a table event's plane,
+ * an array event's rt_event_ext).  rt_holds counts the bits, so that a
+ * program that holds nothing by a condition pays nothing for them. */
 int rt_holds;
 
 static int hold_bit(int id)
@@ -164,7 +166,7 @@ int rt_next_holder(int id)
 
 /* ---- paper table 1 -------------------------------------------------------- */
 
-int rt_action_ok(int id)
+static int action_ok(int id)
 {
     if (id >= 0 && id < s_actions)
         return !BIT_GET(action_off, id);
@@ -173,7 +175,7 @@ int rt_action_ok(int id)
 }
 
 /* A registered event that was not cancelled (it may have fired and disarmed). */
-int rt_event_ok(int id)
+static int event_ok(int id)
 {
     if (id >= 0 && id < rt_s_events)
         return 1;   /* table events stay registered: cancel_event disarms them */
@@ -197,7 +199,7 @@ int register_event(event_func f, void *event_param, int action_id)
 {
     int id;
     event *e;
-    if (f == NULL || rt_n_events >= MAX_EVENTS || !rt_action_ok(action_id))
+    if (f == NULL || rt_n_events >= MAX_EVENTS || !action_ok(action_id))
         return -1;
     id = rt_n_events++;
     e = &rt_events[id];
@@ -221,7 +223,7 @@ int register_event(event_func f, void *event_param, int action_id)
 
 void cancel_action(int action_id)
 {
-    if (!rt_action_ok(action_id))
+    if (!action_ok(action_id))
         return;
     if (action_id < s_actions) {
         BIT_SET(action_off, action_id);
@@ -235,7 +237,7 @@ void cancel_action(int action_id)
 
 void cancel_event(int event_id)
 {
-    if (!rt_event_ok(event_id))
+    if (!event_ok(event_id))
         return;
     rt_hold_release(event_id);
     if (event_id < rt_s_events) {
@@ -250,7 +252,7 @@ void cancel_event(int event_id)
 
 void set_event_repeat(int event_id, int repeat)
 {
-    if (!rt_event_ok(event_id))
+    if (!event_ok(event_id))
         return;
     if (event_id < rt_s_events) {
         if (repeat)
@@ -266,7 +268,7 @@ void set_event_repeat(int event_id, int repeat)
  * rt_event (these ignore table ids). */
 void set_event_priority(int event_id, int priority)
 {
-    if (event_id >= rt_s_events && rt_event_ok(event_id)) {
+    if (event_id >= rt_s_events && event_ok(event_id)) {
         rt_event_ext[event_id - rt_s_events].priority = priority;
         if (priority != 0)
             rt_ranked = 1;
@@ -275,7 +277,7 @@ void set_event_priority(int event_id, int priority)
 
 void set_event_mode(int event_id, int mode)
 {
-    if (event_id >= rt_s_events && rt_event_ok(event_id) && mode >= 0) {
+    if (event_id >= rt_s_events && event_ok(event_id) && mode >= 0) {
         rt_event_ext[event_id - rt_s_events].mode = mode;
         if (mode != 0)
             rt_ranked = 1;
@@ -284,7 +286,7 @@ void set_event_mode(int event_id, int mode)
 
 void disarm_event(int event_id)
 {
-    if (!rt_event_ok(event_id))
+    if (!event_ok(event_id))
         return;
     rt_hold_release(event_id);
     if (event_id < rt_s_events)
@@ -401,7 +403,7 @@ int register_program(const rt_program *p)
  * cancelled; 0 (and nothing set) for a cancelled or unknown id. */
 int rt_action_of(int id, action_func *f, void **param)
 {
-    if (!rt_action_ok(id))
+    if (!action_ok(id))
         return 0;
     if (id < s_actions) {
         *f = rt_prog->actions[id].action_function;

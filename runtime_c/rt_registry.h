@@ -38,8 +38,6 @@ extern unsigned *rt_ev_hold;   /* holds the motors by its condition or guard */
 /* 1 once any event has a priority or a mode: the walk goes by levels. */
 extern int rt_ranked;
 
-int rt_action_ok(int id);   /* registered and not cancelled */
-int rt_event_ok(int id);
 int rt_action_of(int id, action_func *f, void **param);   /* 0: cancelled */
 int rt_event_priority(int id);
 int rt_event_mode(int id);

@@ -281,10 +281,12 @@ def _symbols(tmp_path) -> tuple:
     return defined, used
 
 
-def _calls(tmp_path) -> dict:
+@pytest.fixture(scope="module")
+def calls(tmp_path_factory) -> dict:
     """file -> {file it uses: the symbols}, among the runtime's files (the
-    platforms, the providers of rt_platform.h both ways, are not in it)."""
-    defined, used = _symbols(tmp_path)
+    platforms, the providers of rt_platform.h both ways, are not in it);
+    compiled once for the tests below."""
+    defined, used = _symbols(tmp_path_factory.mktemp("runtime_objects"))
     calls = {}
     for name, symbols in used.items():
         for symbol in symbols:
@@ -294,12 +296,11 @@ def _calls(tmp_path) -> dict:
     return calls
 
 
-def test_the_runtimes_files_call_only_the_layers_below_them(tmp_path):
+def test_the_runtimes_files_call_only_the_layers_below_them(calls):
     """No circle among the runtime's files: each uses only files listed
     before it (RUNTIME_CORE is bottom layer first), so the core can be read,
     tested and changed from the bottom up (docs/runtime.md)."""
     order = _layer_order()
-    calls = _calls(tmp_path)
     assert calls, "nm found no call between the runtime's files"
     upward = [f"{a} uses {b}'s {sorted(symbols)}" for a, targets in calls.items()
               for b, symbols in targets.items() if order.index(b) > order.index(a)]
@@ -322,7 +323,7 @@ def _seen_headers(path: Path) -> set:
     return seen
 
 
-def test_no_include_circle_and_each_file_sees_only_its_layers(tmp_path):
+def test_no_include_circle_and_each_file_sees_only_its_layers(calls):
     """The layers' headers (rt_clock.h ... rt_modes.h) include only the
     headers of layers below them, with no circle; a file that uses another
     layer's state or helpers sees them through that layer's header, and no
@@ -351,7 +352,7 @@ def test_no_include_circle_and_each_file_sees_only_its_layers(tmp_path):
         for header in _seen_headers(RUNTIME / name) & set(headers):
             if order.index(headers[header]) > order.index(name):
                 upward.append(f"{name} includes {header}, a layer above it")
-    for a, targets in _calls(tmp_path).items():
+    for a, targets in calls.items():
         for b in targets:
             own = b[:-2] + ".h"
             if own in headers and own not in _seen_headers(RUNTIME / a):
