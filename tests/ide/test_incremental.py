@@ -189,15 +189,20 @@ def _programs_with_variables() -> list:
     from lsp_bench import expression_program
     from tests.support.language import RandomChoices, language_program
     out = [expression_program(40, seed=s) for s in range(3)]
+    # (issue 44's second shape: every variable reads others anywhere, one component)
+    out += [expression_program(40, seed=s, coupled=True) for s in range(2)]
     out += [language_program(RandomChoices(_random.Random(s))).text for s in range(12)]
     return out
 
 
+_PROGRAMS_WITH_VARIABLES = _programs_with_variables()
+
+
 @settings(max_examples=120, deadline=None, suppress_health_check=[HealthCheck.too_slow])
-@given(st.integers(0, 14), st.lists(st.tuples(st.integers(0, 10_000), st.integers(0, 12),
-                                              st.lists(st.sampled_from(VARIABLE_FRAGMENTS),
-                                                       max_size=3)),
-                                    min_size=1, max_size=8))
+@given(st.integers(0, len(_PROGRAMS_WITH_VARIABLES) - 1),
+       st.lists(st.tuples(st.integers(0, 10_000), st.integers(0, 12),
+                          st.lists(st.sampled_from(VARIABLE_FRAGMENTS), max_size=3)),
+                min_size=1, max_size=8))
 def test_random_edits_of_programs_with_variables_equal_a_full_check(which, edits):
     """Issue 31: the intervals solved again only where an edit reaches
     (check/ranges.py) give every diagnostic a from-scratch check gives."""
@@ -209,9 +214,6 @@ def test_random_edits_of_programs_with_variables_equal_a_full_check(which, edits
         at %= len(text) + 1
         text = text[:at] + "".join(pieces) + text[at + length:]
         assert analyzer.analyse(text).diagnostics == full_check(text)
-
-
-_PROGRAMS_WITH_VARIABLES = _programs_with_variables()
 
 
 def test_the_programs_with_variables_exercise_w009():
@@ -338,6 +340,24 @@ def test_components_an_edit_does_not_reach_are_not_solved_again(monkeypatch):
     analysis = analyzer.analyse(edited)
     assert len(solved) == 1
     assert analysis.diagnostics == full_check(edited)
+
+
+def test_the_coupled_programs_variables_are_one_component(monkeypatch):
+    """The property above covers issue 44's second shape: in
+    lsp_bench.expression_program(coupled=True) the variables the rules
+    assign form one strongly connected component, so the fixpoint of
+    check/ranges.py solves them all at once (one `_solve` of every
+    assigned variable)."""
+    import sys
+    sys.path.insert(0, str(REPO / "bench"))
+    from lsp_bench import expression_program
+    from epuckc.check.ranges import Ranges
+    solved = _counting(monkeypatch, Ranges, "_solve")
+    text = expression_program(40, seed=0, coupled=True)
+    full_check(text)
+    assigned = {c.target.name for (calls,) in solved for c in calls}
+    # (more variables than one of the small groups of five has)
+    assert len(solved) == 1 and len(assigned) > 5
 
 
 def test_blocks_of_unchanged_rules_are_replayed_whole_and_equal_a_full_check(monkeypatch):
