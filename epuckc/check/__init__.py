@@ -12,6 +12,8 @@ arbitration.py are
 the whole-program analyses (modes entered, W009 races; races.py reports
 them); conditions.py reads
 conditions as comparisons of variables and readings (for W009 and guards).
+reeval.py computes an assignment's value again, for the intervals ranges.py's
+fixpoint asks, from the plan of its first evaluation.
 program.py is its output, a `CheckedProgram` whose calls carry runtime
 integers; messages.py the shared wording; cnames.py the C names a user's
 extern may not take; splice.py how named actions splice into steps;

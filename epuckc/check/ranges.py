@@ -35,7 +35,7 @@ import itertools
 
 from ..base.views import MISSING, NotingView
 from ..stdlib.units import INT16_MAX, INT16_MIN
-from . import conditions
+from . import conditions, reeval
 from .dependencies import _needs, order_components, regraph_in_place
 from .dependencies import statement_assignments  # noqa: F401 (the language server's)
 from .messages import _shown
@@ -111,6 +111,22 @@ def _state(info) -> tuple:
     return (info.lo, info.hi, info.kind, info.size)
 
 
+class _Kept:
+    """What is kept of one assignment (RangeMemo.values): the Assign node
+    (kept alive, so that its id stays its own), its last values with what
+    each read, and the plan of its value (check/reeval.py), or None."""
+    __slots__ = ("call", "values", "plan")
+
+    def __init__(self, call):
+        self.call, self.values, self.plan = call, [], None
+
+
+# where a plan cannot answer (_assigned_where)
+_UNPLANNED = object()
+# (tests: each value a plan gives is compared with the checker's)
+_VERIFY_PLANS = False
+
+
 class _Value:
     """What the intervals read of an assignment's value."""
     __slots__ = ("kind", "lo", "hi")
@@ -179,13 +195,15 @@ class Ranges:
             memo.results, memo.ranges, memo.statements, memo.solved = {}, {}, {}, None
             memo.pieces, memo.where, memo.values = {}, {}, {}
         memo.env = env
-        self._values = memo.values
-        if len(memo.values) > 4 * len(self.vars) + 1000:        # (assignments gone)
-            memo.values.clear()
         pristine = self.vars                # as declared
         names = tuple(pristine)
         same_names = names == memo.names
         assigns, changed, place = self._assignments_by_variable(memo, same_names)
+        if len(memo.values) > 2 * sum(map(len, assigns.values())) + 1000:
+            # (the values of assignments gone: those of the others stay)
+            live = {id(e.assign) for entries in assigns.values() for e in entries}
+            memo.values = {k: v for k, v in memo.values.items() if k in live}
+        self._values = memo.values
         fast = same_names and changed is not None and self._declared_same \
             and memo.solved is not None
         old_assigns, old_decls, old_graph = memo.assigns, memo.decls, memo.graph
@@ -421,7 +439,7 @@ class Ranges:
             for info, lo, hi in saved:
                 info.lo, info.hi = lo, hi
 
-    _values = None      # id(Assign) -> (it, [(what it read, its value)]): see _assigned_where
+    _values = None      # id(Assign) -> its _Kept: see _assigned_where
 
     def _assigned_where(self, call, info):
         """_evaluated_where's value, kept: an assignment's value depends on
@@ -429,51 +447,98 @@ class Ranges:
         its target's interval (and on the constants, geometry and named
         actions, which the memo is kept with: RangeMemo.env); a fixpoint
         asks the same again and again, and the language server's next
-        analysis too."""
+        analysis too. For intervals not asked before, the plan of its
+        first evaluation (check/reeval.py) computes it where it can."""
         memo = self._values
         if memo is None:
             return self._evaluated_where(call, info)
         table, target = self.vars, _state(info)
         known = memo.get(id(call))
-        if known is not None and known[0] is call:
-            for read, state, value in known[1]:
+        if known is not None and known.call is call:
+            for read, state, value in known.values:
                 if state == target and all(_state(table.get(n, _MISSING)) == s
                                            for n, s in read.items()):
                     return value
+        else:
+            known = None
         reads = _Reads(table)
-        self.vars = reads
+        value = _UNPLANNED
+        if known is not None and known.plan is not None:
+            found = reeval.evaluate(known.plan, reads, self._where_bounds(call, reads), info)
+            if found is not reeval.MISMATCH:
+                value = None if found is None else _Value(*found)
+                if _VERIFY_PLANS:
+                    self._verify_plan(call, info, value)
+        if value is _UNPLANNED:
+            reads.read = {}
+            self.vars = reads
+            try:
+                found = self._evaluated_where(call, info)
+            finally:
+                self.vars = table
+            if reads.read is None:          # (it looked at every variable)
+                return found
+            value = None if found is None else _Value(found.kind, found.lo, found.hi)
+            if known is None:
+                known = memo[id(call)] = _Kept(call)
+            if found is not None:
+                known.plan = self._plan(call, info, found, reads.read)
+        known.values.insert(0, (reads.read, target, value))
+        del known.values[_KEPT_VALUES:]
+        return value
+
+    def _plan(self, call, info, found, read: dict):
+        """The plan (reeval.Plan) of an assignment's value as the checker
+        found it, when a plan reads what the checker read (the variables
+        its conditions compare, then those the value names), else None."""
+        if call.index is not None:
+            return None
+        plan = reeval.plan_of(found, info, call.op != "=")
+        if plan is None:
+            return None
+        context, spoiled = (self._contexts or {}).get(id(call), (None, ()))
+        names = set(plan.names)
+        if context is not None and spoiled is not True:
+            names.update(context.names)
+        return plan if names == set(read) else None
+
+    def _verify_plan(self, call, info, value) -> None:
+        """(tests: a plan's value is the checker's)"""
+        table = self.vars
+        self.vars = _Reads(table)
         try:
             found = self._evaluated_where(call, info)
         finally:
             self.vars = table
-        if reads.read is None:          # (it looked at every variable)
-            return found
-        value = None if found is None else _Value(found.kind, found.lo, found.hi)
-        if known is None or known[0] is not call:
-            known = memo[id(call)] = (call, [])
-        known[1].insert(0, (reads.read, target, value))
-        del known[1][_KEPT_VALUES:]
-        return value
+        expected = None if found is None else (found.kind, found.lo, found.hi)
+        got = None if value is None else (value.kind, value.lo, value.hi)
+        assert got == expected, (_shown(call.value), got, expected)
 
-    def _evaluated_where(self, call, info):
-        """The value an assignment gives (variables.py's `_assigned`), with
-        the variables narrowed to what the conditions that hold where it
-        runs leave them (its `if` branches, a rule's guard in its first
-        step), as the checker narrows them for the call (branches.py):
-        except those a call before it, since those conditions were
-        evaluated, may have assigned (`spoiled`; True: every one)."""
+    def _where_bounds(self, call, variables) -> dict:
+        """The intervals the conditions that hold where an assignment runs
+        leave the variables they compare (its `if` branches, a rule's guard
+        in its first step), read from `variables`: except those a call
+        before it, since those conditions were evaluated, may have
+        assigned (`spoiled`; True: every one). Empty where none narrows."""
         context, spoiled = (self._contexts or {}).get(id(call), (None, ()))
         if context is None or spoiled is True:
-            return self._assigned(call, info)
-        variables, base = self.vars, {}
+            return {}
+        base = {}
         for n in sorted(context.names):     # (what the conditions read, noted: _Reads)
             found = variables.get(n)
             if found is not None and n not in spoiled:
                 base[n] = (found.lo, found.hi)
         held = (self._boxes or {}).get(id(context))
         if held is None or held[0] is not context:
-            return self._assigned(call, info)
-        bounds = conditions.narrowed_where(held[1], base)
+            return {}
+        return conditions.narrowed_where(held[1], base) or {}
+
+    def _evaluated_where(self, call, info):
+        """The value an assignment gives (variables.py's `_assigned`), with
+        the variables narrowed to what the conditions that hold where it
+        runs leave them (_where_bounds), as the checker narrows them for
+        the call (branches.py)."""
+        bounds = self._where_bounds(call, self.vars)
         if not bounds:
             return self._assigned(call, info)
         saved = {n: (self.vars[n].lo, self.vars[n].hi) for n in bounds}
