@@ -111,6 +111,27 @@ def _state(info) -> tuple:
     return (info.lo, info.hi, info.kind, info.size)
 
 
+class _Overlaid(NotingView):
+    """The variables with some of them given other intervals (new VarInfo
+    of their own: the table's are never changed), as a condition or an
+    assignment is evaluated with them (_held_boxes, _evaluated_where)."""
+    __slots__ = ("_table", "_over")
+
+    def __init__(self, table, over: dict):
+        self._table, self._over = table, over
+
+    def get(self, name, default=None):
+        found = self._table.get(name, _MISSING)     # (noted where the table notes)
+        if found is _MISSING:
+            return default
+        return self._over.get(name, found)
+
+    def _all(self):
+        table = self._table
+        table = table._all() if isinstance(table, NotingView) else table
+        return {**table, **self._over}
+
+
 class _Kept:
     """What is kept of one assignment (RangeMemo.values): the Assign node
     (kept alive, so that its id stays its own), its last values with what
@@ -416,12 +437,11 @@ class Ranges:
         a wider one leaves it open); the intervals are met where the
         assignment is evaluated (_evaluated_where)."""
         boxes = self._boxes = {}
-        members = [self.vars[n] for n in dict.fromkeys(c.target.name for c in calls)]
-        members = [info for info in members if info.kind != BOOL]
-        saved = [(info, info.lo, info.hi) for info in members]
+        table = self.vars
+        members = [table[n] for n in dict.fromkeys(c.target.name for c in calls)]
+        self.vars = _Overlaid(table, {info.name: _copy(info, (INT16_MIN, INT16_MAX))
+                                      for info in members if info.kind != BOOL})
         try:
-            for info in members:
-                info.lo, info.hi = INT16_MIN, INT16_MAX
             for call in calls:
                 link = (self._contexts or {}).get(id(call), (None,))[0]
                 todo = []
@@ -436,8 +456,7 @@ class Ranges:
                         above = conditions.conjoined(above, conditions.formula(e, link.held))
                     boxes[id(link)] = (link, above)
         finally:
-            for info, lo, hi in saved:
-                info.lo, info.hi = lo, hi
+            self.vars = table
 
     _values = None      # id(Assign) -> its _Kept: see _assigned_where
 
@@ -538,17 +557,16 @@ class Ranges:
         the variables narrowed to what the conditions that hold where it
         runs leave them (_where_bounds), as the checker narrows them for
         the call (branches.py)."""
-        bounds = self._where_bounds(call, self.vars)
+        table = self.vars
+        bounds = self._where_bounds(call, table)
         if not bounds:
             return self._assigned(call, info)
-        saved = {n: (self.vars[n].lo, self.vars[n].hi) for n in bounds}
+        narrowed = {n: _copy(table[n], b) for n, b in bounds.items()}
+        self.vars = _Overlaid(table, narrowed)
         try:
-            for n, (lo, hi) in bounds.items():
-                self.vars[n].lo, self.vars[n].hi = lo, hi
-            return self._assigned(call, info)
+            return self._assigned(call, narrowed.get(info.name, info))
         finally:
-            for n, (lo, hi) in saved.items():
-                self.vars[n].lo, self.vars[n].hi = lo, hi
+            self.vars = table
 
     def _narrow_ranges(self, calls):
         """Gives back what widening took where the assignments bound it
