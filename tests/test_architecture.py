@@ -246,6 +246,37 @@ def test_a_diagnostics_sink_is_given_and_never_swapped():
     assert not found, found
 
 
+# the functions that move a variable's interval: the fixpoint's own iterates,
+# on the VarInfo that the solve of a component made for it (check/ranges.py)
+_INTERVAL_WRITERS = {("check/ranges.py", "_join_assigned"), ("check/ranges.py", "_narrow_ranges")}
+
+
+def test_intervals_are_values_not_fields_narrowed_and_restored():
+    """Issue 44: a condition that narrows variables gives them VarInfo of
+    their own in a view of the table (base/views.Overlaid), it does not
+    change the table's and restore them; only the fixpoint's iterates
+    write a variable's `lo` and `hi` (an object's own __init__ sets its
+    own)."""
+    found = []
+    for path in sorted([*(PACKAGE / "check").glob("*.py"), *(PACKAGE / "ide").glob("*.py")]):
+        name = str(path.relative_to(PACKAGE))
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        for fn in ast.walk(tree):
+            if not isinstance(fn, (ast.FunctionDef, ast.AsyncFunctionDef)) \
+                    or (name, fn.name) in _INTERVAL_WRITERS:
+                continue
+            for node in ast.walk(fn):
+                targets = node.targets if isinstance(node, ast.Assign) else \
+                    [node.target] if isinstance(node, (ast.AnnAssign, ast.AugAssign)) else []
+                for t in targets:
+                    for leaf in ast.walk(t):
+                        if isinstance(leaf, ast.Attribute) and leaf.attr in ("lo", "hi") and not (
+                                fn.name == "__init__" and isinstance(leaf.value, ast.Name)
+                                and leaf.value.id == "self"):
+                            found.append(f"{name}:{leaf.lineno} in {fn.name}")
+    assert not found, found
+
+
 # ---- the C runtime's layers (issue 44) ---------------------------------------------
 
 RUNTIME = REPO / "runtime_c"

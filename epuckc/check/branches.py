@@ -24,9 +24,11 @@ from __future__ import annotations
 from typing import Optional
 
 from ..base.source import Span
+from ..base.views import Overlaid
 from ..diagnostics import Note
 from ..syntax import ast
 from . import conditions
+from .program import with_interval
 from .messages import _code
 from .modes import flat_steps
 from .program import ResolvedCall
@@ -142,41 +144,42 @@ class Branches:
                 ok = False
         return calls if ok else None
 
-    _whole_ranges = None    # name -> whole interval of each variable narrowed, meanwhile
+    _whole_ranges = None    # name -> its VarInfo before any branch narrowed it, meanwhile
 
     def _calls_narrowed(self, calls, bounds: dict) -> list:
         """`calls` resolved in order, the variables in `bounds` given those
         intervals until a call may assign them (an assignment to one, a
         named action, or an `if` whose branches may): from the next call
         on, such a variable has its whole interval again (the one over
-        every assignment, not the one an enclosing branch narrowed)."""
+        every assignment, not the one an enclosing branch narrowed). The
+        narrowed variables are VarInfo of their own in a view of the
+        table (base/views.Overlaid); the table's are never changed."""
         if not bounds:
             return [r for r in map(self._call, calls) if r is not None]
         outermost = self._whole_ranges is None
         if outermost:
             self._whole_ranges = {}
         whole = self._whole_ranges
-        saved = {n: (self.vars[n].lo, self.vars[n].hi) for n in bounds}
-        for name, interval in saved.items():     # (narrowed for the first time here)
-            whole.setdefault(name, interval)
+        table = self.vars
+        over = {}
+        for name, interval in bounds.items():
+            info = table[name]
+            whole.setdefault(name, info)        # (narrowed for the first time here)
+            over[name] = with_interval(info, interval)
         out = []
+        self.vars = Overlaid(table, over)
         try:
-            for name, (lo, hi) in bounds.items():
-                self.vars[name].lo, self.vars[name].hi = lo, hi
             for call in calls:
                 resolved = self._call(call)
                 if resolved is not None:
                     out.append(resolved)
                 for inner in ast.calls_within((call,)):
                     if isinstance(inner, ast.Assign) and inner.target.name in whole:
-                        info = self.vars[inner.target.name]
-                        info.lo, info.hi = whole[inner.target.name]
+                        over[inner.target.name] = whole[inner.target.name]
                     elif isinstance(inner, ast.Call) and inner.name.name in self.actions:
-                        for name, (lo, hi) in whole.items():
-                            self.vars[name].lo, self.vars[name].hi = lo, hi
+                        over.update(whole)
         finally:
-            for name, (lo, hi) in saved.items():
-                self.vars[name].lo, self.vars[name].hi = lo, hi
+            self.vars = table
             if outermost:
                 self._whole_ranges = None
         return out

@@ -106,6 +106,15 @@ class VarInfo:
         return [(self.name, self.init)]
 
 
+def with_interval(info: VarInfo, bounds: tuple) -> VarInfo:
+    """A VarInfo of its own: `info` with the interval `bounds` (a variable
+    narrowed by a condition, or solved: the declared one is never changed
+    by either)."""
+    lo, hi = bounds
+    return VarInfo(info.name, info.kind, info.init, lo, hi, info.index, info.node, info.size,
+                   info.inits)
+
+
 @record
 class ResolvedEvent:
     kind: str               # "standard" | "extern"

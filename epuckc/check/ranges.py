@@ -33,13 +33,13 @@ from __future__ import annotations
 import heapq
 import itertools
 
-from ..base.views import MISSING, NotingView
+from ..base.views import MISSING, NotingView, Overlaid
 from ..stdlib.units import INT16_MAX, INT16_MIN
 from . import conditions, reeval
 from .dependencies import _needs, order_components, regraph_in_place
 from .dependencies import statement_assignments  # noqa: F401 (the language server's)
 from .messages import _shown
-from .program import BOOL, VarInfo
+from .program import BOOL, VarInfo, with_interval
 
 # passes of a component's assignments before the growing bounds are widened
 RANGE_PASSES = 4
@@ -78,9 +78,7 @@ class RangeMemo:
 
 def _copy(info: VarInfo, bounds=None) -> VarInfo:
     """A VarInfo of its own (with the interval `bounds`)."""
-    lo, hi = bounds if bounds is not None else (info.lo, info.hi)
-    return VarInfo(info.name, info.kind, info.init, lo, hi, info.index, info.node, info.size,
-                   info.inits)
+    return with_interval(info, bounds if bounds is not None else (info.lo, info.hi))
 
 
 def _inputs(checker, entries: list, members: tuple, outside) -> tuple:
@@ -109,27 +107,6 @@ def _state(info) -> tuple:
     if info is _MISSING:
         return ()
     return (info.lo, info.hi, info.kind, info.size)
-
-
-class _Overlaid(NotingView):
-    """The variables with some of them given other intervals (new VarInfo
-    of their own: the table's are never changed), as a condition or an
-    assignment is evaluated with them (_held_boxes, _evaluated_where)."""
-    __slots__ = ("_table", "_over")
-
-    def __init__(self, table, over: dict):
-        self._table, self._over = table, over
-
-    def get(self, name, default=None):
-        found = self._table.get(name, _MISSING)     # (noted where the table notes)
-        if found is _MISSING:
-            return default
-        return self._over.get(name, found)
-
-    def _all(self):
-        table = self._table
-        table = table._all() if isinstance(table, NotingView) else table
-        return {**table, **self._over}
 
 
 class _Kept:
@@ -439,7 +416,7 @@ class Ranges:
         boxes = self._boxes = {}
         table = self.vars
         members = [table[n] for n in dict.fromkeys(c.target.name for c in calls)]
-        self.vars = _Overlaid(table, {info.name: _copy(info, (INT16_MIN, INT16_MAX))
+        self.vars = Overlaid(table, {info.name: _copy(info, (INT16_MIN, INT16_MAX))
                                       for info in members if info.kind != BOOL})
         try:
             for call in calls:
@@ -562,7 +539,7 @@ class Ranges:
         if not bounds:
             return self._assigned(call, info)
         narrowed = {n: _copy(table[n], b) for n, b in bounds.items()}
-        self.vars = _Overlaid(table, narrowed)
+        self.vars = Overlaid(table, narrowed)
         try:
             return self._assigned(call, narrowed.get(info.name, info))
         finally:
