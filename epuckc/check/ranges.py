@@ -464,7 +464,7 @@ class Ranges:
             if found is not reeval.MISMATCH:
                 value = None if found is None else _Value(*found)
                 if _VERIFY_PLANS:
-                    self._verify_plan(call, info, value)
+                    _verify_plan(self, call, info, value)
         if value is _UNPLANNED:
             reads.read = {}
             self.vars = reads
@@ -478,37 +478,10 @@ class Ranges:
             if known is None:
                 known = memo[id(call)] = _Kept(call)
             if found is not None:
-                known.plan = self._plan(call, info, found, reads.read)
+                known.plan = _plan(self, call, info, found, reads.read)
         known.values.insert(0, (reads.read, target, value))
         del known.values[_KEPT_VALUES:]
         return value
-
-    def _plan(self, call, info, found, read: dict):
-        """The plan (reeval.Plan) of an assignment's value as the checker
-        found it, when a plan reads what the checker read (the variables
-        its conditions compare, then those the value names), else None."""
-        if call.index is not None:
-            return None
-        plan = reeval.plan_of(found, info, call.op != "=")
-        if plan is None:
-            return None
-        context, spoiled = (self._contexts or {}).get(id(call), (None, ()))
-        names = set(plan.names)
-        if context is not None and spoiled is not True:
-            names.update(context.names)
-        return plan if names == set(read) else None
-
-    def _verify_plan(self, call, info, value) -> None:
-        """(tests: a plan's value is the checker's)"""
-        table = self.vars
-        self.vars = _Reads(table)
-        try:
-            found = self._evaluated_where(call, info)
-        finally:
-            self.vars = table
-        expected = None if found is None else (found.kind, found.lo, found.hi)
-        got = None if value is None else (value.kind, value.lo, value.hi)
-        assert got == expected, (_shown(call.value), got, expected)
 
     def _where_bounds(self, call, variables) -> dict:
         """The intervals the conditions that hold where an assignment runs
@@ -569,3 +542,32 @@ class Ranges:
                     changed = True
             if not changed:
                 return
+
+
+def _plan(checker, call, info, found, read: dict):
+    """The plan (reeval.Plan) of an assignment's value as the checker
+    found it, when a plan reads what the checker read (the variables its
+    conditions compare, then those the value names), else None."""
+    if call.index is not None:
+        return None
+    plan = reeval.plan_of(found, info, call.op != "=")
+    if plan is None:
+        return None
+    context, spoiled = (checker._contexts or {}).get(id(call), (None, ()))
+    names = set(plan.names)
+    if context is not None and spoiled is not True:
+        names.update(context.names)
+    return plan if names == set(read) else None
+
+
+def _verify_plan(checker, call, info, value) -> None:
+    """(tests: a plan's value is the checker's)"""
+    table = checker.vars
+    checker.vars = _Reads(table)
+    try:
+        found = checker._evaluated_where(call, info)
+    finally:
+        checker.vars = table
+    expected = None if found is None else (found.kind, found.lo, found.hi)
+    got = None if value is None else (value.kind, value.lo, value.hi)
+    assert got == expected, (_shown(call.value), got, expected)

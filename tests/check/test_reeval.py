@@ -30,13 +30,13 @@ def verified(monkeypatch):
     """Every value a plan gives is compared with the checker's
     (ranges._verify_plan, which asserts them equal); the count of them."""
     count = []
-    real = ranges.Ranges._verify_plan
+    real = ranges._verify_plan
 
-    def verify(self, call, info, value):
+    def verify(checker, call, info, value):
         count.append(call)
-        return real(self, call, info, value)
+        return real(checker, call, info, value)
     monkeypatch.setattr(ranges, "_VERIFY_PLANS", True)
-    monkeypatch.setattr(ranges.Ranges, "_verify_plan", verify)
+    monkeypatch.setattr(ranges, "_verify_plan", verify)
     return count
 
 

@@ -66,14 +66,21 @@ def type_at_end(page, text: str):
 def test_a_typo_shows_its_diagnostic_and_fix_and_the_fix_applies(page):
     open_file(page, "mover.epk")
     type_at_end(page, "on immediate do led_onn(led1)")
-    page.wait_for_function("studio.diagnostics().some(d => d.message.includes('led_onn') "
-                           "&& d.fixes.length)", timeout=BOUND_MS)
-    shown = [d for d in page.evaluate("studio.diagnostics()") if "led_onn" in d["message"]]
-    assert shown[0]["severity"] == "error" and "did you mean `led_on`" in shown[0]["message"]
-    assert shown[0]["fixes"] == ["Replace `led_onn` with `led_on`"]
+    # the diagnostic and its place read at once, in the one list that has its
+    # fix (a list published again in between may not have the fixes yet)
+    found = "(() => { const all = studio.diagnostics(); " \
+            "const i = all.findIndex(d => d.message.includes('led_onn') && d.fixes.length); " \
+            "return i < 0 ? null : {index: i, d: all[i]}; })()"
+    hit = page.wait_for_function(found, timeout=BOUND_MS).json_value()
+    shown = hit["d"]
+    assert shown["severity"] == "error" and "did you mean `led_on`" in shown["message"]
+    assert shown["fixes"] == ["Replace `led_onn` with `led_on`"]
     # the squiggle is drawn, and the fix is a click in the diagnostic's tooltip
     assert page.locator(".cm-lintRange-error").count() >= 1
-    index = [d["message"] for d in page.evaluate("studio.diagnostics()")].index(shown[0]["message"])
+    # (again just before applying it; its place + 1, as 0 would not end the wait)
+    place = "studio.diagnostics().findIndex(d => d.message.includes('led_onn') " \
+            "&& d.fixes.length) + 1"
+    index = page.wait_for_function(place, timeout=BOUND_MS).json_value() - 1
     assert page.evaluate(f"studio.applyFix({index})")
     page.wait_for_function("!studio.diagnostics().some(d => d.message.includes('led_onn'))",
                            timeout=BOUND_MS)
