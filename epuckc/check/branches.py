@@ -28,10 +28,9 @@ from ..base.views import Overlaid
 from ..diagnostics import Note
 from ..syntax import ast
 from . import conditions
-from .program import with_interval
 from .messages import _code
 from .modes import flat_steps
-from .program import ResolvedCall
+from .program import ResolvedCall, with_interval
 
 
 class Branches:
