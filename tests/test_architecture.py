@@ -229,21 +229,26 @@ def test_a_diagnostics_sink_is_given_and_never_swapped():
     """A Collector is given once (in an __init__) and kept: a step whose
     diagnostics are looked at apart says them into `Collector.capture()`,
     never into another collector put in the holder's attribute."""
-    found = []
-    for path in sorted(PACKAGE.rglob("*.py")):
-        tree = ast.parse(path.read_text(encoding="utf-8"))
-        for fn in ast.walk(tree):
-            if not isinstance(fn, (ast.FunctionDef, ast.AsyncFunctionDef)) \
-                    or fn.name == "__init__":
-                continue
-            for node in ast.walk(fn):
-                targets = node.targets if isinstance(node, ast.Assign) else \
-                    [node.target] if isinstance(node, (ast.AnnAssign, ast.AugAssign)) else []
-                for t in targets:
-                    for leaf in ast.walk(t):
-                        if isinstance(leaf, ast.Attribute) and leaf.attr == "diags":
-                            found.append(f"{path.relative_to(REPO)}:{leaf.lineno}")
+    found = [f"{path.relative_to(REPO)}:{leaf.lineno}"
+             for path in sorted(PACKAGE.rglob("*.py"))
+             for fn, leaf in _attributes_assigned(path, ("diags",)) if fn.name != "__init__"]
     assert not found, found
+
+
+def _attributes_assigned(path: Path, attrs: tuple):
+    """(function, the Attribute node) of each assignment in a function of
+    `path` to an attribute named one of `attrs`."""
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    for fn in ast.walk(tree):
+        if not isinstance(fn, (ast.FunctionDef, ast.AsyncFunctionDef)):
+            continue
+        for node in ast.walk(fn):
+            targets = node.targets if isinstance(node, ast.Assign) else \
+                [node.target] if isinstance(node, (ast.AnnAssign, ast.AugAssign)) else []
+            for t in targets:
+                for leaf in ast.walk(t):
+                    if isinstance(leaf, ast.Attribute) and leaf.attr in attrs:
+                        yield fn, leaf
 
 
 # the functions that move a variable's interval: the fixpoint's own iterates,
@@ -260,20 +265,11 @@ def test_intervals_are_values_not_fields_narrowed_and_restored():
     found = []
     for path in sorted([*(PACKAGE / "check").glob("*.py"), *(PACKAGE / "ide").glob("*.py")]):
         name = str(path.relative_to(PACKAGE))
-        tree = ast.parse(path.read_text(encoding="utf-8"))
-        for fn in ast.walk(tree):
-            if not isinstance(fn, (ast.FunctionDef, ast.AsyncFunctionDef)) \
-                    or (name, fn.name) in _INTERVAL_WRITERS:
-                continue
-            for node in ast.walk(fn):
-                targets = node.targets if isinstance(node, ast.Assign) else \
-                    [node.target] if isinstance(node, (ast.AnnAssign, ast.AugAssign)) else []
-                for t in targets:
-                    for leaf in ast.walk(t):
-                        if isinstance(leaf, ast.Attribute) and leaf.attr in ("lo", "hi") and not (
-                                fn.name == "__init__" and isinstance(leaf.value, ast.Name)
-                                and leaf.value.id == "self"):
-                            found.append(f"{name}:{leaf.lineno} in {fn.name}")
+        for fn, leaf in _attributes_assigned(path, ("lo", "hi")):
+            own = fn.name == "__init__" and isinstance(leaf.value, ast.Name) \
+                and leaf.value.id == "self"
+            if not own and (name, fn.name) not in _INTERVAL_WRITERS:
+                found.append(f"{name}:{leaf.lineno} in {fn.name}")
     assert not found, found
 
 
