@@ -126,7 +126,8 @@ class Branches:
                 info = self.vars.get(n)
                 if info is not None:
                     base[n] = (info.lo, info.hi)
-            bounds = conditions.narrowed_where(holds, base)
+            # (a branch that cannot run is still checked, with the whole intervals)
+            bounds = conditions.narrowed_where(holds, base) or {}
         calls = self._calls_narrowed(body.steps[0].calls, bounds)
         ok = len(body.steps) == 1
         for resolved in calls:

@@ -307,8 +307,8 @@ def _hull_box(boxes: list) -> tuple:
 def narrowed_where(boxes: tuple, base: dict) -> dict:
     """Each name of `base` (name -> the interval its values lie in) that a
     box constrains: its interval where the conjunction of `boxes` holds,
-    the hull over the boxes that some values within `base` satisfy; {} when
-    none does (nothing is narrowed where the conjunction cannot hold)."""
+    the hull over the boxes that some values within `base` satisfy; None
+    when none does (the conjunction cannot hold there)."""
     live = []
     for bounds, excluded in boxes:
         met = {}
@@ -323,7 +323,7 @@ def narrowed_where(boxes: tuple, base: dict) -> dict:
         else:
             live.append(met)
     if not live:
-        return {}
+        return None
     hull: dict = {}
     for name in sorted(set().union(*live)):
         ranges = [b.get(name, base[name]) for b in live]

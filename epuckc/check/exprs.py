@@ -23,7 +23,7 @@ from . import devices
 from ..stdlib.units import (ANGLE, DISTANCE, DURATION, INT, INT16_MAX, INT16_MIN, SPEED,
                             UNITS, describe_kind, quantity, round_nearest)
 from ..syntax import ast
-from . import arrays, bits, convert, functions
+from . import arrays, bits, convert, decided as deciders, functions
 from .messages import _code, _kind_word, _shown, did_you_mean
 from .program import BOOL, Expr
 
@@ -36,105 +36,11 @@ _EXACT = dict(arith.BINARY, neg=arith.neg, abs=arith.absolute, clamp=arith.clamp
 
 
 def _interval(e: Expr) -> str:
-    return str(e.lo) if e.lo == e.hi else f"{e.lo}..{e.hi}"
+    return _interval_of(e.lo, e.hi)
 
 
-_COMMUTATIVE = {"+", "*", "min", "max", "==", "!=", "and", "or", "hypot"}
-
-
-def _difference(a: Expr, b: Expr) -> Optional[int]:
-    """`a - b` when it is the same whatever the variables and readings are
-    (`v + 5 - 200` and `v`: -195), else None: both as sums of numbers
-    times parts that are not sums (a variable, a reading, `v / 2`), where
-    equal parts are the same tree up to the order of the operands of `+`,
-    `*`, `min`, ... , with no `random` (each call draws anew). A C compiler
-    folds such a comparison itself (`X - c <= X`) and warns, on the
-    dsPIC's and the AVR's gcc, that it assumes no overflow: the checker
-    decides it first, so the C never holds one."""
-    table: dict = {}
-    fa, fb = _linear(a, table), _linear(b, table)
-    if fa is None or fb is None:
-        return None
-    terms = dict(fa[1])
-    for key, k in fb[1].items():
-        terms[key] = terms.get(key, 0) - k
-    return fa[0] - fb[0] if not any(terms.values()) else None
-
-
-def _decided_by_intervals(op: str, a: Expr, b: Expr) -> Optional[int]:
-    """The value (1 or 0) of `a op b` where the intervals of its sides
-    decide it, else None."""
-    if a.hi < b.lo or a.lo > b.hi or (a.lo == a.hi == b.lo == b.hi):
-        corners = {arith.COMPARE[op](x, y) for x in (a.lo, a.hi) for y in (b.lo, b.hi)}
-        if len(corners) == 1:
-            return int(corners.pop())
-    return None
-
-
-_LINEAR = ("+", "-", "neg", "*")
-
-
-def _linear(e: Expr, table: dict):
-    """`e` as (number, {part: factor}): the sum of its parts times their
-    factors plus the number, computed as the runtime does (exactly) where
-    no sum or product in it can leave 32 bits, and a part where one can
-    (it saturates); None with a `random` in it. A part is a number that
-    stands for its tree: `table` gives each tree (its operation and the
-    numbers of its operands) its number, the same for equal trees of the
-    two sides compared (a key of its own that held its operands' keys
-    grew with each level, their quotes escaped again, twice as long: a
-    depth of 200 did not fit in memory). A loop, not recursion
-    (limits.py)."""
-    keys: dict = {}     # id -> the tree's number in `table`, None with a random
-    forms: dict = {}    # id -> (number, parts), None with a random
-    stack = [(e, False)]
-    while stack:
-        x, done = stack.pop()
-        if not done:
-            stack.append((x, True))
-            stack.extend((arg, False) for arg in x.args)
-            continue
-        parts = [keys[id(arg)] for arg in x.args]
-        if x.op == "random" or None in parts:
-            keys[id(x)] = forms[id(x)] = None
-            continue
-        if x.op in _COMMUTATIVE:
-            parts.sort()
-        shape = (x.op, repr(x.value), x.name, tuple(parts))
-        key = table.get(shape)
-        if key is None:
-            key = table[shape] = len(table)
-        keys[id(x)] = key
-        args = [forms[id(arg)] for arg in x.args]
-        exact = arith.exact(x.op, *[(arg.lo, arg.hi) for arg in x.args]) \
-            if x.op in _LINEAR else None
-        if x.op == "num":
-            forms[id(x)] = (x.value, {})
-        elif exact is None or not arith.fits32(*exact):
-            forms[id(x)] = (0, {key: 1})            # a part (or it may saturate)
-        elif x.op == "neg":
-            forms[id(x)] = _scaled(args[0], -1)
-        elif x.op == "*":
-            (n, p), (m, q) = args
-            if p and q:
-                forms[id(x)] = (0, {key: 1})        # a product of two variables
-            else:
-                forms[id(x)] = _scaled(args[1], n) if not p else _scaled(args[0], m)
-        else:
-            forms[id(x)] = _summed(args[0], args[1], 1 if x.op == "+" else -1)
-    return forms[id(e)]
-
-
-def _scaled(form, k: int):
-    n, parts = form
-    return n * k, {key: v * k for key, v in parts.items()}
-
-
-def _summed(a, b, sign: int):
-    parts = dict(a[1])
-    for key, v in b[1].items():
-        parts[key] = parts.get(key, 0) + sign * v
-    return a[0] + sign * b[0], parts
+def _interval_of(lo: int, hi: int) -> str:
+    return str(lo) if lo == hi else f"{lo}..{hi}"
 
 
 class Exprs:
@@ -410,13 +316,23 @@ class Exprs:
         text, truth = self._text(e.node), "true" if e.value else "false"
         if a.constant and b.constant:
             return      # two fixed values: written so on purpose (`when 1 == 1`)
-        difference = None if _decided_by_intervals(op, a, b) is not None else _difference(a, b)
-        if difference == 0:
+        unit = EXAMPLE_UNIT.get(a.kind if a.kind != INT else b.kind, "")
+        unit = " " + unit if unit else ""
+        decision = deciders.decide(op, a, b)
+        difference, differing = decision.difference, decision.bits
+        if difference == (0, 0):
             why = "it compares a value with itself"
+        elif difference is not None and difference[0] == difference[1]:
+            d = difference[0]
+            why = (f"`{self._text(a.node)}` is always {abs(d)}{unit} "
+                   f"{'more' if d > 0 else 'less'} than `{self._text(b.node)}`")
         elif difference is not None:
-            unit = EXAMPLE_UNIT.get(a.kind if a.kind != INT else b.kind, "")
-            why = (f"`{self._text(a.node)}` is always {abs(difference)}{' ' + unit if unit else ''} "
-                   f"{'more' if difference > 0 else 'less'} than `{self._text(b.node)}`")
+            why = (f"`{self._text(a.node)}` minus `{self._text(b.node)}` is always "
+                   f"{_interval_of(*difference)}{unit}")
+        elif differing:
+            many = differing & (differing - 1)
+            why = (f"`{self._text(a.node)}` and `{self._text(b.node)}` always differ in "
+                   f"{'the bits' if many else 'the bit'} 0x{differing:04X}")
         else:
             why = " and ".join(f"`{self._text(side.node)}` is {_interval(side)}"
                                for side in (a, b) if not side.constant)
@@ -450,17 +366,15 @@ class Exprs:
     @staticmethod
     def _fold(e: Expr) -> Expr:
         """An operation on constants is a constant (random excepted); so is
-        a comparison whose sides' intervals decide it, or whose sides always
-        differ by the same number (`_difference`)."""
+        a comparison that decided.py decides (by the sides' intervals, the
+        interval of their difference, or their bits)."""
         args = e.args
         if e.op in COMPARISONS:
             a, b = args
-            decided = _decided_by_intervals(e.op, a, b)
-            if decided is None:
-                difference = _difference(a, b)      # `v >= v`, `v - 200 <= v`
-                if difference is None:
-                    return e
-                decided = int(arith.COMPARE[e.op](difference, 0))
+            decision = deciders.decide(e.op, a, b)
+            if decision is None:
+                return e
+            decided = decision.value
             return Expr("num", BOOL, decided, decided, value=decided, node=e.node)
         if e.op in ("and", "or", "not"):
             values = [a.value for a in args if a.op == "num"]

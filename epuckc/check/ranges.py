@@ -121,6 +121,9 @@ class _Kept:
 
 # where a plan cannot answer (_assigned_where)
 _UNPLANNED = object()
+# the value of an assignment that cannot run: where the conditions that hold
+# where it runs cannot (_where_bounds)
+NEVER = object()
 # (tests: each value a plan gives is compared with the checker's)
 _VERIFY_PLANS = False
 
@@ -387,7 +390,7 @@ class Ranges:
             for call in calls:
                 info = self.vars[call.target.name]
                 value = self._assigned_where(call, info)
-                if value is None or value.kind == BOOL:
+                if value is None or value is NEVER or value.kind == BOOL:
                     continue
                 lo, hi = min(info.lo, value.lo), max(info.hi, value.hi)
                 if (lo, hi) != (info.lo, info.hi):
@@ -460,8 +463,11 @@ class Ranges:
         reads = _Reads(table)
         value = _UNPLANNED
         if known is not None and known.plan is not None:
-            found = reeval.evaluate(known.plan, reads, self._where_bounds(call, reads), info)
-            if found is not reeval.MISMATCH:
+            bounds = self._where_bounds(call, reads)
+            found = NEVER if bounds is NEVER else reeval.evaluate(known.plan, reads, bounds, info)
+            if found is NEVER:
+                value = NEVER
+            elif found is not reeval.MISMATCH:
                 value = None if found is None else _Value(*found)
                 if _VERIFY_PLANS:
                     _verify_plan(self, call, info, value)
@@ -474,10 +480,11 @@ class Ranges:
                 self.vars = table
             if reads.read is None:          # (it looked at every variable)
                 return found
-            value = None if found is None else _Value(found.kind, found.lo, found.hi)
+            value = found if found is None or found is NEVER else \
+                _Value(found.kind, found.lo, found.hi)
             if known is None:
                 known = memo[id(call)] = _Kept(call)
-            if found is not None:
+            if value is not None and value is not NEVER:
                 known.plan = _plan(self, call, info, found, reads.read)
         known.values.insert(0, (reads.read, target, value))
         del known.values[_KEPT_VALUES:]
@@ -488,7 +495,10 @@ class Ranges:
         leave the variables they compare (its `if` branches, a rule's guard
         in its first step), read from `variables`: except those a call
         before it, since those conditions were evaluated, may have
-        assigned (`spoiled`; True: every one). Empty where none narrows."""
+        assigned (`spoiled`; True: every one). Empty where none narrows;
+        NEVER where they cannot hold (a branch whose condition is always
+        false, as `if v != v`: the C compiler drops it, and then knows what
+        the variables it alone assigned are)."""
         context, spoiled = (self._contexts or {}).get(id(call), (None, ()))
         if context is None or spoiled is True:
             return {}
@@ -500,7 +510,8 @@ class Ranges:
         held = (self._boxes or {}).get(id(context))
         if held is None or held[0] is not context:
             return {}
-        return conditions.narrowed_where(held[1], base) or {}
+        narrowed = conditions.narrowed_where(held[1], base)
+        return NEVER if narrowed is None else narrowed
 
     def _evaluated_where(self, call, info):
         """The value an assignment gives (variables.py's `_assigned`), with
@@ -509,6 +520,8 @@ class Ranges:
         the call (branches.py)."""
         table = self.vars
         bounds = self._where_bounds(call, table)
+        if bounds is NEVER:
+            return NEVER
         if not bounds:
             return self._assigned(call, info)
         narrowed = {n: _copy(table[n], b) for n, b in bounds.items()}
@@ -529,6 +542,8 @@ class Ranges:
             for call in calls:
                 info = self.vars[call.target.name]
                 value = self._assigned_where(call, info)
+                if value is NEVER:
+                    continue            # it cannot run: it gives nothing
                 if value is None or value.kind == BOOL:
                     return              # not every value is known: keep the intervals
                 lo, hi = hulls[info.name]
@@ -568,6 +583,6 @@ def _verify_plan(checker, call, info, value) -> None:
         found = checker._evaluated_where(call, info)
     finally:
         checker.vars = table
-    expected = None if found is None else (found.kind, found.lo, found.hi)
-    got = None if value is None else (value.kind, value.lo, value.hi)
+    expected = found if found is None or found is NEVER else (found.kind, found.lo, found.hi)
+    got = value if value is None or value is NEVER else (value.kind, value.lo, value.hi)
     assert got == expected, (_shown(call.value), got, expected)
