@@ -64,7 +64,7 @@ HOST_CFLAGS = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", "-O2"]
 AVR_CFLAGS = ["-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic", "-Os", "-fno-common",
               "-DEPUCKRT_NO_NAMES"]
 CORE = [RT / name for name in RUNTIME_CORE]     # the runtime, one file per concern
-HOST_SOURCES = [*CORE, *(RT / name for name in RUNTIME_SIMULATED), RT / "host" / "platform_host.c", RT / "host" / "scenario.c",
+HOST_SOURCES = [*CORE, *(RT / name for name in RUNTIME_SIMULATED), RT / "platform" / "platform_host.c", RT / "host" / "scenario.c",
                 *(RT / name for name in LIBRARY_SIMULATION)]
 BUDGET_CYCLES = 16000           # 1 ms at 16 MIPS
 SIM_MCU = "atmega1284p"
@@ -308,7 +308,7 @@ def bench_ram(sizes, work: Path, mcu="atmega128") -> list:
         c, defines = compile_epk(generate_mixed(n), d, f"mixed{n}")
         flags = [*AVR_CFLAGS, f"-mmcu={mcu}", f"-I{RT}", f"-I{RT / 'epuck_api'}"]
         objs = []
-        for src, extra in ((c, []), *((core, defines) for core in CORE), (RT / "platform_robot.c", [])):
+        for src, extra in ((c, []), *((core, defines) for core in CORE), (RT / "platform" / "platform_robot.c", [])):
             obj = d / (Path(src).stem + ".o")
             run(["avr-gcc", *flags, *extra, "-c", src, "-o", obj])
             objs.append(obj)

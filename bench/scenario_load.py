@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Time how long the host harness takes to load a long scenario, side by
-side with a reference version of runtime_c/host/platform_host.c taken from
+side with a reference version of runtime_c/platform/platform_host.c taken from
 git (by default 7e6f262, whose loader grew its array one line at a time).
 
     python3 bench/scenario_load.py [--lines 80000] [--reference REV] [--no-asan]
@@ -71,13 +71,19 @@ def main() -> int:
         scenario.write_text("".join(f"{t} ms ir0={t % 4096} ir7={(t * 7) % 4096}\n"
                                     for t in range(args.lines)))
         reference_src = tmp / "platform_host_reference.c"
-        reference_src.write_bytes(subprocess.run(
-            ["git", "-C", str(REPO), "show", f"{args.reference}:runtime_c/host/platform_host.c"],
-            check=True, capture_output=True).stdout)
+        # (the file was runtime_c/host/platform_host.c before the platforms had a folder)
+        for where in ("runtime_c/platform/platform_host.c", "runtime_c/host/platform_host.c"):
+            shown = subprocess.run(["git", "-C", str(REPO), "show", f"{args.reference}:{where}"],
+                                   capture_output=True)
+            if shown.returncode == 0:
+                break
+        else:
+            raise SystemExit(f"no platform_host.c at {args.reference}")
+        reference_src.write_bytes(shown.stdout)
         (tmp / "ref").mkdir()
         (tmp / "now").mkdir()
         builds = [("reference " + args.reference, build(tmp / "ref", reference_src, asan)),
-                  ("this checkout", build(tmp / "now", RUNTIME / "host" / "platform_host.c",
+                  ("this checkout", build(tmp / "now", RUNTIME / "platform" / "platform_host.c",
                                           asan))]
         print(f"{args.lines} scenario lines, {'ASan/UBSan' if asan else '-O2'}, "
               f"{platform.processor() or platform.machine()}, {os.cpu_count()} cores, "

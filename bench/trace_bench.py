@@ -126,7 +126,7 @@ def bench_size(work: Path) -> tuple:
              RT / name, "-o", obj])
         tracer.append(obj)
     runtime = []
-    for name in (*RUNTIME_CORE, *RUNTIME_DSPIC_DEVICES, "platform_robot.c"):
+    for name in (*RUNTIME_CORE, *RUNTIME_DSPIC_DEVICES, "platform/platform_robot.c"):
         obj = work / f"plain_{Path(name).stem}.o"
         run(["avr-gcc", *flags, "-c", RT / name, "-o", obj])
         runtime.append(obj)

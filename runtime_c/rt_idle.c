@@ -1,6 +1,6 @@
 /*
  * rt_idle.c - idle polls in bulk, for a platform that simulates time (the
- * host harness and the robots of Enki worlds: host/platform_host.c).  At
+ * host harness and the robots of Enki worlds: platform/platform_host.c).  At
  * the start of each poll cycle such a platform asks how many of the coming
  * polls are known to change nothing but time, and advances its virtual time
  * over them at once (docs/runtime.md, "Idle polls in bulk").  A robot's

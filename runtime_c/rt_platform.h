@@ -6,7 +6,7 @@
  *
  *   platform_robot.c      on the e-puck: wait for the 1 ms tick; no trace
  *                         (with EPUCKRT_TRACE: rt_trace.c's, below).
- *   host/platform_host.c  on a PC: virtual time, virtual robot, trace.
+ *   platform/platform_host.c  on a PC: virtual time, virtual robot, trace.
  */
 #ifndef RT_PLATFORM_H
 #define RT_PLATFORM_H

@@ -30,7 +30,7 @@ RUNTIME_DEVICES = ("rt_comm.c", "rt_tof.c", "rt_camera.c", "rt_rgb.c", "rt_groun
 # library's I2C bus
 RUNTIME_DSPIC_DEVICES = ("rt_camera.c", "rt_ground.c", "ground_i2c.c")
 # What only a platform that simulates time links with the core (the host
-# harness, the robots of Enki worlds): rt_idle.c tells host/platform_host.c
+# harness, the robots of Enki worlds): rt_idle.c tells platform/platform_host.c
 # which polls it may run in bulk. A robot polls in real time: not in its builds.
 RUNTIME_SIMULATED = ("rt_idle.c",)
 RUNTIME_CORE_HEADERS = ("epuckrt.h", "rt_internal.h", "rt_clock.h", "rt_sensors.h",

@@ -49,7 +49,7 @@ BUILD_FLAGS = ["-pipe"]
 
 
 # The runtime's files for each target, relative to runtime_c/.
-HOST_SOURCES = [*RUNTIME_CORE, *RUNTIME_SIMULATED, *RUNTIME_DEVICES, "host/platform_host.c",
+HOST_SOURCES = [*RUNTIME_CORE, *RUNTIME_SIMULATED, *RUNTIME_DEVICES, "platform/platform_host.c",
                 "host/scenario.c", "host/cmain.c", *LIBRARY_SIMULATION]
 
 
@@ -57,6 +57,8 @@ HOST_SOURCES = [*RUNTIME_CORE, *RUNTIME_SIMULATED, *RUNTIME_DEVICES, "host/platf
 HOST_INCLUDES = [".", "epuck_api", "host", "epuck_api_unsimulated"]
 
 
+# (the project's files, relative to its runtime/: ROBOT_COPIES says where
+# those of another place in runtime_c/ are)
 ROBOT_SOURCES = [*RUNTIME_CORE, *RUNTIME_DSPIC_DEVICES, "platform_robot.c"]
 
 
@@ -67,7 +69,8 @@ ROBOT_HEADERS = list(RUNTIME_CORE_HEADERS) + ["sensors/ground.h"]
 
 # A file of the project (relative to its runtime/) -> where it is in runtime_c/
 # when that is another place.
-ROBOT_COPIES = {"sensors/ground.h": "epuck_api/sensors/ground.h"}
+ROBOT_COPIES = {"sensors/ground.h": "epuck_api/sensors/ground.h",
+                "platform_robot.c": "platform/platform_robot.c"}
 
 
 ROBOT_FILES = ROBOT_SOURCES + ROBOT_HEADERS

@@ -22,7 +22,7 @@ from .trace_table import TraceOptions, table_path, trace_defines, write_table
 # The runtime's files in an e-puck2 project (relative to runtime_c/): the
 # core, the robot's platform layer (its hooks and seed) with the ChibiOS
 # wait for the clock, the system calls Debian's newlib wants.
-EPUCK2_SOURCES = [*RUNTIME_CORE, *RUNTIME_DEVICES, "platform_robot.c", "platform_epuck2.c",
+EPUCK2_SOURCES = [*RUNTIME_CORE, *RUNTIME_DEVICES, "platform/platform_robot.c", "platform/platform_epuck2.c",
                   "epuck2/newlib_stubs.c"]
 EPUCK2_FILES = EPUCK2_SOURCES + list(RUNTIME_CORE_HEADERS)
 ARM_GCC = "arm-none-eabi-gcc"

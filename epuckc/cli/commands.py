@@ -333,7 +333,7 @@ def cmd_run(args) -> int:
     if problem is not None:
         _error(problem)
         return EXIT_USAGE
-    if args.seed is not None:       # the harness reads it (host/platform_host.c)
+    if args.seed is not None:       # the harness reads it (platform/platform_host.c)
         os.environ["EPUCK_SEED"] = str(args.seed)
     if args.watchdog is not None:   # and this (host/cmain.c)
         os.environ["EPUCK_WATCHDOG_MS"] = str(args.watchdog)

@@ -34,7 +34,7 @@ from .contacts import contact_words
 from .physics import CHIPMUNK_ABOVE
 from .world import World, runner_spec
 
-ROBOT_SOURCES = [*RUNTIME_CORE, *RUNTIME_SIMULATED, *RUNTIME_DEVICES, "host/platform_host.c",
+ROBOT_SOURCES = [*RUNTIME_CORE, *RUNTIME_SIMULATED, *RUNTIME_DEVICES, "platform/platform_host.c",
                  "host/scenario.c", "host/cmain.c", *LIBRARY_SIMULATION, "enki/robot_glue.c"]
 ROBOT_INCLUDES = [".", "epuck_api", "host", "enki", "epuck_api_unsimulated"]
 # robot_glue.c's header comment says why each of these is wrapped

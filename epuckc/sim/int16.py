@@ -3,7 +3,7 @@ and its C on the 16-bit path
 (docs/runtime.md, "16 bits: --int16"): built with avr-gcc for an
 ATmega1284P (16-bit int and pointers, like the dsPIC) over the host's
 virtual robot (runtime_c/host/epuck_stub.c), the scenario compiled into it
-as a table (runtime_c/int16/platform_int16.c applies it each ms), run on
+as a table (runtime_c/platform/platform_int16.c applies it each ms), run on
 simavr (runtime_c/int16/simavr_run.c); its trace lines become the JSON
 trace. An int overflow in the user's C then wraps as on the robot, where
 the host's 32-bit int would hide it."""
@@ -171,7 +171,7 @@ def build_int16(program: Program, folder: Path, items: list, time_limit_ms: int,
                   # RGB LEDs, ground module), over LIBRARY_SIMULATION's stubs
                   # of them: a program the host runs builds here too
                   *(str(rt / n) for n in RUNTIME_DEVICES), *more,
-                  str(rt / "int16" / "platform_int16.c"), str(folder / "scenario.c"),
+                  str(rt / "platform" / "platform_int16.c"), str(folder / "scenario.c"),
                   "-o", str(elf)])
     inline = any(re.search(rb"\basm\b|__asm__|\b(NOP|RESET|CLRWDT|SLEEP|IDLE)\(\)",
                            Path(p).read_bytes()) for p in sources[int(bool(program.generated)):])

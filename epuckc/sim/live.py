@@ -3,7 +3,7 @@ W --trace -` and the studio's arena (epuckc/studio/runs.py) read it while
 the world runner is still simulating.
 
 Each robot writes its own trace file, a record per line, flushed at each
-record (runtime_c/host/platform_host.c), and the runner steps the robots in
+record (runtime_c/platform/platform_host.c), and the runner steps the robots in
 lockstep. A record of time t can be placed in the merged order once every
 robot still running has written a record later than t (it can write no
 more at t or before); a robot whose last record ended its run (`exit`,

@@ -1,5 +1,5 @@
 """The readable trace of JSON trace records: the lines `epuckc run` prints
-(runtime_c/host/platform_host.c prints them as the harness runs; this is
+(runtime_c/platform/platform_host.c prints them as the harness runs; this is
 the same text from the records), for a trace that did not come from the
 harness: the robot's, decoded by `epuckc monitor`, and a recorded robot
 trace that `epuckc test` checks. The JSON has no texts of a sequence's
@@ -9,7 +9,7 @@ from __future__ import annotations
 import json
 from typing import Callable, Optional
 
-# the keys of a record before its kind's own (host/platform_host.c record_extra)
+# the keys of a record before its kind's own (platform/platform_host.c record_extra)
 _BASE = ("t_ms", "kind", "name", "id", "left_steps", "right_steps", "x_mm", "y_mm",
          "heading_deg", "step", "steps", "robot")
 

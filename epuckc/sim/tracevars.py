@@ -4,7 +4,7 @@ counter set every 20 ms by ten robots was most of a run's 79 MB. NAMES are
 separated by commas; an array's name stands for its elements (`counts`
 for `counts[2]`); `none` leaves every variable out. The harness reads the
 selection from EPUCK_TRACE_VARS with the same rule (var_traced in
-runtime_c/host/platform_host.c); the replay's variables panel lists only
+runtime_c/platform/platform_host.c); the replay's variables panel lists only
 the variables traced."""
 from __future__ import annotations
 

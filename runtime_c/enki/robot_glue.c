@@ -2,7 +2,7 @@
  * robot_glue.c - the e-puck library over Enki, robot side.
  *
  * A robot of an Enki world is one shared object: the program, the runtime
- * (epuckrt.c), the host platform layer (host/platform_host.c), the stub
+ * (epuckrt.c), the host platform layer (platform/platform_host.c), the stub
  * e-puck library (host/epuck_stub.c: stepper motors with 16-bit counters,
  * agendas, proximity registers) and this file, linked with
  *

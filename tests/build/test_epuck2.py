@@ -90,8 +90,8 @@ def test_every_example_compiles_for_the_cortex_m4(tmp_path, example):
 def test_the_runtime_and_the_platform_layer_compile_for_the_cortex_m4(tmp_path):
     gcc = require_tool("arm-none-eabi-gcc")
     for source in [*(RUNTIME / n for n in (*RUNTIME_CORE, *RUNTIME_DEVICES)),
-                   RUNTIME / "platform_robot.c",
-                   RUNTIME / "platform_epuck2.c", RUNTIME / "epuck2" / "newlib_stubs.c"]:
+                   RUNTIME / "platform" / "platform_robot.c",
+                   RUNTIME / "platform" / "platform_epuck2.c", RUNTIME / "epuck2" / "newlib_stubs.c"]:
         subprocess.run([gcc, *ARM_FLAGS, f"-I{RUNTIME}", *API, "-c", str(source), "-o",
                         str(tmp_path / "x.o")], check=True)
 
@@ -100,7 +100,7 @@ def test_the_platform_layer_sleeps_and_never_spins():
     """Under ChibiOS a busy wait would starve the firmware's sensor and motor
     threads: the poll waits in chThdSleepUntilWindowed, and the millisecond
     clock is counted from the system time."""
-    text = (RUNTIME / "platform_epuck2.c").read_text()
+    text = (RUNTIME / "platform" / "platform_epuck2.c").read_text()
     idle = text[text.index("void rt_platform_idle(void)"):]
     idle = idle[:idle.index("\n}\n")]
     assert "chThdSleepUntilWindowed(" in idle and "rt_clock_tick()" in idle

@@ -53,7 +53,7 @@ def test_the_runtime_and_every_program_compile_against_the_library(library, tmp_
     # the camera (rt_camera.c) against the library's camera/fast_2_timer/e_poxxxx.h, the
     # ground-sensor module (ground_i2c.c) against its I2C/e_I2C_master_module.h
     for source in [*(RUNTIME / n for n in (*RUNTIME_CORE, *RUNTIME_DSPIC_DEVICES)),
-                   RUNTIME / "platform_robot.c"]:
+                   RUNTIME / "platform" / "platform_robot.c"]:
         subprocess.run([avr, *flags, "-c", str(source), "-o", str(tmp_path / "x.o")], check=True)
     for example in sorted((REPO / "examples").glob("*.epk")):
         c = tmp_path / f"{example.stem}.c"

@@ -11,6 +11,7 @@ the same sources with the tracer's hooks taken out."""
 import json
 import re
 import subprocess
+from pathlib import Path
 
 import pytest
 
@@ -150,14 +151,15 @@ def test_without_trace_the_runtime_is_the_same_bytes_as_without_its_hooks(tmp_pa
     flags = ["-mmcu=atmega1284p", *STRICT, "-DEPUCKRT_NO_NAMES", f"-I{RUNTIME}",
              f"-I{RUNTIME / 'epuck_api'}"]
     hooked = 0
-    for name in (*RUNTIME_CORE, *RUNTIME_DEVICES, "platform_robot.c"):
+    for name in (*RUNTIME_CORE, *RUNTIME_DEVICES, "platform/platform_robot.c"):
         source = (RUNTIME / name).read_text()
         stripped = re.sub(r"^[ \t]*RT_TRACE_\w+\(.*\);[^\n]*\n", "", source, flags=re.M)
         hooked += source != stripped
         plain, without = tmp_path / "plain.o", tmp_path / "without.o"
         subprocess.run([avr, *flags, "-c", str(RUNTIME / name), "-o", str(plain)], check=True)
-        (tmp_path / name).write_text(stripped)
-        subprocess.run([avr, *flags, "-c", str(tmp_path / name), "-o", str(without)],
+        copy = tmp_path / Path(name).name
+        copy.write_text(stripped)
+        subprocess.run([avr, *flags, "-c", str(copy), "-o", str(without)],
                        check=True)
         assert _text_of(plain, tmp_path) == _text_of(without, tmp_path), name
         symbols = subprocess.run(["avr-nm", str(plain)], capture_output=True, text=True,

@@ -47,7 +47,7 @@ def test_runtime_symbols_are_all_known_to_the_checker(tmp_path):
     at link time."""
     cc, nm = require_tool("cc"), require_tool("nm")
     names = visible_names()
-    sources = list(dict.fromkeys([*HOST_SOURCES, *RUNTIME_DEVICES, "platform_robot.c"]))
+    sources = list(dict.fromkeys([*HOST_SOURCES, *RUNTIME_DEVICES, "platform/platform_robot.c"]))
     assert set(RUNTIME_CORE) | set(RUNTIME_SIMULATED) | set(RUNTIME_DEVICES) <= set(sources)
     for src in sources:
         obj = tmp_path / "x.o"

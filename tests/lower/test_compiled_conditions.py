@@ -124,7 +124,7 @@ def build_and_run(text: str, scn: str, tmp_path: Path) -> list:
                     f"-I{RT}", f"-I{RT / 'epuck_api'}", f"-I{RT / 'host'}",
                     f"-I{RT / 'epuck_api_unsimulated'}", str(c_file),
                     *(str(RT / name) for name in (*RUNTIME_CORE, *RUNTIME_SIMULATED)),
-                    str(RT / "host" / "platform_host.c"), str(RT / "host" / "scenario.c"),
+                    str(RT / "platform" / "platform_host.c"), str(RT / "host" / "scenario.c"),
                     *(str(RT / name) for name in LIBRARY_SIMULATION), "-o", str(exe), "-lm"],
                    check=True)
     (tmp_path / "rules.scn").write_text(scn)

@@ -15,7 +15,7 @@ from epuckc.base.resources import (LIBRARY_SIMULATION, RUNTIME_CORE, RUNTIME_DEV
 RUNTIME = REPO / "runtime_c"
 PROGRAMS = Path(__file__).resolve().parent / "programs"
 SOURCES = [*(RUNTIME / name for name in (*RUNTIME_CORE, *RUNTIME_SIMULATED, *RUNTIME_DEVICES)),
-           RUNTIME / "host" / "platform_host.c", RUNTIME / "host" / "scenario.c",
+           RUNTIME / "platform" / "platform_host.c", RUNTIME / "host" / "scenario.c",
            *(RUNTIME / name for name in LIBRARY_SIMULATION)]
 INCLUDES = [f"-I{RUNTIME}", f"-I{RUNTIME / 'epuck_api'}", f"-I{RUNTIME / 'host'}",
             f"-I{RUNTIME / 'epuck_api_unsimulated'}"]

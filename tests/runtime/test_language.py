@@ -17,7 +17,7 @@ from tests.support.programs import epuckc, run_program
 
 RUNTIME = REPO / "runtime_c"
 HOST = [*(RUNTIME / n for n in (*RUNTIME_CORE, *RUNTIME_SIMULATED)),
-        RUNTIME / "host" / "platform_host.c",
+        RUNTIME / "platform" / "platform_host.c",
         RUNTIME / "host" / "scenario.c", *(RUNTIME / n for n in LIBRARY_SIMULATION)]
 INCLUDES = [f"-I{RUNTIME}", f"-I{RUNTIME / 'epuck_api'}", f"-I{RUNTIME / 'host'}",
             f"-I{RUNTIME / 'epuck_api_unsimulated'}"]
@@ -278,7 +278,7 @@ def test_every_feature_builds_for_a_16_bit_int(tmp_path):
     """avr-gcc: int is 16 bits there, as on the dsPIC."""
     avr = require_tool("avr-gcc")
     _, c = _compiled(tmp_path)
-    for source in [c, *(RUNTIME / n for n in RUNTIME_CORE), RUNTIME / "platform_robot.c"]:
+    for source in [c, *(RUNTIME / n for n in RUNTIME_CORE), RUNTIME / "platform" / "platform_robot.c"]:
         subprocess.run([avr, "-mmcu=atmega128", *STRICT, "-Os", *INCLUDES, "-c", str(source),
                         "-o", str(tmp_path / "x.o")], check=True)
 

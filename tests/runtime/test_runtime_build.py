@@ -2,6 +2,7 @@
 figure 2 built by hand, strict warnings, sanitizers, the 16-bit check, the
 harness's settings and errors, determinism."""
 import os
+import re
 import stat
 import subprocess
 import sys
@@ -58,7 +59,7 @@ def test_paper_figure_2_is_clean_but_for_its_own_style(tmp_path):
 
 
 def test_every_runtime_file_compiles_strictly(tmp_path):
-    files = [*SOURCES, RUNTIME / "platform_robot.c", *sorted(PROGRAMS.glob("*.c"))]
+    files = [*SOURCES, RUNTIME / "platform" / "platform_robot.c", *sorted(PROGRAMS.glob("*.c"))]
     for f in files:
         res = subprocess.run([cc(), *STRICT, *INCLUDES, "-c", str(f), "-o",
                               str(tmp_path / "x.o")], capture_output=True, text=True)
@@ -333,10 +334,25 @@ def test_the_makefile_builds_the_runtime_the_compiler_builds():
     assert lists["CORE"] == [list(RUNTIME_CORE)]
     assert lists["SIMULATED"] == [list(RUNTIME_SIMULATED)]
     assert lists["TRACE"] == [list(RUNTIME_TRACE + RUNTIME_TRACE_UART1)]
-    platform_files = {"platform_robot.c", "platform_epuck2.c", "check16.c"}
-    top_level = {p.name for p in RUNTIME.glob("*.c")} - platform_files
+    top_level = {p.name for p in RUNTIME.glob("*.c")} - {"check16.c"}
     assert top_level == (set(RUNTIME_CORE) | set(RUNTIME_DEVICES) | set(RUNTIME_DSPIC_DEVICES)
                          | set(RUNTIME_SIMULATED)
                          | set(RUNTIME_TRACE + RUNTIME_TRACE_UART1 + RUNTIME_TRACE_CHIBIOS)), \
         "a runtime source missing from RUNTIME_CORE, _DEVICES, _DSPIC_DEVICES, _SIMULATED or " \
         "_TRACE*"
+
+
+def test_the_platform_layers_are_in_one_folder():
+    """Every implementation of rt_platform.h (a file that defines
+    rt_platform_idle) is in runtime_c/platform/, which holds nothing else,
+    and the builds take them from there (issue 44, point 4)."""
+    defining = {p.relative_to(RUNTIME).as_posix() for p in RUNTIME.rglob("*.c")
+                if re.search(r"^void rt_platform_idle\(void\)\s*\{", p.read_text(), re.M)}
+    assert defining == {p.relative_to(RUNTIME).as_posix()
+                        for p in (RUNTIME / "platform").glob("*.c")}
+    assert len(defining) == 4, defining     # the e-puck, the e-puck2, the host, the 16-bit build
+    from epuckc.build.common import HOST_SOURCES, ROBOT_COPIES
+    from epuckc.build.epuck2 import EPUCK2_SOURCES
+    assert "platform/platform_host.c" in HOST_SOURCES
+    assert ROBOT_COPIES["platform_robot.c"] == "platform/platform_robot.c"
+    assert "platform/platform_epuck2.c" in EPUCK2_SOURCES

@@ -38,7 +38,7 @@ int main(void) {{
 """)
     cc = require_tool("cc")
     sources = [RUNTIME / n for n in (*RUNTIME_CORE, "rt_camera.c", "rt_idle.c")]
-    sources += [RUNTIME / "host" / n for n in ("platform_host.c", "scenario.c")]
+    sources += [RUNTIME / "platform" / "platform_host.c", RUNTIME / "host" / "scenario.c"]
     sources += [RUNTIME / n for n in LIBRARY_SIMULATION]
     exe = tmp_path / "t"
     subprocess.run([cc, "-std=c99", "-Wall", "-Wextra", "-Werror", "-pedantic",

@@ -1,5 +1,5 @@
 """Scenario files checked before a run (epuckc/sim/scenario.py) against the
-host harness that reads them (runtime_c/host/platform_host.c): on the same
+host harness that reads them (runtime_c/platform/platform_host.c): on the same
 files, good or broken, both say yes or no alike, and the harness's first
 broken line is the first the checker reports. The checker reports every
 problem of a file, each with its column and a caret."""

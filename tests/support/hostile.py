@@ -198,7 +198,7 @@ def runtime_objects(folder: Path, cc: str) -> list:
     """The host runtime, compiled once with the sanitizers."""
     objects = []
     # (the devices too: the language generator's programs send messages)
-    for src in (*RUNTIME_CORE, *RUNTIME_SIMULATED, *RUNTIME_DEVICES, "host/platform_host.c",
+    for src in (*RUNTIME_CORE, *RUNTIME_SIMULATED, *RUNTIME_DEVICES, "platform/platform_host.c",
                 "host/scenario.c", *LIBRARY_SIMULATION):
         obj = folder / (Path(src).stem + ".o")
         if not obj.exists():
