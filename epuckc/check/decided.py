@@ -6,15 +6,15 @@ decides some itself and, under -Werror, refuses the program for it (gcc's
 -Wstrict-overflow on `c + v >= v` with a `c` it knows): whatever it can
 decide from the same facts, the checker decides first.
 
-Three deciders (`decide`), each sound (a comparison it decides has that value for
-every value its sides can take) and each blind where the others see:
-- by the sides' intervals (`by_intervals`): the intervals of the two sides do not overlap;
-- by `difference`: the interval of `a - b` computed on the two sides as sums
-  of parts times numbers, where the parts they share cancel (`v + 5 > v`,
+Three deciders (`decide`), each sound (a comparison it decides has that
+value for every value its sides can take), each blind where the others see:
+- by the sides' intervals (`by_intervals`): they do not overlap;
+- by `difference`: the interval of `a - b`, the two sides taken as sums of
+  parts times numbers where the parts they share cancel (`v + 5 > v`,
   `c + v >= v` with `c` >= 0);
-- by their bits (`differing_bits`): `==` and `!=` whose sides always differ in a bit that each
-  has known, from the constants of `&`, `|`, `^`, `~` and shifts
-  (`known_bits`)."""
+- by their bits (`differing_bits`): `==` and `!=` whose sides always
+  differ in a bit known in both, from the constants of `&`, `|`, `^`, `~`
+  and shifts (`known_bits`)."""
 from __future__ import annotations
 
 from dataclasses import dataclass
@@ -167,14 +167,24 @@ def differing_bits(a: Expr, b: Expr) -> int:
     return ma & mb & (va ^ vb)
 
 
-def known_bits(e: Expr, depth: int = _DEPTH) -> tuple:
+def known_bits(e: Expr, depth: int = _DEPTH, seen: Optional[dict] = None) -> tuple:
     """(mask, bits): the bits of the low 16 of `e`'s value that are the
     same for every value it can take (mask), and what they are. The
-    operands of the bitwise operators are 16-bit ints (check/bits.py)."""
+    operands of the bitwise operators are 16-bit ints (check/bits.py).
+    Each node once (`seen`: a tree that shares a node costs its nodes)."""
+    if seen is None:
+        seen = {}
+    key = id(e)
+    if key not in seen:
+        seen[key] = _known_bits(e, depth, seen)
+    return seen[key]
+
+
+def _known_bits(e: Expr, depth: int, seen: dict) -> tuple:
     if e.lo == e.hi:
         return _ALL, e.lo & _ALL
     if e.op in _BITWISE and depth > 0:
-        sides = [known_bits(arg, depth - 1) for arg in e.args]
+        sides = [known_bits(arg, depth - 1, seen) for arg in e.args]
         if e.op == "~":
             (m, v), = sides
             return m, ~v & m
