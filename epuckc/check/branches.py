@@ -21,6 +21,7 @@ branch.
 """
 from __future__ import annotations
 
+from dataclasses import replace
 from typing import Optional
 
 from ..base.source import Span
@@ -47,7 +48,9 @@ class Branches:
         decided_true = None                 # the first condition that always holds
         for branch in call.branches:
             start = len(self.diags.items)
-            condition = self._condition(branch.condition)
+            # (checked where the conditions before it failed, as the C
+            # compiler reads it: `if v - 1000 != -v {} else if v > -v`)
+            condition = self._condition_where(branch.condition, failed)
             if condition is None:
                 ok = False
                 calls = self._branch(branch.body, None)
@@ -143,6 +146,32 @@ class Branches:
                     notes=[Note(f"{_code(resolved.name)} is defined here", node.span)])
                 ok = False
         return calls if ok else None
+
+    def _condition_where(self, node, holds: tuple):
+        """A condition checked with the variables it compares narrowed to
+        what `holds` (boxes, conditions.py) leaves them; unnarrowed where
+        it cannot hold (a branch that never runs is still checked)."""
+        base = {}
+        for n in sorted(set().union(*(bounds for bounds, _ in holds))):
+            info = self.vars.get(n)
+            if info is not None:
+                base[n] = (info.lo, info.hi)
+        bounds = conditions.narrowed_where(holds, base) if base else None
+        if not bounds:
+            return self._condition(node)
+        table = self.vars
+        self.vars = Overlaid(table, {n: with_interval(table[n], b) for n, b in bounds.items()})
+        try:
+            with self.diags.capture() as said:
+                condition = self._condition(node)
+        finally:
+            self.vars = table
+        where = Note("where the conditions before it in this `if` are false: "
+                     + ", ".join(f"`{n}` is {lo}" + (f"..{hi}" if hi != lo else "")
+                                 for n, (lo, hi) in bounds.items()))
+        self.diags.items.extend(replace(d, notes=d.notes + (where,)) if d.code == "W016" else d
+                                for d in said)
+        return condition
 
     _whole_ranges = None    # name -> its VarInfo before any branch narrowed it, meanwhile
 

@@ -1,6 +1,7 @@
 """What conditions say about the values they compare: a checked condition
 (an Expr of kind BOOL) seen as a formula over atoms `NAME OP NUMBER`, where
-NAME is a variable or a reading. Arbitration asks whether two rules'
+NAME is a variable or a reading (a comparison whose sides differ by
+`k * NAME + c` is one: `v0 - 1000 != -v0` is `v0 != 500`). Arbitration asks whether two rules'
 conditions can hold together (W009); the checker narrows a variable's
 interval after a guard (W020, W013, W014 in the rule's first step).
 
@@ -11,8 +12,11 @@ comparison of anything else, a `random(...)`, a deep tree, counts as
 """
 from __future__ import annotations
 
+import math
+from fractions import Fraction
 from typing import Optional
 
+from . import decided
 from .program import BOOL, Expr
 
 TRUE, FALSE = ("true",), ("false",)
@@ -42,9 +46,32 @@ def formula(e: Optional[Expr], positive: bool = True, depth: int = 0) -> tuple:
         elif b.op in ("var", "read") and a.constant:
             name, cmp, value = b.name, _FLIP[op], a.value
         else:
-            return TRUE
+            return _linear_atom(op, a, b, positive)
         return ("atom", name, cmp if positive else _NEGATE[cmp], value)
     return TRUE
+
+
+def _linear_atom(op: str, a: Expr, b: Expr, positive: bool) -> tuple:
+    """`a op b` where `a - b` is `k * v + c` for one variable or reading v
+    (`v0 - 1000 != -v0`: 2 * v0 - 1000 != 0): the atom on v it says
+    (v0 != 500), or TRUE where it says nothing that atoms can hold."""
+    found = decided.linear_atom(a, b)
+    if found is None:
+        return TRUE
+    part, k, c = found
+    cmp = op if positive else _NEGATE[op]
+    if k < 0:                       # k * v + c op 0: -k * v - c flip(op) 0
+        k, c, cmp = -k, -c, _FLIP[cmp]
+    q = Fraction(-c, k)             # v op q
+    whole = q.denominator == 1
+    if cmp in ("==", "!="):
+        if not whole:
+            return FALSE if cmp == "==" else TRUE
+        return ("atom", part.name, cmp, int(q))
+    low, high = math.floor(q), math.ceil(q)
+    value = {"<": high if not whole else int(q), "<=": low,
+             ">": low, ">=": high}[cmp]
+    return ("atom", part.name, cmp, value)
 
 
 def conjoin(*parts) -> tuple:

@@ -93,7 +93,30 @@ def difference(a: Expr, b: Expr) -> Optional[tuple]:
     return lo, hi
 
 
-def _linear(e: Expr, table: dict, bounds: dict):
+def linear_atom(a: Expr, b: Expr) -> Optional[tuple]:
+    """(part, k, c) where `a - b` is `c + k * part` whatever the values
+    are, `part` a variable or a reading and k not 0 (`v0 - 1000 == -v0`:
+    2 * v0 - 1000), else None: what conditions.py reads as a bound of it."""
+    table: dict = {}
+    bounds: dict = {}
+    trees: dict = {}
+    fa, fb = _linear(a, table, bounds, trees), _linear(b, table, bounds, trees)
+    if fa is None or fb is None:
+        return None
+    terms = dict(fa[1])
+    for key, k in fb[1].items():
+        terms[key] = terms.get(key, 0) - k
+    terms = {key: k for key, k in terms.items() if k}
+    if len(terms) != 1:
+        return None
+    (key, k), = terms.items()
+    part = trees[key]
+    if part.op not in ("var", "read"):
+        return None
+    return part, k, fa[0] - fb[0]
+
+
+def _linear(e: Expr, table: dict, bounds: dict, trees: Optional[dict] = None):
     """`e` as (number, {part: factor}): the sum of its parts times their
     factors plus the number, computed as the runtime does (exactly) where
     no sum or product in it can leave 32 bits, and a part where one can
@@ -103,7 +126,8 @@ def _linear(e: Expr, table: dict, bounds: dict):
     two sides compared (a key of its own that held its operands' keys
     grew with each level, their quotes escaped again, twice as long: a
     depth of 200 did not fit in memory); `bounds` each part's interval
-    (its first tree's: equal trees have equal intervals). A loop, not recursion (limits.py)."""
+    (its first tree's: equal trees have equal intervals), `trees` (when
+    given) that tree. A loop, not recursion (limits.py)."""
     keys: dict = {}     # id -> the tree's number in `table`, None with a random
     forms: dict = {}    # id -> (number, parts), None with a random
     stack = [(e, False)]
@@ -132,6 +156,8 @@ def _linear(e: Expr, table: dict, bounds: dict):
         elif exact is None or not arith.fits32(*exact):
             forms[id(x)] = (0, {key: 1})            # a part (or it may saturate)
             bounds.setdefault(key, (x.lo, x.hi))
+            if trees is not None:
+                trees.setdefault(key, x)
         elif x.op == "neg":
             forms[id(x)] = _scaled(args[0], -1)
         elif x.op == "*":
@@ -139,6 +165,8 @@ def _linear(e: Expr, table: dict, bounds: dict):
             if p and q:
                 forms[id(x)] = (0, {key: 1})        # a product of two variables
                 bounds.setdefault(key, (x.lo, x.hi))
+                if trees is not None:
+                    trees.setdefault(key, x)
             else:
                 forms[id(x)] = _scaled(args[1], n) if not p else _scaled(args[0], m)
         else:

@@ -159,3 +159,67 @@ def test_the_campaigns_inputs_build(tmp_path, name, seed):
     text = (PROGRAMS / f"{name}.epk").read_text()
     outcome = check_one(Program(name, text), tmp_path / name, cc, avr, [], run=False)
     assert outcome == Outcome.COMPILED, seed
+
+
+FIRST = ["v - {a} != -v", "2 * v != {b}", "v + {a} == {b} - v", "3 * v - {a} >= {b}",
+         "not (v - {a} == v * 2 - {b})", "v * -2 < {a}"]
+LATER = ["v > -v", "v + 1 > v - {a}", "v - {a} <= v + v", "-v >= {b} - v * 3", "v * 2 != {b}"]
+
+
+@pytest.mark.parametrize("seed", [1, 2])
+def test_a_later_condition_is_checked_where_the_ones_before_it_failed(tmp_path, seed):
+    """`if v - 1000 != -v { } else if v > -v`: where the first fails, v is
+    500, and gcc, which knows it, folds the second with -Wstrict-overflow
+    (seed 42223). Each later condition of a chain is checked with the
+    intervals the failed ones leave (a comparison whose sides differ by
+    `k * v + c` bounds v); decided, it is always what the run computes
+    (the same chain with the first condition hidden from the checker by
+    `+ random(0, 0)` takes the same branch), and the C builds."""
+    cc, avr = require_tool("cc"), require_tool("avr-gcc")
+    rng = random.Random(seed)
+    chains = []
+    for _ in range(30):
+        a, b = rng.randint(-600, 600), rng.randint(-1200, 1200)
+        first = rng.choice(FIRST).format(a=a, b=b)
+        later = rng.choice(LATER).format(a=rng.randint(-60, 60), b=rng.choice([b, 2 * a, 7]))
+        chains.append((first, later))
+    lines = ["var v = 0"] + [f"var {w}{i} = 0" for i in range(len(chains)) for w in "rs"]
+    tests = ", ".join(
+        f"if {first} {{ r{i} = 1 }} else if {later} {{ r{i} = 2 }} else {{ r{i} = 3 }}, "
+        f"if ({first}) and random(0, 0) == 0 {{ s{i} = 1 }} else if {later} {{ s{i} = 2 }} "
+        f"else {{ s{i} = 3 }}"
+        for i, (first, later) in enumerate(chains))
+    values = sorted({rng.randint(-900, 900) for _ in range(12)} | {0, 1, -1, 500, 300, -300})
+    values += [x for x in range(-600, 601, 100) if x not in values]
+    for n, value in enumerate(values):
+        lines.append(f"after {10 * (n + 1)} ms do v = {value}, {tests}")
+    lines.append(f"after {10 * (len(values) + 1)} ms do exit_main")
+    text = "\n".join(lines) + "\n"
+    path = tmp_path / "chain.epk"
+    path.write_text(text, encoding="utf-8")
+    records, _ = run_program(path, tmp_path, "--time-limit", "2s")
+    now: dict = {}
+    for r in records:
+        if r["kind"] == "set":
+            now[r["var"]] = r["value"]
+            if r["var"].startswith("s"):
+                i = r["var"][1:]
+                assert now.get(f"r{i}") == r["value"], (chains[int(i)], now.get("v"), r)
+    outcome = check_one(Program("chain", text), tmp_path / "build", cc, avr,
+                        runtime_objects(tmp_path, cc))
+    assert outcome == Outcome.BUILT
+
+
+def test_the_campaigns_equality_before_an_else_if_builds(tmp_path):
+    """Issue 42's campaign, seed 42223, input 289: `... else if v0 > -v0`
+    after `if v0 - 1000 steps/s != -v0` failed; avr-gcc refused it under
+    -Werror. Now the checker says it is always true there, and folds it."""
+    cc, avr = require_tool("cc"), require_tool("avr-gcc")
+    text = (PROGRAMS / "equal_before.epk").read_text()
+    assert "if v0 - 1000 steps/s != -v0" in text
+    outcome = check_one(Program("equal", text), tmp_path / "equal", cc, avr, [], run=False)
+    assert outcome == Outcome.COMPILED
+    path = tmp_path / "equal_before.epk"
+    path.write_text(text, encoding="utf-8")
+    said = epuckc("check", path, "--format", "short")
+    assert re.search(r"warning\[W016\]: `v0 > -v0` is always true", said.stdout + said.stderr)
